@@ -1,0 +1,360 @@
+/*
+ * cloth: real-time mass-spring cloth simulation, C API v1.
+ *
+ * The whole public interface of the library. C99, and valid C++. Only
+ * <stdint.h>, <stddef.h> and <stdbool.h> are used; no C++ type crosses it
+ * and no C++ exception ever leaves a call.
+ *
+ * Objects
+ *   world   owns everything below it, the host callbacks and the step.
+ *   fabric  the shared, immutable topology of a cloth (particles, triangles,
+ *           springs, rest lengths, rest areas). Many cloths may share one.
+ *   cloth   one simulated instance of a fabric: positions, velocities,
+ *           pins, material, solver settings, wind.
+ *
+ * Handles are small value structs (slot index + generation, all-zero is
+ * null). A destroyed, never-created or foreign handle makes a call return
+ * CLOTH_ERROR_INVALID_HANDLE; it is never dereferenced.
+ *
+ * Errors. Every fallible call returns a cloth_result. CLOTH_OK is 0. On
+ * failure nothing is changed (the one documented exception: cloth_step
+ * restores a cloth that went non-finite to its last finite state and
+ * reports CLOTH_ERROR_NONFINITE_STATE). cloth_get_last_error() returns a
+ * message for the last failed call on the calling thread; the world's log
+ * callback, if set, receives the same message.
+ *
+ * Descriptions. Every create call takes a description that must come from
+ * its cloth_default_*() function (a hidden cookie catches an uninitialised
+ * one) and carries struct_size, so a caller built against an older header
+ * keeps working with a newer library. Fields are only ever appended.
+ *
+ * Units: metres, kilograms, seconds. Vectors are float[3] (x, y, z).
+ *
+ * Threading contract
+ *   - A world is not internally synchronised for API calls: the host calls
+ *     the functions of one world from one thread at a time (any thread).
+ *     No call may be made on a world while cloth_step runs on it.
+ *   - Different worlds are independent and may be used from different
+ *     threads at the same time.
+ *   - Creating and destroying worlds is thread-safe.
+ *   - Callbacks (allocator, log) are called on the thread that made the API
+ *     call, during that call. They must not call back into this API.
+ *   - cloth_get_last_error() is per thread.
+ *   - Results are bit-identical for identical inputs and call sequences.
+ */
+#ifndef CLOTH_CLOTH_H
+#define CLOTH_CLOTH_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#if defined(_WIN32)
+#  if defined(CLOTH_BUILDING_SHARED)
+#    define CLOTH_API __declspec(dllexport)
+#  elif defined(CLOTH_USING_SHARED)
+#    define CLOTH_API __declspec(dllimport)
+#  else
+#    define CLOTH_API
+#  endif
+#else
+#  define CLOTH_API __attribute__((visibility("default")))
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------ */
+/* Version                                                              */
+/* ------------------------------------------------------------------ */
+
+#define CLOTH_VERSION_MAJOR 1
+#define CLOTH_VERSION_MINOR 0
+#define CLOTH_VERSION_PATCH 0
+
+/// Library version. A library with another major version than the header a
+/// caller was built with is not compatible with it.
+typedef struct cloth_version {
+    uint32_t major;
+    uint32_t minor;
+    uint32_t patch;
+} cloth_version;
+
+/// The version of the library that is loaded (not of the header).
+CLOTH_API cloth_version cloth_get_version(void);
+
+/* ------------------------------------------------------------------ */
+/* Results                                                              */
+/* ------------------------------------------------------------------ */
+
+typedef enum cloth_result {
+    CLOTH_OK = 0,
+    CLOTH_ERROR_NULL_POINTER = 1,      ///< a required pointer argument was NULL
+    CLOTH_ERROR_INVALID_HANDLE = 2,    ///< null, destroyed or foreign handle
+    CLOTH_ERROR_INVALID_DESC = 3,      ///< description not from cloth_default_*() or wrong struct_size
+    CLOTH_ERROR_INVALID_COUNT = 4,     ///< a count is zero, negative or too large
+    CLOTH_ERROR_INDEX_OUT_OF_RANGE = 5,///< a particle or vertex index is out of range
+    CLOTH_ERROR_NOT_FINITE = 6,        ///< a position or parameter is NaN or infinite
+    CLOTH_ERROR_INVALID_VALUE = 7,     ///< a value is out of its documented range (negative stiffness, dt <= 0, ...)
+    CLOTH_ERROR_DEGENERATE_GEOMETRY = 8,///< zero-area triangle, repeated vertex, zero-length edge
+    CLOTH_ERROR_OUT_OF_MEMORY = 9,     ///< the allocator returned NULL
+    CLOTH_ERROR_CAPACITY = 10,         ///< too many worlds, fabrics or cloths
+    CLOTH_ERROR_IO = 11,               ///< a file could not be read or parsed
+    CLOTH_ERROR_NONFINITE_STATE = 12,  ///< a step produced NaN/Inf; the cloth was restored to its last finite state
+    CLOTH_ERROR_SOLVER_FAILED = 13,    ///< a solve did not converge (state still advanced, finite)
+    CLOTH_ERROR_INTERNAL = 14,         ///< an unexpected internal error; the world is unchanged
+    CLOTH_RESULT_FORCE_U32 = 0x7FFFFFFF
+} cloth_result;
+
+/// A short constant name for a result ("CLOTH_ERROR_NULL_POINTER"). Never NULL.
+CLOTH_API const char* cloth_result_name(cloth_result result);
+
+/// The message of the last failed call made on this thread ("" if none).
+/// Valid until the next failing call on this thread.
+CLOTH_API const char* cloth_get_last_error(void);
+
+/* ------------------------------------------------------------------ */
+/* Handles                                                              */
+/* ------------------------------------------------------------------ */
+
+/// A world. All-zero is the null handle.
+typedef struct cloth_world_id {
+    uint16_t index1;     ///< slot index + 1; 0 means null
+    uint16_t generation; ///< reuse counter of the slot
+} cloth_world_id;
+
+/// A fabric (shared topology) inside a world. All-zero is null.
+typedef struct cloth_fabric_id {
+    uint32_t index1;     ///< slot index + 1; 0 means null
+    uint16_t world1;     ///< owning world index + 1
+    uint16_t generation; ///< reuse counter of the slot
+} cloth_fabric_id;
+
+/// A cloth instance inside a world. All-zero is null.
+typedef struct cloth_id {
+    uint32_t index1;     ///< slot index + 1; 0 means null
+    uint16_t world1;     ///< owning world index + 1
+    uint16_t generation; ///< reuse counter of the slot
+} cloth_id;
+
+/* ------------------------------------------------------------------ */
+/* World                                                                */
+/* ------------------------------------------------------------------ */
+
+/// Allocate `size` bytes aligned to `alignment` (a power of two <= 64).
+/// Return NULL on failure: the call that needed the memory then returns
+/// CLOTH_ERROR_OUT_OF_MEMORY and changes nothing.
+typedef void* cloth_alloc_fn(size_t size, size_t alignment, void* user);
+/// Free memory returned by the matching cloth_alloc_fn. `ptr` is never NULL.
+typedef void cloth_free_fn(void* ptr, size_t size, void* user);
+
+typedef enum cloth_log_level {
+    CLOTH_LOG_ERROR = 0,
+    CLOTH_LOG_WARNING = 1,
+    CLOTH_LOG_INFO = 2,
+    CLOTH_LOG_LEVEL_FORCE_U32 = 0x7FFFFFFF
+} cloth_log_level;
+
+/// Receives every error message (and warnings) of the world's calls.
+typedef void cloth_log_fn(cloth_log_level level, cloth_result code, const char* message, void* user);
+
+typedef struct cloth_world_desc {
+    uint32_t struct_size;   ///< sizeof(cloth_world_desc); set by cloth_default_world_desc()
+    float gravity[3];       ///< m/s^2; default (0, -9.81, 0)
+    cloth_alloc_fn* alloc;  ///< optional; both alloc and free, or neither (default: C heap)
+    cloth_free_fn* free;    ///< optional
+    cloth_log_fn* log;      ///< optional
+    void* user;             ///< passed to alloc, free and log
+    uint32_t max_cloths;    ///< capacity of the cloth table; default 1024, at most 65535
+    uint32_t max_fabrics;   ///< capacity of the fabric table; default 256, at most 65535
+    uint32_t internal_cookie; ///< set by cloth_default_world_desc(); do not change
+} cloth_world_desc;
+
+CLOTH_API cloth_world_desc cloth_default_world_desc(void);
+
+/// Create a world. At most 128 worlds exist at once.
+CLOTH_API cloth_result cloth_world_create(const cloth_world_desc* desc, cloth_world_id* out_world);
+/// Destroy a world and every fabric and cloth in it.
+CLOTH_API cloth_result cloth_world_destroy(cloth_world_id world);
+/// Change gravity (m/s^2).
+CLOTH_API cloth_result cloth_world_set_gravity(cloth_world_id world, const float gravity[3]);
+
+/// Advance every cloth of the world by `dt` seconds (0 < dt <= 1). Each
+/// cloth takes its own number of substeps. If a cloth's state becomes
+/// non-finite, that cloth is restored to its state before this call, the
+/// other cloths advance normally, and CLOTH_ERROR_NONFINITE_STATE is
+/// returned (cloth_stats.last_step_result tells which cloth).
+CLOTH_API cloth_result cloth_step(cloth_world_id world, float dt);
+
+/* ------------------------------------------------------------------ */
+/* Fabric (shared topology)                                             */
+/* ------------------------------------------------------------------ */
+
+/// Spring kinds, as bits of cloth_fabric_desc.spring_kinds.
+typedef enum cloth_spring_kind {
+    CLOTH_SPRING_STRUCTURAL = 1, ///< mesh edges (grid rows and columns)
+    CLOTH_SPRING_SHEAR = 2,      ///< grid cell diagonals (grids only)
+    CLOTH_SPRING_BEND = 4,       ///< skip-one on grids; across shared triangle edges on meshes
+    CLOTH_SPRING_ALL = 7,
+    CLOTH_SPRING_KIND_FORCE_U32 = 0x7FFFFFFF
+} cloth_spring_kind;
+
+/// A rectangular grid of `columns` x `rows` particles. Particle (c, r) has
+/// index r * columns + c and sits at origin + c/(columns-1) * u + r/(rows-1) * v.
+typedef struct cloth_grid_desc {
+    uint32_t struct_size; ///< sizeof(cloth_grid_desc)
+    uint32_t columns;     ///< >= 2; default 32
+    uint32_t rows;        ///< >= 2; default 32
+    float origin[3];      ///< position of particle (0, 0); default (0, 0, 0)
+    float u[3];           ///< edge along columns; default (1, 0, 0)
+    float v[3];           ///< edge along rows; default (0, -1, 0) (hangs down)
+    uint32_t spring_kinds;///< bit set of cloth_spring_kind; default CLOTH_SPRING_ALL
+    uint32_t internal_cookie;
+} cloth_grid_desc;
+
+CLOTH_API cloth_grid_desc cloth_default_grid_desc(void);
+
+/// An arbitrary triangle mesh. Structural springs on every edge, bend
+/// springs across every edge shared by two triangles; no shear springs.
+typedef struct cloth_mesh_desc {
+    uint32_t struct_size;      ///< sizeof(cloth_mesh_desc)
+    const float* positions;    ///< vertex_count * 3 floats
+    uint32_t vertex_count;     ///< >= 3
+    const uint32_t* indices;   ///< triangle_count * 3 vertex indices
+    uint32_t triangle_count;   ///< >= 1
+    uint32_t spring_kinds;     ///< default CLOTH_SPRING_ALL (shear is ignored)
+    uint32_t internal_cookie;
+} cloth_mesh_desc;
+
+CLOTH_API cloth_mesh_desc cloth_default_mesh_desc(void);
+
+CLOTH_API cloth_result cloth_fabric_create_grid(cloth_world_id world, const cloth_grid_desc* desc, cloth_fabric_id* out_fabric);
+CLOTH_API cloth_result cloth_fabric_create_mesh(cloth_world_id world, const cloth_mesh_desc* desc, cloth_fabric_id* out_fabric);
+/// Load a triangle mesh from a Wavefront OBJ file (faces are triangulated).
+CLOTH_API cloth_result cloth_fabric_create_obj(cloth_world_id world, const char* path, uint32_t spring_kinds, cloth_fabric_id* out_fabric);
+/// Release the handle. Cloths made from the fabric keep working; the
+/// memory is freed when the last of them is destroyed.
+CLOTH_API cloth_result cloth_fabric_destroy(cloth_fabric_id fabric);
+
+CLOTH_API cloth_result cloth_fabric_get_particle_count(cloth_fabric_id fabric, uint32_t* out_count);
+CLOTH_API cloth_result cloth_fabric_get_triangle_count(cloth_fabric_id fabric, uint32_t* out_count);
+/// Number of springs of the given kinds (a bit set of cloth_spring_kind).
+CLOTH_API cloth_result cloth_fabric_get_spring_count(cloth_fabric_id fabric, uint32_t kinds, uint32_t* out_count);
+/// Copy the triangle indices (3 per triangle) into `out_indices`, which
+/// holds `capacity` uint32 values (at least 3 * triangle count).
+CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id fabric, uint32_t* out_indices, uint32_t capacity);
+
+/* ------------------------------------------------------------------ */
+/* Cloth                                                                */
+/* ------------------------------------------------------------------ */
+
+typedef enum cloth_solver_kind {
+    CLOTH_SOLVER_DEFAULT = 0,  ///< the library's choice (currently JACOBI)
+    CLOTH_SOLVER_JACOBI = 1,   ///< linearized backward Euler, `iterations` Jacobi sweeps (1 = the paper's method)
+    CLOTH_SOLVER_CG = 2,       ///< the same system solved with conjugate gradient to `cg_tolerance` (reference)
+    CLOTH_SOLVER_EXPLICIT = 3, ///< symplectic Euler (baseline; needs tiny steps for stiff cloth)
+    CLOTH_SOLVER_KIND_FORCE_U32 = 0x7FFFFFFF
+} cloth_solver_kind;
+
+/// Stiffness and damping of one spring kind.
+typedef struct cloth_spring_params {
+    float stiffness; ///< N/m, >= 0
+    float damping;   ///< N s/m along the spring, >= 0
+} cloth_spring_params;
+
+/// How a cloth advances.
+typedef struct cloth_solver_settings {
+    uint32_t struct_size;          ///< sizeof(cloth_solver_settings)
+    cloth_solver_kind kind;        ///< default CLOTH_SOLVER_JACOBI
+    uint32_t iterations;           ///< Jacobi sweeps, 1..256; default 1
+    uint32_t substeps;             ///< steps per cloth_step call, 1..64; default 1
+    float cg_tolerance;            ///< CG relative residual, (0, 1); default 1e-6
+    uint32_t cg_max_iterations;    ///< 1..100000; default 1000
+    bool compression_safe_jacobian;///< paper eq. 12 for compressed springs; default true
+} cloth_solver_settings;
+
+CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
+
+/// Aerodynamics: wind, drag and lift per triangle against the relative air
+/// velocity, plus linear air drag per particle.
+typedef struct cloth_aero_params {
+    float wind[3];          ///< air velocity, m/s; default (0, 0, 0)
+    float air_density;      ///< kg/m^3, >= 0; default 1.2
+    float drag_coefficient; ///< >= 0; default 1.0
+    float lift_coefficient; ///< >= 0; default 0.5
+    float linear_drag;      ///< 1/s, >= 0: force -linear_drag * m * v per particle; default 0.02
+} cloth_aero_params;
+
+typedef struct cloth_desc {
+    uint32_t struct_size;          ///< sizeof(cloth_desc)
+    cloth_fabric_id fabric;        ///< required
+    float area_density;            ///< kg/m^2, > 0; default 0.2
+    float particle_mass;           ///< kg, >= 0; if > 0, every particle gets this mass instead
+    const float* initial_positions;///< optional particle_count * 3 floats; default: fabric rest positions
+    cloth_spring_params structural;///< default {1000, 0.5}
+    cloth_spring_params shear;     ///< default {200, 0.2}
+    cloth_spring_params bend;      ///< default {20, 0.05}
+    cloth_solver_settings solver;  ///< default cloth_default_solver_settings()
+    cloth_aero_params aero;        ///< see cloth_aero_params
+    uint32_t internal_cookie;
+} cloth_desc;
+
+CLOTH_API cloth_desc cloth_default_desc(void);
+
+CLOTH_API cloth_result cloth_create(cloth_world_id world, const cloth_desc* desc, cloth_id* out_cloth);
+CLOTH_API cloth_result cloth_destroy(cloth_id cloth);
+
+CLOTH_API cloth_result cloth_get_particle_count(cloth_id cloth, uint32_t* out_count);
+
+/// Copy positions (3 floats per particle) into `out_xyz`, which holds
+/// `capacity` floats (at least 3 * particle count).
+CLOTH_API cloth_result cloth_read_positions(cloth_id cloth, float* out_xyz, uint32_t capacity);
+/// Copy velocities (m/s), same layout as positions.
+CLOTH_API cloth_result cloth_read_velocities(cloth_id cloth, float* out_xyz, uint32_t capacity);
+/// Copy unit per-vertex normals (area-weighted triangle normals), same layout.
+CLOTH_API cloth_result cloth_read_normals(cloth_id cloth, float* out_xyz, uint32_t capacity);
+
+/// Teleport particles: set positions (and zero their velocities).
+CLOTH_API cloth_result cloth_set_positions(cloth_id cloth, const uint32_t* indices, const float* positions_xyz, uint32_t count);
+
+/// Pin particles where they are: they become kinematic (infinite mass).
+CLOTH_API cloth_result cloth_pin(cloth_id cloth, const uint32_t* indices, uint32_t count);
+/// Release pinned particles; they keep their current velocity.
+CLOTH_API cloth_result cloth_unpin(cloth_id cloth, const uint32_t* indices, uint32_t count);
+/// Move pinned particles: each reaches its target at the end of the next
+/// cloth_step, moving linearly across substeps, and carries the matching
+/// velocity. Every index must be pinned.
+CLOTH_API cloth_result cloth_set_pin_targets(cloth_id cloth, const uint32_t* indices, const float* targets_xyz, uint32_t count);
+/// Whether particle `index` is pinned.
+CLOTH_API cloth_result cloth_is_pinned(cloth_id cloth, uint32_t index, bool* out_pinned);
+
+CLOTH_API cloth_result cloth_set_solver(cloth_id cloth, const cloth_solver_settings* settings);
+CLOTH_API cloth_result cloth_get_solver(cloth_id cloth, cloth_solver_settings* out_settings);
+/// Change one or more spring kinds (a bit set of cloth_spring_kind).
+CLOTH_API cloth_result cloth_set_spring_params(cloth_id cloth, uint32_t kinds, cloth_spring_params params);
+CLOTH_API cloth_result cloth_set_aero(cloth_id cloth, const cloth_aero_params* params);
+/// Shorthand: change only the wind velocity (m/s).
+CLOTH_API cloth_result cloth_set_wind(cloth_id cloth, const float wind[3]);
+
+/// Measurements of a cloth's current state.
+typedef struct cloth_stats {
+    uint32_t struct_size;      ///< set by the caller to sizeof(cloth_stats)
+    double kinetic_energy;     ///< J, free particles only
+    double gravity_energy;     ///< J, m g . x relative to the origin, free particles only
+    double elastic_energy;     ///< J, sum of k (L - l0)^2 / 2 over springs
+    float max_strain;          ///< max over structural springs of (L - l0) / l0
+    float mean_strain;         ///< mean of |L - l0| / l0 over structural springs
+    float max_speed;           ///< m/s
+    uint32_t last_solver_iterations; ///< iterations used by the last solve (CG: last substep)
+    float last_solver_residual;      ///< relative residual of the last solve (CG only; else 0)
+    cloth_result last_step_result;   ///< CLOTH_OK, or what the last cloth_step reported for this cloth
+} cloth_stats;
+
+CLOTH_API cloth_result cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
+
+#endif /* CLOTH_CLOTH_H */

@@ -1,0 +1,119 @@
+// One simulated cloth: per-instance state over a shared Fabric (Jolt's
+// SoftBodyMotionProperties, NvCloth's Cloth). Owns its material, solver
+// settings and scratch buffers; advances itself by one frame in step().
+#pragma once
+
+#include <cloth/cloth.h>
+
+#include <memory>
+
+#include "fabric.h"
+#include "host_allocator.h"
+#include "math.h"
+#include "status.h"
+
+namespace cloth {
+
+struct SpringParams {
+    float stiffness = 0;  // N/m
+    float damping = 0;    // N s/m
+};
+
+struct Material {
+    SpringParams springs[kSpringKindCount];
+    float area_density = 0.2f;  // kg/m^2
+    float particle_mass = 0;    // kg; > 0 overrides area_density
+};
+
+struct AeroParams {
+    Vec3 wind = Vec3::Zero();
+    float air_density = 1.2f;
+    float drag_coefficient = 1.0f;
+    float lift_coefficient = 0.5f;
+    float linear_drag = 0.02f;
+};
+
+struct SolverSettings {
+    cloth_solver_kind kind = CLOTH_SOLVER_JACOBI;
+    uint32_t iterations = 1;
+    uint32_t substeps = 1;
+    float cg_tolerance = 1e-6f;
+    uint32_t cg_max_iterations = 1000;
+    bool compression_safe_jacobian = true;
+};
+
+// What the last solve reported (for stats and tests).
+struct SolveReport {
+    uint32_t iterations = 0;
+    float residual = 0;
+    bool converged = true;
+};
+
+class ClothInstance {
+public:
+    ClothInstance(const HostMemory* memory, std::shared_ptr<const Fabric> fabric, const Material& material,
+                  const SolverSettings& solver, const AeroParams& aero);
+
+    const Fabric& fabric() const { return *fabric_; }
+    uint32_t particle_count() const { return fabric_->particle_count(); }
+
+    // Advance by one frame of `dt` seconds (settings().substeps substeps).
+    // Returns CLOTH_ERROR_NONFINITE_STATE after restoring the state from
+    // before the call if the result was not finite.
+    Status step(float dt, const Vec3& gravity);
+
+    void set_material(const Material& material);  // recomputes masses
+    const Material& material() const { return material_; }
+    SolverSettings& solver() { return solver_; }
+    const SolverSettings& solver() const { return solver_; }
+    AeroParams& aero() { return aero_; }
+    const AeroParams& aero() const { return aero_; }
+
+    void pin(uint32_t particle);
+    void unpin(uint32_t particle);
+    bool is_pinned(uint32_t particle) const { return pinned_[particle] != 0; }
+    void set_pin_target(uint32_t particle, const Vec3& target) { pin_target_[particle] = target; }
+    void set_position(uint32_t particle, const Vec3& x);
+
+    const HostVector<Vec3>& positions() const { return x_; }
+    const HostVector<Vec3>& velocities() const { return v_; }
+    const HostVector<float>& masses() const { return mass_; }
+    // Unit area-weighted vertex normals of the current positions.
+    const HostVector<Vec3>& normals() const;
+
+    const SolveReport& last_solve() const { return last_solve_; }
+    cloth_result last_step_result() const { return last_step_result_; }
+
+private:
+    void substep(float h, float frame_fraction_end, const Vec3& gravity);
+    bool state_is_finite() const;
+
+    std::shared_ptr<const Fabric> fabric_;
+    Material material_;
+    SolverSettings solver_;
+    AeroParams aero_;
+
+    // State.
+    HostVector<Vec3> x_, v_;
+    HostVector<float> mass_;
+    HostVector<uint8_t> pinned_;
+    HostVector<Vec3> pin_target_;  // where a pinned particle is at the end of the next frame
+    HostVector<Vec3> pin_start_;   // where it was at the start of this frame
+
+    // Scratch, sized once at creation (no allocation per step).
+    HostVector<Vec3> external_force_;   // per particle
+    HostVector<Vec3> triangle_force_;   // per triangle, share of each corner
+    HostVector<Vec3> spring_force_;     // per spring: f~ contribution on its first particle
+    HostVector<Sym3> spring_block_;     // per spring: A_s = h^2 J_s + h D_s
+    HostVector<Sym3> diagonal_;         // per particle: W_ii
+    HostVector<Sym3> diagonal_inverse_; // per particle: W_ii^-1 (zero if pinned)
+    HostVector<Vec3> rhs_;              // per particle: b_i = h f~_i
+    HostVector<Vec3> dv_, dv_scratch_;  // per particle
+    mutable HostVector<Vec3> normals_;  // per particle, filled by normals()
+    HostVector<Vec3> backup_x_, backup_v_;
+
+    SolveReport last_solve_;
+    cloth_result last_step_result_ = CLOTH_OK;
+};
+
+}  // namespace cloth

@@ -1,0 +1,264 @@
+#include "fabric.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace cloth {
+
+Fabric::Fabric(const HostMemory* memory)
+    : rest_positions(HostAllocator<Vec3>(memory)),
+      rest_area(HostAllocator<float>(memory)),
+      triangles(HostAllocator<uint32_t>(memory)),
+      spring_first(HostAllocator<uint32_t>(memory)),
+      spring_second(HostAllocator<uint32_t>(memory)),
+      spring_rest_length(HostAllocator<float>(memory)),
+      spring_kind(HostAllocator<uint8_t>(memory)),
+      incidence_offset(HostAllocator<uint32_t>(memory)),
+      incidence_spring(HostAllocator<uint32_t>(memory)),
+      incidence_other(HostAllocator<uint32_t>(memory)),
+      incidence_sign(HostAllocator<float>(memory)),
+      triangle_incidence_offset(HostAllocator<uint32_t>(memory)),
+      triangle_incidence(HostAllocator<uint32_t>(memory)) {}
+
+namespace {
+
+struct SpringSpec {
+    uint32_t i, j;
+    SpringKind kind;
+};
+
+// Build CSR lists: for each particle, the items (in increasing item order)
+// that touch it. `ends(item, out)` writes the particles an item touches.
+template <class Ends>
+void build_incidence(uint32_t particle_count, uint32_t item_count, int ends_per_item, Ends ends,
+                     HostVector<uint32_t>& offset, HostVector<uint32_t>& items) {
+    offset.assign(particle_count + 1, 0);
+    uint32_t touched[3];
+    for (uint32_t item = 0; item < item_count; ++item) {
+        ends(item, touched);
+        for (int e = 0; e < ends_per_item; ++e) ++offset[touched[e] + 1];
+    }
+    for (uint32_t p = 0; p < particle_count; ++p) offset[p + 1] += offset[p];
+    items.resize(offset[particle_count]);
+    std::vector<uint32_t> cursor(offset.begin(), offset.end() - 1);
+    for (uint32_t item = 0; item < item_count; ++item) {
+        ends(item, touched);
+        for (int e = 0; e < ends_per_item; ++e) items[cursor[touched[e]]++] = item;
+    }
+}
+
+// Shared tail of every builder: validates the geometry, computes rest
+// lengths, lumped areas and the incidence lists.
+Status finish_fabric(const std::vector<SpringSpec>& springs, Fabric& f) {
+    const uint32_t n = f.particle_count();
+    const uint32_t t_count = f.triangle_count();
+
+    f.rest_area.assign(n, 0.0f);
+    for (uint32_t t = 0; t < t_count; ++t) {
+        const uint32_t a = f.triangles[3 * t], b = f.triangles[3 * t + 1], c = f.triangles[3 * t + 2];
+        const Vec3 e1 = f.rest_positions[b] - f.rest_positions[a];
+        const Vec3 e2 = f.rest_positions[c] - f.rest_positions[a];
+        const float area = 0.5f * e1.cross(e2).norm();
+        const float longest = std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()});
+        if (!(area > 1e-6f * longest)) {
+            return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY,
+                                 "triangle %u (%u, %u, %u) has zero area", t, a, b, c);
+        }
+        for (uint32_t v : {a, b, c}) f.rest_area[v] += area / 3.0f;
+    }
+    for (uint32_t p = 0; p < n; ++p) {
+        if (f.rest_area[p] == 0.0f) {
+            return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY,
+                                 "vertex %u belongs to no triangle (it would have no mass)", p);
+        }
+    }
+
+    const auto count = static_cast<uint32_t>(springs.size());
+    f.spring_first.resize(count);
+    f.spring_second.resize(count);
+    f.spring_rest_length.resize(count);
+    f.spring_kind.resize(count);
+    for (uint32_t s = 0; s < count; ++s) {
+        const SpringSpec& spec = springs[s];
+        const float length = (f.rest_positions[spec.j] - f.rest_positions[spec.i]).norm();
+        if (!(length > 0.0f)) {
+            return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY,
+                                 "particles %u and %u coincide (zero-length spring)", spec.i, spec.j);
+        }
+        f.spring_first[s] = spec.i;
+        f.spring_second[s] = spec.j;
+        f.spring_rest_length[s] = length;
+        f.spring_kind[s] = spec.kind;
+        ++f.springs_of_kind[spec.kind];
+    }
+
+    build_incidence(
+        n, count, 2,
+        [&](uint32_t s, uint32_t* out) {
+            out[0] = f.spring_first[s];
+            out[1] = f.spring_second[s];
+        },
+        f.incidence_offset, f.incidence_spring);
+    f.incidence_other.resize(f.incidence_spring.size());
+    f.incidence_sign.resize(f.incidence_spring.size());
+    for (uint32_t p = 0; p < n; ++p) {
+        for (uint32_t e = f.incidence_offset[p]; e < f.incidence_offset[p + 1]; ++e) {
+            const uint32_t s = f.incidence_spring[e];
+            const bool first = f.spring_first[s] == p;
+            f.incidence_other[e] = first ? f.spring_second[s] : f.spring_first[s];
+            f.incidence_sign[e] = first ? 1.0f : -1.0f;
+        }
+    }
+    build_incidence(
+        n, t_count, 3,
+        [&](uint32_t t, uint32_t* out) {
+            for (int k = 0; k < 3; ++k) out[k] = f.triangles[3 * t + k];
+        },
+        f.triangle_incidence_offset, f.triangle_incidence);
+    return {};
+}
+
+bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
+
+}  // namespace
+
+Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
+    const uint32_t cols = desc.columns, rows = desc.rows;
+    if (cols < 2 || rows < 2) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "grid needs at least 2 columns and 2 rows (got %u x %u)",
+                             cols, rows);
+    }
+    if (static_cast<uint64_t>(cols) * rows > kMaxParticles) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "grid of %u x %u exceeds %u particles", cols, rows,
+                             kMaxParticles);
+    }
+    if (!finite3(desc.origin) || !finite3(desc.u) || !finite3(desc.v)) {
+        return Status::error(CLOTH_ERROR_NOT_FINITE, "grid origin, u or v is not finite");
+    }
+    if (desc.spring_kinds & ~static_cast<uint32_t>(CLOTH_SPRING_ALL)) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown spring kind bits 0x%x", desc.spring_kinds);
+    }
+    const Vec3 origin(desc.origin[0], desc.origin[1], desc.origin[2]);
+    const Vec3 u(desc.u[0], desc.u[1], desc.u[2]);
+    const Vec3 v(desc.v[0], desc.v[1], desc.v[2]);
+    if (!(u.cross(v).norm() > 1e-6f * u.norm() * v.norm())) {
+        return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY, "grid edges u and v are zero or parallel");
+    }
+
+    auto index = [cols](uint32_t c, uint32_t r) { return r * cols + c; };
+    f.rest_positions.resize(static_cast<size_t>(cols) * rows);
+    for (uint32_t r = 0; r < rows; ++r) {
+        for (uint32_t c = 0; c < cols; ++c) {
+            f.rest_positions[index(c, r)] = origin + u * (static_cast<float>(c) / static_cast<float>(cols - 1)) +
+                                            v * (static_cast<float>(r) / static_cast<float>(rows - 1));
+        }
+    }
+    // Two triangles per cell, diagonals alternating in a checkerboard so the
+    // mesh has no preferred shear direction.
+    f.triangles.reserve(static_cast<size_t>(cols - 1) * (rows - 1) * 6);
+    for (uint32_t r = 0; r + 1 < rows; ++r) {
+        for (uint32_t c = 0; c + 1 < cols; ++c) {
+            const uint32_t a = index(c, r), b = index(c + 1, r), d = index(c, r + 1), e = index(c + 1, r + 1);
+            if ((c + r) % 2 == 0) {
+                f.triangles.insert(f.triangles.end(), {a, b, e, a, e, d});
+            } else {
+                f.triangles.insert(f.triangles.end(), {a, b, d, b, e, d});
+            }
+        }
+    }
+
+    std::vector<SpringSpec> springs;
+    const uint32_t kinds = desc.spring_kinds;
+    for (uint32_t r = 0; r < rows; ++r) {
+        for (uint32_t c = 0; c < cols; ++c) {
+            const uint32_t p = index(c, r);
+            if (kinds & CLOTH_SPRING_STRUCTURAL) {
+                if (c + 1 < cols) springs.push_back({p, index(c + 1, r), kStructural});
+                if (r + 1 < rows) springs.push_back({p, index(c, r + 1), kStructural});
+            }
+            if ((kinds & CLOTH_SPRING_SHEAR) && c + 1 < cols && r + 1 < rows) {
+                springs.push_back({p, index(c + 1, r + 1), kShear});
+                springs.push_back({index(c + 1, r), index(c, r + 1), kShear});
+            }
+            if (kinds & CLOTH_SPRING_BEND) {
+                if (c + 2 < cols) springs.push_back({p, index(c + 2, r), kBend});
+                if (r + 2 < rows) springs.push_back({p, index(c, r + 2), kBend});
+            }
+        }
+    }
+    return finish_fabric(springs, f);
+}
+
+Status build_mesh_fabric(const float* positions, uint32_t vertex_count, const uint32_t* indices,
+                         uint32_t triangle_count, uint32_t spring_kinds, Fabric& f) {
+    if (!positions || !indices) return Status::error(CLOTH_ERROR_NULL_POINTER, "mesh positions or indices is NULL");
+    if (vertex_count < 3 || vertex_count > kMaxParticles) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "mesh vertex_count %u is not in 3..%u", vertex_count,
+                             kMaxParticles);
+    }
+    if (triangle_count == 0 || triangle_count > 4 * kMaxParticles) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "mesh triangle_count %u is not in 1..%u", triangle_count,
+                             4 * kMaxParticles);
+    }
+    if (spring_kinds & ~static_cast<uint32_t>(CLOTH_SPRING_ALL)) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown spring kind bits 0x%x", spring_kinds);
+    }
+    for (uint32_t p = 0; p < vertex_count; ++p) {
+        if (!finite3(positions + 3 * p)) return Status::error(CLOTH_ERROR_NOT_FINITE, "vertex %u is not finite", p);
+    }
+    for (uint32_t t = 0; t < triangle_count; ++t) {
+        const uint32_t* tri = indices + 3 * t;
+        for (int k = 0; k < 3; ++k) {
+            if (tri[k] >= vertex_count) {
+                return Status::error(CLOTH_ERROR_INDEX_OUT_OF_RANGE, "triangle %u uses vertex %u of %u", t, tri[k],
+                                     vertex_count);
+            }
+        }
+        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+            return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY, "triangle %u repeats a vertex (%u, %u, %u)", t,
+                                 tri[0], tri[1], tri[2]);
+        }
+    }
+
+    f.rest_positions.resize(vertex_count);
+    for (uint32_t p = 0; p < vertex_count; ++p) {
+        f.rest_positions[p] = Vec3(positions[3 * p], positions[3 * p + 1], positions[3 * p + 2]);
+    }
+    f.triangles.assign(indices, indices + 3 * static_cast<size_t>(triangle_count));
+
+    // Every edge with the vertex opposite it, sorted so that the two
+    // triangles sharing an edge sit next to each other (fixed order).
+    struct EdgeUse {
+        uint32_t lo, hi, opposite;
+        bool operator<(const EdgeUse& o) const {
+            return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : opposite < o.opposite;
+        }
+    };
+    std::vector<EdgeUse> uses;
+    uses.reserve(3 * static_cast<size_t>(triangle_count));
+    for (uint32_t t = 0; t < triangle_count; ++t) {
+        const uint32_t* tri = indices + 3 * t;
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = tri[k], b = tri[(k + 1) % 3], o = tri[(k + 2) % 3];
+            uses.push_back({std::min(a, b), std::max(a, b), o});
+        }
+    }
+    std::sort(uses.begin(), uses.end());
+
+    std::vector<SpringSpec> springs;
+    for (size_t begin = 0; begin < uses.size();) {
+        size_t end = begin + 1;
+        while (end < uses.size() && uses[end].lo == uses[begin].lo && uses[end].hi == uses[begin].hi) ++end;
+        if (spring_kinds & CLOTH_SPRING_STRUCTURAL) springs.push_back({uses[begin].lo, uses[begin].hi, kStructural});
+        // An edge shared by exactly two triangles: bend spring across it.
+        if ((spring_kinds & CLOTH_SPRING_BEND) && end - begin == 2 && uses[begin].opposite != uses[begin + 1].opposite) {
+            springs.push_back({uses[begin].opposite, uses[begin + 1].opposite, kBend});
+        }
+        begin = end;
+    }
+    return finish_fabric(springs, f);
+}
+
+}  // namespace cloth

@@ -1,0 +1,63 @@
+// Fabric: the shared, immutable topology of a cloth (paper section II;
+// Jolt's SoftBodySharedSettings, NvCloth's Fabric). Built once from a grid
+// or a triangle mesh; any number of cloth instances reference it.
+//
+// Springs are stored as structure-of-arrays. Each particle also gets the
+// list of its incident springs (CSR), in a fixed order, so every stage of
+// the step can gather per particle instead of scattering per spring: the
+// sums are then formed in the same order whatever thread runs them.
+#pragma once
+
+#include <cloth/cloth.h>
+
+#include <cstdint>
+
+#include "host_allocator.h"
+#include "math.h"
+#include "status.h"
+
+namespace cloth {
+
+enum SpringKind : uint8_t { kStructural = 0, kShear = 1, kBend = 2, kSpringKindCount = 3 };
+
+struct Fabric {
+    explicit Fabric(const HostMemory* memory);
+
+    uint32_t particle_count() const { return static_cast<uint32_t>(rest_positions.size()); }
+    uint32_t triangle_count() const { return static_cast<uint32_t>(triangles.size() / 3); }
+    uint32_t spring_count() const { return static_cast<uint32_t>(spring_first.size()); }
+
+    HostVector<Vec3> rest_positions;
+    HostVector<float> rest_area;      // lumped: a third of each incident triangle's area
+    HostVector<uint32_t> triangles;   // 3 indices per triangle
+
+    HostVector<uint32_t> spring_first;  // particle i of spring s
+    HostVector<uint32_t> spring_second; // particle j of spring s
+    HostVector<float> spring_rest_length;
+    HostVector<uint8_t> spring_kind;
+    uint32_t springs_of_kind[kSpringKindCount] = {0, 0, 0};
+
+    // Per particle p, entries incidence_offset[p] .. incidence_offset[p+1].
+    HostVector<uint32_t> incidence_offset;
+    HostVector<uint32_t> incidence_spring;
+    HostVector<uint32_t> incidence_other;  // the particle at the other end
+    HostVector<float> incidence_sign;      // +1 if p is the spring's first particle, else -1
+
+    // Triangles incident to each particle, for normals and wind forces.
+    HostVector<uint32_t> triangle_incidence_offset;
+    HostVector<uint32_t> triangle_incidence;
+};
+
+// Largest particle count a fabric may have.
+constexpr uint32_t kMaxParticles = 1u << 24;
+
+// Builders fill a freshly constructed `out`; on error, discard it.
+// Build from a grid description.
+Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& out);
+// Build from a triangle mesh (positions: 3 floats per vertex).
+Status build_mesh_fabric(const float* positions, uint32_t vertex_count, const uint32_t* indices,
+                         uint32_t triangle_count, uint32_t spring_kinds, Fabric& out);
+// Load an OBJ file (triangulated) and build from it.
+Status build_obj_fabric(const char* path, uint32_t spring_kinds, Fabric& out);
+
+}  // namespace cloth

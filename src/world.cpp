@@ -1,0 +1,125 @@
+#include "world.h"
+
+#include <cstdlib>
+
+namespace cloth {
+
+void* HostMemory::allocate(size_t size, size_t alignment) const {
+    if (alignment < alignof(std::max_align_t)) alignment = alignof(std::max_align_t);
+    void* p = nullptr;
+    if (alloc) {
+        p = alloc(size, alignment, user);
+    } else {
+        // aligned_alloc needs a size that is a multiple of the alignment.
+        p = std::aligned_alloc(alignment, (size + alignment - 1) / alignment * alignment);
+    }
+    if (!p) throw std::bad_alloc();
+    return p;
+}
+
+void HostMemory::deallocate(void* ptr, size_t size) const {
+    if (!ptr) return;
+    if (free) {
+        free(ptr, size, user);
+    } else {
+        std::free(ptr);
+    }
+}
+
+World::World(const cloth_world_desc& desc, uint16_t index)
+    : gravity(desc.gravity[0], desc.gravity[1], desc.gravity[2]),
+      memory_{desc.alloc, desc.free, desc.user},
+      log_(desc.log),
+      index_(index),
+      fabrics_(HostAllocator<Slot<Fabric>>(&memory_)),
+      cloths_(HostAllocator<Slot<ClothInstance>>(&memory_)) {
+    fabrics_.resize(desc.max_fabrics);
+    cloths_.resize(desc.max_cloths);
+}
+
+void World::log(cloth_log_level level, cloth_result code, const char* message) const {
+    if (log_) log_(level, code, message, memory_.user);
+}
+
+namespace {
+
+template <class T, class Id>
+T* lookup(const HostVector<Slot<T>>& slots, Id id) {
+    if (id.index1 == 0 || id.index1 > slots.size()) return nullptr;
+    const Slot<T>& slot = slots[id.index1 - 1];
+    if (!slot.object || slot.generation != id.generation) return nullptr;
+    return slot.object.get();
+}
+
+template <class T>
+void release(Slot<T>& slot) {
+    slot.object.reset();
+    slot.generation = static_cast<uint16_t>(slot.generation + 1 == 0 ? 1 : slot.generation + 1);
+}
+
+}  // namespace
+
+std::shared_ptr<Fabric> World::find_fabric(cloth_fabric_id id) const {
+    if (!lookup(fabrics_, id)) return nullptr;
+    return fabrics_[id.index1 - 1].object;
+}
+
+Status World::destroy_fabric(cloth_fabric_id id) {
+    if (!lookup(fabrics_, id)) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is not live");
+    release(fabrics_[id.index1 - 1]);
+    return {};
+}
+
+Status World::create_cloth(std::shared_ptr<const Fabric> fabric, const Material& material,
+                           const SolverSettings& solver, const AeroParams& aero, const float* initial_positions,
+                           cloth_id* out) {
+    const uint32_t slot = find_free_slot(cloths_);
+    if (slot == UINT32_MAX) {
+        return Status::error(CLOTH_ERROR_CAPACITY, "world has no free cloth slot (max_cloths = %zu)",
+                             cloths_.size());
+    }
+    auto cloth = std::allocate_shared<ClothInstance>(HostAllocator<ClothInstance>(&memory_), &memory_,
+                                                     std::move(fabric), material, solver, aero);
+    if (initial_positions) {
+        for (uint32_t i = 0; i < cloth->particle_count(); ++i) {
+            cloth->set_position(i, Vec3(initial_positions[3 * i], initial_positions[3 * i + 1],
+                                        initial_positions[3 * i + 2]));
+        }
+    }
+    cloths_[slot].object = std::move(cloth);
+    *out = cloth_id{slot + 1, static_cast<uint16_t>(index_ + 1), cloths_[slot].generation};
+    return {};
+}
+
+ClothInstance* World::find_cloth(cloth_id id) const { return lookup(cloths_, id); }
+
+Status World::destroy_cloth(cloth_id id) {
+    if (!lookup(cloths_, id)) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "cloth handle is not live");
+    release(cloths_[id.index1 - 1]);
+    return {};
+}
+
+size_t World::live_cloths() const {
+    size_t count = 0;
+    for (const auto& slot : cloths_) count += slot.object ? 1 : 0;
+    return count;
+}
+
+Status World::step(float dt) {
+    Status first_failure;
+    for (uint32_t s = 0; s < cloths_.size(); ++s) {
+        ClothInstance* cloth = cloths_[s].object.get();
+        if (!cloth) continue;
+        Status status = cloth->step(dt, gravity);
+        if (!status.ok()) {
+            status.message = "cloth " + std::to_string(s + 1) + ": " + status.message;
+            // The first non-finite state outranks any solver warning.
+            const bool outranks = status.code == CLOTH_ERROR_NONFINITE_STATE &&
+                                  first_failure.code != CLOTH_ERROR_NONFINITE_STATE;
+            if (first_failure.ok() || outranks) first_failure = status;
+        }
+    }
+    return first_failure;
+}
+
+}  // namespace cloth

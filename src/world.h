@@ -1,0 +1,88 @@
+// World: owns the fabrics and cloths of one host scene, the host's
+// callbacks, gravity, and the step over all its cloths.
+//
+// Objects live in slot tables sized once at creation (capacity from the
+// description); a handle is a slot index plus the slot's generation, which
+// is bumped on destroy, so a stale handle is detected and never followed.
+#pragma once
+
+#include <cloth/cloth.h>
+
+#include <memory>
+
+#include "cloth_instance.h"
+#include "fabric.h"
+#include "host_allocator.h"
+#include "status.h"
+
+namespace cloth {
+
+template <class T>
+struct Slot {
+    std::shared_ptr<T> object;
+    uint16_t generation = 1;
+};
+
+class World {
+public:
+    World(const cloth_world_desc& desc, uint16_t index);
+
+    const HostMemory* memory() const { return &memory_; }
+    uint16_t index() const { return index_; }
+
+    Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);
+
+    // Fabrics. `build` fills a fresh Fabric and returns its status.
+    template <class Build>
+    Status create_fabric(Build build, cloth_fabric_id* out);
+    std::shared_ptr<Fabric> find_fabric(cloth_fabric_id id) const;
+    Status destroy_fabric(cloth_fabric_id id);
+
+    Status create_cloth(std::shared_ptr<const Fabric> fabric, const Material& material, const SolverSettings& solver,
+                        const AeroParams& aero, const float* initial_positions, cloth_id* out);
+    ClothInstance* find_cloth(cloth_id id) const;
+    Status destroy_cloth(cloth_id id);
+
+    // Step every cloth; a cloth that goes non-finite is restored and
+    // reported, the others advance.
+    Status step(float dt);
+
+    void log(cloth_log_level level, cloth_result code, const char* message) const;
+
+    size_t live_cloths() const;
+
+private:
+    template <class T>
+    static uint32_t find_free_slot(const HostVector<Slot<T>>& slots);
+
+    HostMemory memory_;
+    cloth_log_fn* log_ = nullptr;
+    uint16_t index_;
+    HostVector<Slot<Fabric>> fabrics_;
+    HostVector<Slot<ClothInstance>> cloths_;
+};
+
+template <class T>
+uint32_t World::find_free_slot(const HostVector<Slot<T>>& slots) {
+    for (uint32_t i = 0; i < slots.size(); ++i) {
+        if (!slots[i].object) return i;
+    }
+    return UINT32_MAX;
+}
+
+template <class Build>
+Status World::create_fabric(Build build, cloth_fabric_id* out) {
+    const uint32_t slot = find_free_slot(fabrics_);
+    if (slot == UINT32_MAX) {
+        return Status::error(CLOTH_ERROR_CAPACITY, "world has no free fabric slot (max_fabrics = %zu)",
+                             fabrics_.size());
+    }
+    auto fabric = std::allocate_shared<Fabric>(HostAllocator<Fabric>(&memory_), &memory_);
+    Status status = build(*fabric);
+    if (!status.ok()) return status;
+    fabrics_[slot].object = std::move(fabric);
+    *out = cloth_fabric_id{slot + 1, static_cast<uint16_t>(index_ + 1), fabrics_[slot].generation};
+    return {};
+}
+
+}  // namespace cloth
