@@ -1,0 +1,54 @@
+// Helpers for tests that drive the C++ core directly (no C API).
+#pragma once
+
+#include <memory>
+#include <random>
+
+#include "cloth_instance.h"
+#include "fabric.h"
+
+namespace cloth::testing {
+
+inline const HostMemory* heap() {
+    static const HostMemory memory{};
+    return &memory;
+}
+
+// A columns x rows grid of 1 m x 1 m hanging in the xy plane from y = 0.
+inline std::shared_ptr<Fabric> make_grid(uint32_t columns, uint32_t rows, uint32_t kinds = CLOTH_SPRING_ALL) {
+    auto fabric = std::make_shared<Fabric>(heap());
+    cloth_grid_desc desc = cloth_default_grid_desc();
+    desc.columns = columns;
+    desc.rows = rows;
+    desc.spring_kinds = kinds;
+    const Status status = build_grid_fabric(desc, *fabric);
+    if (!status.ok()) throw std::runtime_error(status.message);
+    return fabric;
+}
+
+inline Material uniform_material(float stiffness, float damping, float area_density) {
+    Material material;
+    for (auto& spring : material.springs) spring = {stiffness, damping};
+    material.area_density = area_density;
+    return material;
+}
+
+inline AeroParams still_air() {
+    AeroParams air;
+    air.air_density = 0;
+    air.linear_drag = 0;
+    return air;
+}
+
+// Displace every free particle randomly (deterministic seed) so a step
+// starts far from equilibrium.
+inline void perturb(ClothInstance& cloth, float amount, unsigned seed = 7) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> uniform(-amount, amount);
+    for (uint32_t i = 0; i < cloth.particle_count(); ++i) {
+        if (cloth.is_pinned(i)) continue;
+        cloth.set_position(i, cloth.positions()[i] + Vec3(uniform(rng), uniform(rng), uniform(rng)));
+    }
+}
+
+}  // namespace cloth::testing
