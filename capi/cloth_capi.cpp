@@ -228,11 +228,11 @@ AeroParams to_core(const cloth_aero_params& a) {
     return out;
 }
 
-void copy_out(const HostVector<Vec3>& values, float* out) {
+void copy_out(const Vec3Soa& values, float* out) {
     for (size_t i = 0; i < values.size(); ++i) {
-        out[3 * i] = values[i].x();
-        out[3 * i + 1] = values[i].y();
-        out[3 * i + 2] = values[i].z();
+        out[3 * i] = values.x[i];
+        out[3 * i + 1] = values.y[i];
+        out[3 * i + 2] = values.z[i];
     }
 }
 
@@ -585,19 +585,19 @@ cloth_result read_vectors(const char* function, cloth_id id, float* out, uint32_
 extern "C" {
 
 CLOTH_API cloth_result cloth_read_positions(cloth_id id, float* out_xyz, uint32_t capacity) {
-    return read_vectors(__func__, id, out_xyz, capacity, [](const ClothInstance& c) -> const HostVector<Vec3>& {
+    return read_vectors(__func__, id, out_xyz, capacity, [](const ClothInstance& c) -> const Vec3Soa& {
         return c.positions();
     });
 }
 
 CLOTH_API cloth_result cloth_read_velocities(cloth_id id, float* out_xyz, uint32_t capacity) {
-    return read_vectors(__func__, id, out_xyz, capacity, [](const ClothInstance& c) -> const HostVector<Vec3>& {
+    return read_vectors(__func__, id, out_xyz, capacity, [](const ClothInstance& c) -> const Vec3Soa& {
         return c.velocities();
     });
 }
 
 CLOTH_API cloth_result cloth_read_normals(cloth_id id, float* out_xyz, uint32_t capacity) {
-    return read_vectors(__func__, id, out_xyz, capacity, [](const ClothInstance& c) -> const HostVector<Vec3>& {
+    return read_vectors(__func__, id, out_xyz, capacity, [](const ClothInstance& c) -> const Vec3Soa& {
         return c.normals();
     });
 }

@@ -1,58 +1,90 @@
 #include "aerodynamics.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "cloth_instance.h"
 
 namespace cloth {
 
-void evaluate_triangle_air(const Fabric& fabric, const AeroParams& air, const Vec3* x, const Vec3* v,
-                           uint32_t begin, uint32_t end, Vec3* corner_force) {
+namespace {
+
+// Every array is a __restrict parameter so GCC vectorizes the indexed loads.
+void triangle_air_kernel(uint32_t begin, uint32_t end, const AeroParams& air, const uint32_t* __restrict tri,
+                         const float* __restrict px, const float* __restrict py, const float* __restrict pz,
+                         const float* __restrict vx, const float* __restrict vy, const float* __restrict vz,
+                         float* __restrict fx, float* __restrict fy, float* __restrict fz) {
     const float third = 1.0f / 3.0f;
+    // Per corner: a third of 1/2 rho |u|^2 A, with A = |cross| / 2.
+    const float pressure_scale = 0.5f * air.air_density * 0.5f * third;
+    const float wx = air.wind.x(), wy = air.wind.y(), wz = air.wind.z();
+    const float drag_coefficient = air.drag_coefficient, lift_coefficient = air.lift_coefficient;
     for (uint32_t t = begin; t < end; ++t) {
-        const uint32_t a = fabric.triangles[3 * t], b = fabric.triangles[3 * t + 1], c = fabric.triangles[3 * t + 2];
-        const Vec3 cross = (x[b] - x[a]).cross(x[c] - x[a]);
-        const float twice_area = cross.norm();
-        const Vec3 air_velocity = air.wind - (v[a] + v[b] + v[c]) * third;
-        const float speed_squared = air_velocity.squaredNorm();
-        if (!(twice_area > 0.0f) || !(speed_squared > 1e-12f)) {
-            corner_force[t].setZero();
-            continue;
-        }
+        const uint32_t a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
+        const float e1x = px[b] - px[a], e1y = py[b] - py[a], e1z = pz[b] - pz[a];
+        const float e2x = px[c] - px[a], e2y = py[c] - py[a], e2z = pz[c] - pz[a];
+        const float nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
+        const float twice_area = std::sqrt(nx * nx + ny * ny + nz * nz);
+        const float ux = wx - (vx[a] + vx[b] + vx[c]) * third;
+        const float uy = wy - (vy[a] + vy[b] + vy[c]) * third;
+        const float uz = wz - (vz[a] + vz[b] + vz[c]) * third;
+        const float speed_squared = ux * ux + uy * uy + uz * uz;
         const float speed = std::sqrt(speed_squared);
-        const Vec3 air_direction = air_velocity / speed;
-        Vec3 normal = cross / twice_area;
-        float cosine = normal.dot(air_direction);
-        if (cosine < 0.0f) {  // face the air
-            normal = -normal;
-            cosine = -cosine;
-        }
-        const float pressure = 0.5f * air.air_density * speed_squared * (0.5f * twice_area);
-        const Vec3 drag = normal * (pressure * air.drag_coefficient * cosine * cosine);
-        const Vec3 lift = (normal - air_direction * cosine) * (pressure * air.lift_coefficient * cosine);
-        corner_force[t] = (drag + lift) * third;
+        // Still air or a collapsed triangle: no force (a select, not a branch).
+        const bool active = twice_area > 0.0f && speed_squared > 1e-12f;
+        const float inv_area = active ? 1.0f / twice_area : 0.0f;
+        const float inv_speed = active ? 1.0f / speed : 0.0f;
+        const float cosine_signed = (nx * ux + ny * uy + nz * uz) * inv_area * inv_speed;
+        // Face the normal downwind: n . u >= 0.
+        const float side = cosine_signed < 0.0f ? -inv_area : inv_area;
+        const float cosine = std::fabs(cosine_signed);
+        const float pressure = pressure_scale * speed_squared * twice_area;
+        // drag along n: Cd cos^2; lift along (n - cos u/|u|): Cl cos.
+        const float normal_part = pressure * cosine * (drag_coefficient * cosine + lift_coefficient) * side;
+        const float wind_part = -pressure * lift_coefficient * cosine * cosine * inv_speed;
+        fx[t] = nx * normal_part + ux * wind_part;
+        fy[t] = ny * normal_part + uy * wind_part;
+        fz[t] = nz * normal_part + uz * wind_part;
     }
 }
 
-void gather_triangle_forces(const Fabric& fabric, const Vec3* corner_force, uint32_t begin, uint32_t end,
-                            Vec3* particle_force) {
+}  // namespace
+
+void evaluate_triangle_air(const Fabric& fabric, const AeroParams& air, const Vec3Soa& x, const Vec3Soa& v,
+                           uint32_t begin, uint32_t end, Vec3Soa& corner_force) {
+    triangle_air_kernel(begin, end, air, fabric.triangles.data(), x.x.data(), x.y.data(), x.z.data(), v.x.data(),
+                        v.y.data(), v.z.data(), corner_force.x.data(), corner_force.y.data(),
+                        corner_force.z.data());
+}
+
+void gather_triangle_forces(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begin, uint32_t end,
+                            Vec3Soa& particle_force) {
+    const uint32_t* offset = fabric.triangle_incidence_offset.data();
+    const uint32_t* incident = fabric.triangle_incidence.data();
     for (uint32_t p = begin; p < end; ++p) {
-        Vec3 sum = Vec3::Zero();
-        for (uint32_t e = fabric.triangle_incidence_offset[p]; e < fabric.triangle_incidence_offset[p + 1]; ++e) {
-            sum += corner_force[fabric.triangle_incidence[e]];
+        float sx = 0, sy = 0, sz = 0;
+        for (uint32_t e = offset[p]; e < offset[p + 1]; ++e) {
+            const uint32_t t = incident[e];
+            sx += corner_force.x[t];
+            sy += corner_force.y[t];
+            sz += corner_force.z[t];
         }
-        particle_force[p] = sum;
+        particle_force.x[p] = sx;
+        particle_force.y[p] = sy;
+        particle_force.z[p] = sz;
     }
 }
 
-void compute_vertex_normals(const Fabric& fabric, const Vec3* x, uint32_t begin, uint32_t end, Vec3* normal) {
+void compute_vertex_normals(const Fabric& fabric, const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& normal) {
     for (uint32_t p = begin; p < end; ++p) {
         Vec3 sum = Vec3::Zero();
         for (uint32_t e = fabric.triangle_incidence_offset[p]; e < fabric.triangle_incidence_offset[p + 1]; ++e) {
             const uint32_t t = fabric.triangle_incidence[e];
             const uint32_t a = fabric.triangles[3 * t], b = fabric.triangles[3 * t + 1], c = fabric.triangles[3 * t + 2];
-            sum += (x[b] - x[a]).cross(x[c] - x[a]);
+            sum += (x.get(b) - x.get(a)).cross(x.get(c) - x.get(a));
         }
         const float length = sum.norm();
-        normal[p] = length > 0.0f ? Vec3(sum / length) : Vec3(0.0f, 0.0f, 1.0f);
+        normal.set(p, length > 0.0f ? Vec3(sum / length) : Vec3(0.0f, 0.0f, 1.0f));
     }
 }
 

@@ -5,6 +5,7 @@
 
 #include "fabric.h"
 #include "math.h"
+#include "soa.h"
 
 namespace cloth {
 
@@ -16,14 +17,14 @@ struct AeroParams;
 // cos = n . u/|u|, and area A:
 //   drag = 1/2 rho Cd A |u|^2 cos^2 n                   (pressure on the face)
 //   lift = 1/2 rho Cl A |u|^2 cos (n - cos u/|u|)       (perpendicular to u)
-void evaluate_triangle_air(const Fabric& fabric, const AeroParams& air, const Vec3* x, const Vec3* v,
-                           uint32_t begin, uint32_t end, Vec3* corner_force);
+void evaluate_triangle_air(const Fabric& fabric, const AeroParams& air, const Vec3Soa& x, const Vec3Soa& v,
+                           uint32_t begin, uint32_t end, Vec3Soa& corner_force);
 
 // Sum of corner forces of the triangles incident to particles [begin, end).
-void gather_triangle_forces(const Fabric& fabric, const Vec3* corner_force, uint32_t begin, uint32_t end,
-                            Vec3* particle_force);
+void gather_triangle_forces(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begin, uint32_t end,
+                            Vec3Soa& particle_force);
 
 // Unit area-weighted vertex normals for particles [begin, end).
-void compute_vertex_normals(const Fabric& fabric, const Vec3* x, uint32_t begin, uint32_t end, Vec3* normal);
+void compute_vertex_normals(const Fabric& fabric, const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& normal);
 
 }  // namespace cloth

@@ -19,6 +19,8 @@
 #include "solvers.h"
 #include "springs.h"
 
+#include <cmath>
+
 namespace cloth {
 
 ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fabric> fabric,
@@ -27,44 +29,43 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       material_(material),
       solver_(solver),
       aero_(aero),
-      x_(HostAllocator<Vec3>(memory)),
-      v_(HostAllocator<Vec3>(memory)),
+      x_(memory),
+      v_(memory),
       mass_(HostAllocator<float>(memory)),
       pinned_(HostAllocator<uint8_t>(memory)),
-      pin_target_(HostAllocator<Vec3>(memory)),
-      pin_start_(HostAllocator<Vec3>(memory)),
-      external_force_(HostAllocator<Vec3>(memory)),
-      triangle_force_(HostAllocator<Vec3>(memory)),
-      spring_force_(HostAllocator<Vec3>(memory)),
-      spring_block_(HostAllocator<Sym3>(memory)),
-      diagonal_(HostAllocator<Sym3>(memory)),
-      diagonal_inverse_(HostAllocator<Sym3>(memory)),
-      rhs_(HostAllocator<Vec3>(memory)),
-      dv_(HostAllocator<Vec3>(memory)),
-      dv_scratch_(HostAllocator<Vec3>(memory)),
-      normals_(HostAllocator<Vec3>(memory)),
-      backup_x_(HostAllocator<Vec3>(memory)),
-      backup_v_(HostAllocator<Vec3>(memory)) {
+      pin_target_(memory),
+      pin_start_(memory),
+      spring_stiffness_(HostAllocator<float>(memory)),
+      spring_damping_(HostAllocator<float>(memory)),
+      external_force_(memory),
+      triangle_force_(memory),
+      spring_force_(memory),
+      spring_block_(memory),
+      diagonal_(memory),
+      diagonal_inverse_(memory),
+      rhs_(memory),
+      dv_(memory),
+      dv_scratch_(memory),
+      normals_(memory),
+      backup_x_(memory),
+      backup_v_(memory) {
     const Fabric& f = *fabric_;
     const uint32_t n = f.particle_count();
-    x_.assign(f.rest_positions.begin(), f.rest_positions.end());
-    v_.assign(n, Vec3::Zero());
+    for (Vec3Soa* a : {&x_, &v_, &pin_target_, &pin_start_, &external_force_, &rhs_, &dv_, &dv_scratch_, &normals_,
+                       &backup_x_, &backup_v_}) {
+        a->resize(n);
+    }
+    for (uint32_t i = 0; i < n; ++i) x_.set(i, f.rest_positions[i]);
+    pin_target_ = x_;
     mass_.resize(n);
     pinned_.assign(n, 0);
-    pin_target_.assign(n, Vec3::Zero());
-    pin_start_.assign(n, Vec3::Zero());
-    external_force_.resize(n);
     triangle_force_.resize(f.triangle_count());
     spring_force_.resize(f.spring_count());
     spring_block_.resize(f.spring_count());
+    spring_stiffness_.resize(f.spring_count());
+    spring_damping_.resize(f.spring_count());
     diagonal_.resize(n);
     diagonal_inverse_.resize(n);
-    rhs_.resize(n);
-    dv_.resize(n);
-    dv_scratch_.resize(n);
-    normals_.resize(n);
-    backup_x_.resize(n);
-    backup_v_.resize(n);
     set_material(material);
 }
 
@@ -74,31 +75,37 @@ void ClothInstance::set_material(const Material& material) {
     for (uint32_t i = 0; i < f.particle_count(); ++i) {
         mass_[i] = material.particle_mass > 0 ? material.particle_mass : material.area_density * f.rest_area[i];
     }
+    for (uint32_t s = 0; s < f.spring_count(); ++s) {
+        spring_stiffness_[s] = material.springs[f.spring_kind[s]].stiffness;
+        spring_damping_[s] = material.springs[f.spring_kind[s]].damping;
+    }
 }
 
 void ClothInstance::pin(uint32_t particle) {
     pinned_[particle] = 1;
-    pin_target_[particle] = x_[particle];
+    pin_target_.set(particle, x_.get(particle));
 }
 
 void ClothInstance::unpin(uint32_t particle) { pinned_[particle] = 0; }
 
 void ClothInstance::set_position(uint32_t particle, const Vec3& x) {
-    x_[particle] = x;
-    v_[particle].setZero();
-    pin_target_[particle] = x;
+    x_.set(particle, x);
+    v_.set(particle, Vec3::Zero());
+    pin_target_.set(particle, x);
 }
 
-const HostVector<Vec3>& ClothInstance::normals() const {
-    compute_vertex_normals(*fabric_, x_.data(), 0, particle_count(), normals_.data());
+const Vec3Soa& ClothInstance::normals() const {
+    compute_vertex_normals(*fabric_, x_, 0, particle_count(), normals_);
     return normals_;
 }
 
 bool ClothInstance::state_is_finite() const {
-    for (uint32_t i = 0; i < particle_count(); ++i) {
-        if (!is_finite(x_[i]) || !is_finite(v_[i])) return false;
+    // A sum is finite only if every term is: one pass, no branches.
+    float sum = 0;
+    for (const Vec3Soa* a : {&x_, &v_}) {
+        for (uint32_t i = 0; i < particle_count(); ++i) sum += (a->x[i] * 0.0f) + (a->y[i] * 0.0f) + (a->z[i] * 0.0f);
     }
-    return true;
+    return std::isfinite(sum);
 }
 
 Status ClothInstance::step(float dt, const Vec3& gravity) {
@@ -106,7 +113,7 @@ Status ClothInstance::step(float dt, const Vec3& gravity) {
     backup_x_ = x_;
     backup_v_ = v_;
     for (uint32_t i = 0; i < n; ++i) {
-        if (pinned_[i]) pin_start_[i] = x_[i];
+        if (pinned_[i]) pin_start_.set(i, x_.get(i));
     }
     const uint32_t substeps = solver_.substeps;
     const float h = dt / static_cast<float>(substeps);
@@ -132,59 +139,67 @@ Status ClothInstance::step(float dt, const Vec3& gravity) {
     return {};
 }
 
+Vec3 ClothInstance::pin_position(uint32_t i, float frame_fraction) const {
+    return pin_start_.get(i) + (pin_target_.get(i) - pin_start_.get(i)) * frame_fraction;
+}
+
 void ClothInstance::substep(float h, float frame_fraction_end, const Vec3& gravity) {
     const Fabric& f = *fabric_;
     const uint32_t n = f.particle_count();
 
     // 0. Pinned particles move linearly towards their frame-end targets.
     for (uint32_t i = 0; i < n; ++i) {
-        if (!pinned_[i]) continue;
-        const Vec3 end = pin_start_[i] + (pin_target_[i] - pin_start_[i]) * frame_fraction_end;
-        v_[i] = (end - x_[i]) / h;
+        if (pinned_[i]) v_.set(i, (pin_position(i, frame_fraction_end) - x_.get(i)) / h);
     }
 
     // 1. External forces: air (only when the scene has air), gravity, linear drag.
     const bool has_air = aero_.air_density > 0 && (aero_.drag_coefficient > 0 || aero_.lift_coefficient > 0);
     if (has_air) {
-        evaluate_triangle_air(f, aero_, x_.data(), v_.data(), 0, f.triangle_count(), triangle_force_.data());
-        gather_triangle_forces(f, triangle_force_.data(), 0, n, external_force_.data());
+        evaluate_triangle_air(f, aero_, x_, v_, 0, f.triangle_count(), triangle_force_);
+        gather_triangle_forces(f, triangle_force_, 0, n, external_force_);
+    } else {
+        external_force_.fill(Vec3::Zero());
     }
     for (uint32_t i = 0; i < n; ++i) {
-        const Vec3 body = gravity * mass_[i] - v_[i] * (aero_.linear_drag * mass_[i]);
-        external_force_[i] = has_air ? Vec3(external_force_[i] + body) : body;
+        const float drag = aero_.linear_drag * mass_[i];
+        external_force_.x[i] += gravity.x() * mass_[i] - v_.x[i] * drag;
+        external_force_.y[i] += gravity.y() * mass_[i] - v_.y[i] * drag;
+        external_force_.z[i] += gravity.z() * mass_[i] - v_.z[i] * drag;
     }
 
-    SpringPass springs{&f, material_.springs, x_.data(), v_.data(), h, solver_.compression_safe_jacobian};
+    const SpringPass springs{&f, spring_stiffness_.data(), spring_damping_.data(), &x_, &v_, h,
+                             solver_.compression_safe_jacobian};
     if (solver_.kind == CLOTH_SOLVER_EXPLICIT) {
-        evaluate_springs(springs, 0, f.spring_count(), spring_force_.data(), nullptr);
-        integrate_explicit(f, spring_force_.data(), external_force_.data(), mass_.data(), pinned_.data(), h, 0, n,
-                           v_.data(), x_.data());
+        evaluate_springs(springs, 0, f.spring_count(), spring_force_, nullptr);
+        integrate_explicit(f, spring_force_, external_force_, mass_.data(), pinned_.data(), h, 0, n, v_, x_);
         last_solve_ = SolveReport{};
     } else {
         // 2. Springs.  3. Particle assembly (dv_ = p on exit).
-        evaluate_springs(springs, 0, f.spring_count(), spring_force_.data(), spring_block_.data());
-        AssemblyPass assembly{&f,           spring_force_.data(), spring_block_.data(), external_force_.data(),
-                              mass_.data(), pinned_.data(),       h,                    aero_.linear_drag};
-        assemble_particles(assembly, 0, n, diagonal_.data(), diagonal_inverse_.data(), rhs_.data(), dv_.data());
+        evaluate_springs(springs, 0, f.spring_count(), spring_force_, &spring_block_);
+        const AssemblyPass assembly{&f,           &spring_force_, &spring_block_, &external_force_,
+                                    mass_.data(), pinned_.data(), h,              aero_.linear_drag};
+        assemble_particles(assembly, 0, n, diagonal_, diagonal_inverse_, rhs_, dv_);
         // 4. Solve.
-        const LinearSystem system{&f,           n, spring_block_.data(), diagonal_.data(), diagonal_inverse_.data(),
-                                  rhs_.data(), pinned_.data()};
+        const LinearSystem system{&f, n, &spring_block_, &diagonal_, &diagonal_inverse_, &rhs_, pinned_.data()};
         if (solver_.kind == CLOTH_SOLVER_CG) {
-            last_solve_ = solve_cg(system, solver_.cg_tolerance, solver_.cg_max_iterations, dv_.data());
+            last_solve_ = solve_cg(system, solver_.cg_tolerance, solver_.cg_max_iterations, dv_);
         } else {
-            last_solve_ = solve_jacobi(system, solver_.iterations, dv_.data(), dv_scratch_.data());
+            last_solve_ = solve_jacobi(system, solver_.iterations, dv_, dv_scratch_);
         }
-        // 5. Integrate the free particles.
+        // 5. Integrate the free particles (dv is zero on pinned ones).
         for (uint32_t i = 0; i < n; ++i) {
-            if (pinned_[i]) continue;
-            v_[i] += dv_[i];
-            x_[i] += v_[i] * h;
+            v_.x[i] += dv_.x[i];
+            v_.y[i] += dv_.y[i];
+            v_.z[i] += dv_.z[i];
+            x_.x[i] += v_.x[i] * h;
+            x_.y[i] += v_.y[i] * h;
+            x_.z[i] += v_.z[i] * h;
         }
     }
 
     // Pinned particles land exactly on their substep targets.
     for (uint32_t i = 0; i < n; ++i) {
-        if (pinned_[i]) x_[i] = pin_start_[i] + (pin_target_[i] - pin_start_[i]) * frame_fraction_end;
+        if (pinned_[i]) x_.set(i, pin_position(i, frame_fraction_end));
     }
 }
 

@@ -10,6 +10,7 @@
 #include "fabric.h"
 #include "host_allocator.h"
 #include "math.h"
+#include "soa.h"
 #include "status.h"
 
 namespace cloth {
@@ -72,14 +73,15 @@ public:
     void pin(uint32_t particle);
     void unpin(uint32_t particle);
     bool is_pinned(uint32_t particle) const { return pinned_[particle] != 0; }
-    void set_pin_target(uint32_t particle, const Vec3& target) { pin_target_[particle] = target; }
+    void set_pin_target(uint32_t particle, const Vec3& target) { pin_target_.set(particle, target); }
+    // Teleport a particle: new position, zero velocity (and pin target).
     void set_position(uint32_t particle, const Vec3& x);
 
-    const HostVector<Vec3>& positions() const { return x_; }
-    const HostVector<Vec3>& velocities() const { return v_; }
+    const Vec3Soa& positions() const { return x_; }
+    const Vec3Soa& velocities() const { return v_; }
     const HostVector<float>& masses() const { return mass_; }
     // Unit area-weighted vertex normals of the current positions.
-    const HostVector<Vec3>& normals() const;
+    const Vec3Soa& normals() const;
 
     const SolveReport& last_solve() const { return last_solve_; }
     cloth_result last_step_result() const { return last_step_result_; }
@@ -87,6 +89,8 @@ public:
 private:
     void substep(float h, float frame_fraction_end, const Vec3& gravity);
     bool state_is_finite() const;
+    // Where pinned particle i is at `frame_fraction` of the current frame.
+    Vec3 pin_position(uint32_t i, float frame_fraction) const;
 
     std::shared_ptr<const Fabric> fabric_;
     Material material_;
@@ -94,23 +98,24 @@ private:
     AeroParams aero_;
 
     // State.
-    HostVector<Vec3> x_, v_;
+    Vec3Soa x_, v_;
     HostVector<float> mass_;
     HostVector<uint8_t> pinned_;
-    HostVector<Vec3> pin_target_;  // where a pinned particle is at the end of the next frame
-    HostVector<Vec3> pin_start_;   // where it was at the start of this frame
+    Vec3Soa pin_target_;  // where a pinned particle is at the end of the next frame
+    Vec3Soa pin_start_;   // where it was at the start of this frame
+    HostVector<float> spring_stiffness_, spring_damping_;  // per spring, from the material
 
     // Scratch, sized once at creation (no allocation per step).
-    HostVector<Vec3> external_force_;   // per particle
-    HostVector<Vec3> triangle_force_;   // per triangle, share of each corner
-    HostVector<Vec3> spring_force_;     // per spring: f~ contribution on its first particle
-    HostVector<Sym3> spring_block_;     // per spring: A_s = h^2 J_s + h D_s
-    HostVector<Sym3> diagonal_;         // per particle: W_ii
-    HostVector<Sym3> diagonal_inverse_; // per particle: W_ii^-1 (zero if pinned)
-    HostVector<Vec3> rhs_;              // per particle: b_i = h f~_i
-    HostVector<Vec3> dv_, dv_scratch_;  // per particle
-    mutable HostVector<Vec3> normals_;  // per particle, filled by normals()
-    HostVector<Vec3> backup_x_, backup_v_;
+    Vec3Soa external_force_;     // per particle
+    Vec3Soa triangle_force_;     // per triangle, share of each corner
+    Vec3Soa spring_force_;       // per spring: f~ contribution on its first particle
+    Sym3Soa spring_block_;       // per spring: A_s = h^2 J_s + h D_s
+    Sym3Soa diagonal_;           // per particle: W_ii
+    Sym3Soa diagonal_inverse_;   // per particle: W_ii^-1 (zero if pinned)
+    Vec3Soa rhs_;                // per particle: b_i = h f~_i
+    Vec3Soa dv_, dv_scratch_;    // per particle
+    mutable Vec3Soa normals_;    // per particle, filled by normals()
+    Vec3Soa backup_x_, backup_v_;
 
     SolveReport last_solve_;
     cloth_result last_step_result_ = CLOTH_OK;

@@ -14,43 +14,45 @@
 
 #include "fabric.h"
 #include "math.h"
+#include "soa.h"
 
 namespace cloth {
 
 struct LinearSystem {
     const Fabric* fabric;
     uint32_t particle_count;
-    const Sym3* spring_block;      // A_s, per spring
-    const Sym3* diagonal;          // W_ii, per particle
-    const Sym3* diagonal_inverse;  // W_ii^-1, zero for pinned particles
-    const Vec3* rhs;               // b_i = h f~_i
+    const Sym3Soa* spring_block;      // A_s, per spring
+    const Sym3Soa* diagonal;          // W_ii, per particle
+    const Sym3Soa* diagonal_inverse;  // W_ii^-1, zero for pinned particles
+    const Vec3Soa* rhs;               // b_i = h f~_i
     const uint8_t* pinned;
 };
 
 // Inputs of the per-particle assembly stage.
 struct AssemblyPass {
     const Fabric* fabric;
-    const Vec3* spring_force;     // per spring, f~ contribution on its first particle
-    const Sym3* spring_block;     // per spring, A_s
-    const Vec3* external_force;   // per particle
+    const Vec3Soa* spring_force;    // per spring, f~ contribution on its first particle
+    const Sym3Soa* spring_block;    // per spring, A_s
+    const Vec3Soa* external_force;  // per particle
     const float* mass;
     const uint8_t* pinned;
     float h;
-    float linear_drag;            // c: force -c m v, implicit on the diagonal
+    float linear_drag;  // c: force -c m v, implicit on the diagonal
 };
 
 // Stage 2 (per particle, independent): gather the incident springs in the
 // fabric's fixed order into f~_i and W_ii = m_i (1 + h c) I + sum A_s, then
 // W_ii^-1, b_i = h f~_i and the paper's p_i = W_ii^-1 b_i (eq. 8).
-void assemble_particles(const AssemblyPass& pass, uint32_t begin, uint32_t end, Sym3* diagonal,
-                        Sym3* diagonal_inverse, Vec3* rhs, Vec3* p);
+void assemble_particles(const AssemblyPass& pass, uint32_t begin, uint32_t end, Sym3Soa& diagonal,
+                        Sym3Soa& diagonal_inverse, Vec3Soa& rhs, Vec3Soa& p);
 
-// y_i = (W x)_i = W_ii x_i - sum A_s x_other, for particles [begin, end);
-// pinned rows give y_i = 0 (they are not unknowns).
-void multiply_system(const LinearSystem& system, const Vec3* x, uint32_t begin, uint32_t end, Vec3* y);
+// One Jacobi sweep for particles [begin, end) (paper eqs. 9-10 with h^2
+// folded into A_s):  next_i = W_ii^-1 (b_i + sum_s A_s current_other).
+void jacobi_sweep(const LinearSystem& system, const Vec3Soa& current, uint32_t begin, uint32_t end, Vec3Soa& next);
 
-// q_i = sum over incident springs of A_s x_other (the paper's q, eq. 9,
-// with h^2 folded into A_s), for particles [begin, end).
-void gather_neighbours(const LinearSystem& system, const Vec3* x, uint32_t begin, uint32_t end, Vec3* q);
+// y_i = (W x)_i = W_ii x_i - sum A_s x_other for particles [begin, end);
+// pinned rows give y_i = 0 (they are not unknowns). x must be zero on
+// pinned particles.
+void multiply_system(const LinearSystem& system, const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& y);
 
 }  // namespace cloth

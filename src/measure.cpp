@@ -12,16 +12,17 @@ ClothMeasure measure(const ClothInstance& cloth, const Vec3& gravity) {
     const auto& m = cloth.masses();
     ClothMeasure out;
     for (uint32_t i = 0; i < f.particle_count(); ++i) {
-        out.max_speed = std::max(out.max_speed, v[i].norm());
+        const Vec3 vi = v.get(i);
+        out.max_speed = std::max(out.max_speed, vi.norm());
         if (cloth.is_pinned(i)) continue;
-        out.kinetic_energy += 0.5 * m[i] * static_cast<double>(v[i].squaredNorm());
-        out.gravity_energy -= m[i] * static_cast<double>(gravity.dot(x[i]));
+        out.kinetic_energy += 0.5 * m[i] * static_cast<double>(vi.squaredNorm());
+        out.gravity_energy -= m[i] * static_cast<double>(gravity.dot(x.get(i)));
     }
     double strain_sum = 0;
     uint32_t structural = 0;
     for (uint32_t s = 0; s < f.spring_count(); ++s) {
         const float rest = f.spring_rest_length[s];
-        const double stretch = (x[f.spring_second[s]] - x[f.spring_first[s]]).norm() - rest;
+        const double stretch = (x.get(f.spring_second[s]) - x.get(f.spring_first[s])).norm() - rest;
         out.elastic_energy += 0.5 * cloth.material().springs[f.spring_kind[s]].stiffness * stretch * stretch;
         if (f.spring_kind[s] != kStructural) continue;
         const float strain = static_cast<float>(stretch / rest);

@@ -12,7 +12,7 @@
 
 namespace cloth {
 
-SolveReport solve_cg(const LinearSystem& system, float tolerance, uint32_t max_iterations, Vec3* dv) {
+SolveReport solve_cg(const LinearSystem& system, float tolerance, uint32_t max_iterations, Vec3Soa& dv) {
     const Fabric& f = *system.fabric;
     const uint32_t n = system.particle_count;
     std::vector<Eigen::Triplet<double>> triplets;
@@ -25,20 +25,21 @@ SolveReport solve_cg(const LinearSystem& system, float tolerance, uint32_t max_i
         }
     };
     for (uint32_t i = 0; i < n; ++i) {
-        add_block(i, i, system.pinned[i] ? Sym3::identity(1.0f) : system.diagonal[i], 1.0);
+        add_block(i, i, system.pinned[i] ? Sym3::identity(1.0f) : system.diagonal->get(i), 1.0);
     }
     for (uint32_t s = 0; s < f.spring_count(); ++s) {
         const uint32_t i = f.spring_first[s], j = f.spring_second[s];
         if (system.pinned[i] || system.pinned[j]) continue;
-        add_block(i, j, system.spring_block[s], -1.0);
-        add_block(j, i, system.spring_block[s], -1.0);
+        add_block(i, j, system.spring_block->get(s), -1.0);
+        add_block(j, i, system.spring_block->get(s), -1.0);
     }
     Eigen::SparseMatrix<double> w(3 * n, 3 * n);
     w.setFromTriplets(triplets.begin(), triplets.end());
 
     Eigen::VectorXd b(3 * n);
     for (uint32_t i = 0; i < n; ++i) {
-        for (int c = 0; c < 3; ++c) b[3 * i + c] = system.pinned[i] ? 0.0 : static_cast<double>(system.rhs[i][c]);
+        const Vec3 rhs = system.rhs->get(i);
+        for (int c = 0; c < 3; ++c) b[3 * i + c] = system.pinned[i] ? 0.0 : static_cast<double>(rhs[c]);
     }
 
     Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
@@ -48,9 +49,9 @@ SolveReport solve_cg(const LinearSystem& system, float tolerance, uint32_t max_i
     const Eigen::VectorXd x = cg.solve(b);
 
     for (uint32_t i = 0; i < n; ++i) {
-        dv[i] = system.pinned[i] ? Vec3::Zero()
-                                 : Vec3(static_cast<float>(x[3 * i]), static_cast<float>(x[3 * i + 1]),
-                                        static_cast<float>(x[3 * i + 2]));
+        dv.set(i, system.pinned[i] ? Vec3::Zero()
+                                   : Vec3(static_cast<float>(x[3 * i]), static_cast<float>(x[3 * i + 1]),
+                                          static_cast<float>(x[3 * i + 2])));
     }
     SolveReport report;
     report.iterations = static_cast<uint32_t>(cg.iterations());

@@ -8,20 +8,14 @@
 
 namespace cloth {
 
-SolveReport solve_jacobi(const LinearSystem& system, uint32_t iterations, Vec3* dv, Vec3* scratch) {
-    const uint32_t n = system.particle_count;
-    Vec3* current = dv;
-    Vec3* next = scratch;
+SolveReport solve_jacobi(const LinearSystem& system, uint32_t iterations, Vec3Soa& dv, Vec3Soa& scratch) {
+    Vec3Soa* current = &dv;
+    Vec3Soa* next = &scratch;
     for (uint32_t k = 0; k < iterations; ++k) {
-        gather_neighbours(system, current, 0, n, next);
-        for (uint32_t i = 0; i < n; ++i) {
-            next[i] = system.diagonal_inverse[i] * (system.rhs[i] + next[i]);
-        }
+        jacobi_sweep(system, *current, 0, system.particle_count, *next);
         std::swap(current, next);
     }
-    if (current != dv) {
-        for (uint32_t i = 0; i < n; ++i) dv[i] = current[i];
-    }
+    if (current != &dv) std::swap(dv, *current);
     SolveReport report;
     report.iterations = iterations;
     return report;

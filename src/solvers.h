@@ -13,13 +13,13 @@ namespace cloth {
 //   dv^(0) = p = W_ii^-1 b_i  (given in `dv` on entry)
 //   dv^(k+1)_i = p_i + W_ii^-1 sum_s A_s dv^(k)_other
 // Per iteration one per-particle gather; no global solve. `scratch` holds
-// particle_count vectors.
-SolveReport solve_jacobi(const LinearSystem& system, uint32_t iterations, Vec3* dv, Vec3* scratch);
+// particle_count vectors; it and dv may trade buffers.
+SolveReport solve_jacobi(const LinearSystem& system, uint32_t iterations, Vec3Soa& dv, Vec3Soa& scratch);
 
 // Conjugate gradient on the same system with Eigen's sparse solver
 // (Baraff-Witkin), in double precision, to a relative residual of
 // `tolerance`: the accuracy reference. It builds an Eigen sparse matrix
 // every call, so it allocates from the C++ heap, not the host allocator.
-SolveReport solve_cg(const LinearSystem& system, float tolerance, uint32_t max_iterations, Vec3* dv);
+SolveReport solve_cg(const LinearSystem& system, float tolerance, uint32_t max_iterations, Vec3Soa& dv);
 
 }  // namespace cloth

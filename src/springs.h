@@ -3,10 +3,9 @@
 
 #include "fabric.h"
 #include "math.h"
+#include "soa.h"
 
 namespace cloth {
-
-struct SpringParams;
 
 // Force on the first particle i of a spring (i, j) and the Jacobian block
 // J_ij = df_i/dx_j (symmetric; df_i/dx_i = -J_ij). With d = x_j - x_i,
@@ -24,10 +23,11 @@ SpringEval spring_force_and_jacobian(const Vec3& xi, const Vec3& xj, float rest_
 // Inputs of the per-spring stage.
 struct SpringPass {
     const Fabric* fabric;
-    const SpringParams* params;  // one per SpringKind
-    const Vec3* x;
-    const Vec3* v;
-    float h;                     // substep; used only when blocks are wanted
+    const float* stiffness;  // per spring, N/m
+    const float* damping;    // per spring, N s/m
+    const Vec3Soa* x;
+    const Vec3Soa* v;
+    float h;                 // substep; used only when blocks are wanted
     bool compression_safe;
 };
 
@@ -37,6 +37,7 @@ struct SpringPass {
 //   block[s] = h^2 J_ij + h D_ij, D_ij = c u u^T the damping's velocity
 //              Jacobian, so that W_ij = -block[s] and W_ii = m_i I + sum block.
 // Pass block = nullptr for the explicit integrator (forces only).
-void evaluate_springs(const SpringPass& pass, uint32_t begin, uint32_t end, Vec3* force, Sym3* block);
+// Written without branches over plain arrays so that it vectorizes.
+void evaluate_springs(const SpringPass& pass, uint32_t begin, uint32_t end, Vec3Soa& force, Sym3Soa* block);
 
 }  // namespace cloth

@@ -46,8 +46,11 @@ TEST_P(SpringJacobian, ExactJacobianMatchesFiniteDifferencesAndDiagonalBlockIsIt
     EXPECT_LT((analytic + diagonal).norm(), 2e-3f * scale) << "df_i/dx_i = -J_ij";
     // The force pulls i towards j when stretched, pushes it away when compressed.
     const float along = eval.force.dot(direction);
-    if (GetParam().length_ratio > 1) EXPECT_GT(along, 0.0f);
-    if (GetParam().length_ratio < 1) EXPECT_LT(along, 0.0f);
+    if (GetParam().length_ratio > 1) {
+        EXPECT_GT(along, 0.0f);
+    } else {
+        EXPECT_LT(along, 0.0f);
+    }
     EXPECT_NEAR(along, k * rest * (GetParam().length_ratio - 1), 1e-3f * k);
 }
 

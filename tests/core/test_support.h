@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <random>
+#include <vector>
 
 #include "cloth_instance.h"
 #include "fabric.h"
@@ -47,8 +48,14 @@ inline void perturb(ClothInstance& cloth, float amount, unsigned seed = 7) {
     std::uniform_real_distribution<float> uniform(-amount, amount);
     for (uint32_t i = 0; i < cloth.particle_count(); ++i) {
         if (cloth.is_pinned(i)) continue;
-        cloth.set_position(i, cloth.positions()[i] + Vec3(uniform(rng), uniform(rng), uniform(rng)));
+        cloth.set_position(i, cloth.positions().get(i) + Vec3(uniform(rng), uniform(rng), uniform(rng)));
     }
+}
+
+inline std::vector<Vec3> positions_of(const ClothInstance& cloth) {
+    std::vector<Vec3> out(cloth.particle_count());
+    for (uint32_t i = 0; i < cloth.particle_count(); ++i) out[i] = cloth.positions().get(i);
+    return out;
 }
 
 }  // namespace cloth::testing
