@@ -57,21 +57,31 @@ void evaluate_triangle_air(const Fabric& fabric, const AeroParams& air, const Ve
                         corner_force.z.data());
 }
 
+namespace {
+
+void gather_triangles_kernel(uint32_t begin, uint32_t end, size_t slot, const uint32_t* __restrict triangle,
+                             const float* __restrict cx, const float* __restrict cy, const float* __restrict cz,
+                             float* __restrict fx, float* __restrict fy, float* __restrict fz) {
+    for (uint32_t i = begin; i < end; ++i) {
+        const uint32_t t = triangle[slot + i];
+        fx[i] += cx[t];
+        fy[i] += cy[t];
+        fz[i] += cz[t];
+    }
+}
+
+}  // namespace
+
 void gather_triangle_forces(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begin, uint32_t end,
                             Vec3Soa& particle_force) {
-    const uint32_t* offset = fabric.triangle_incidence_offset.data();
-    const uint32_t* incident = fabric.triangle_incidence.data();
-    for (uint32_t p = begin; p < end; ++p) {
-        float sx = 0, sy = 0, sz = 0;
-        for (uint32_t e = offset[p]; e < offset[p + 1]; ++e) {
-            const uint32_t t = incident[e];
-            sx += corner_force.x[t];
-            sy += corner_force.y[t];
-            sz += corner_force.z[t];
-        }
-        particle_force.x[p] = sx;
-        particle_force.y[p] = sy;
-        particle_force.z[p] = sz;
+    const size_t n = fabric.particle_count();
+    std::fill(particle_force.x.begin() + begin, particle_force.x.begin() + end, 0.0f);
+    std::fill(particle_force.y.begin() + begin, particle_force.y.begin() + end, 0.0f);
+    std::fill(particle_force.z.begin() + begin, particle_force.z.begin() + end, 0.0f);
+    for (uint32_t k = 0; k < fabric.padded_triangle_width; ++k) {
+        gather_triangles_kernel(begin, end, k * n, fabric.padded_triangle.data(), corner_force.x.data(),
+                                corner_force.y.data(), corner_force.z.data(), particle_force.x.data(),
+                                particle_force.y.data(), particle_force.z.data());
     }
 }
 

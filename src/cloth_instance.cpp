@@ -59,9 +59,10 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     pin_target_ = x_;
     mass_.resize(n);
     pinned_.assign(n, 0);
-    triangle_force_.resize(f.triangle_count());
-    spring_force_.resize(f.spring_count());
-    spring_block_.resize(f.spring_count());
+    // One zero entry past the end: the dummy that padded incidence slots point at.
+    triangle_force_.resize(f.triangle_count() + 1);
+    spring_force_.resize(f.spring_count() + 1);
+    spring_block_.resize(f.spring_count() + 1);
     spring_stiffness_.resize(f.spring_count());
     spring_damping_.resize(f.spring_count());
     diagonal_.resize(n);

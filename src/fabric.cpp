@@ -20,7 +20,11 @@ Fabric::Fabric(const HostMemory* memory)
       incidence_other(HostAllocator<uint32_t>(memory)),
       incidence_sign(HostAllocator<float>(memory)),
       triangle_incidence_offset(HostAllocator<uint32_t>(memory)),
-      triangle_incidence(HostAllocator<uint32_t>(memory)) {}
+      triangle_incidence(HostAllocator<uint32_t>(memory)),
+      padded_spring(HostAllocator<uint32_t>(memory)),
+      padded_other(HostAllocator<uint32_t>(memory)),
+      padded_sign(HostAllocator<float>(memory)),
+      padded_triangle(HostAllocator<uint32_t>(memory)) {}
 
 namespace {
 
@@ -47,6 +51,19 @@ void build_incidence(uint32_t particle_count, uint32_t item_count, int ends_per_
         ends(item, touched);
         for (int e = 0; e < ends_per_item; ++e) items[cursor[touched[e]]++] = item;
     }
+}
+
+// Slot-major copy of CSR lists, padded with `dummy` up to the widest list.
+uint32_t pad_incidence(const HostVector<uint32_t>& offset, const HostVector<uint32_t>& items, uint32_t dummy,
+                       HostVector<uint32_t>& padded) {
+    const uint32_t n = static_cast<uint32_t>(offset.size() - 1);
+    uint32_t width = 0;
+    for (uint32_t p = 0; p < n; ++p) width = std::max(width, offset[p + 1] - offset[p]);
+    padded.assign(static_cast<size_t>(width) * n, dummy);
+    for (uint32_t p = 0; p < n; ++p) {
+        for (uint32_t e = offset[p]; e < offset[p + 1]; ++e) padded[(e - offset[p]) * n + p] = items[e];
+    }
+    return width;
 }
 
 // Shared tail of every builder: validates the geometry, computes rest
@@ -111,12 +128,25 @@ Status finish_fabric(const std::vector<SpringSpec>& springs, Fabric& f) {
             f.incidence_sign[e] = first ? 1.0f : -1.0f;
         }
     }
+    f.padded_spring_width = pad_incidence(f.incidence_offset, f.incidence_spring, count, f.padded_spring);
+    f.padded_other.resize(f.padded_spring.size());
+    f.padded_sign.assign(f.padded_spring.size(), 0.0f);
+    for (uint32_t p = 0; p < n; ++p) {
+        for (uint32_t k = 0; k < f.padded_spring_width; ++k) f.padded_other[static_cast<size_t>(k) * n + p] = p;
+        for (uint32_t e = f.incidence_offset[p]; e < f.incidence_offset[p + 1]; ++e) {
+            const size_t slot = static_cast<size_t>(e - f.incidence_offset[p]) * n + p;
+            f.padded_other[slot] = f.incidence_other[e];
+            f.padded_sign[slot] = f.incidence_sign[e];
+        }
+    }
     build_incidence(
         n, t_count, 3,
         [&](uint32_t t, uint32_t* out) {
             for (int k = 0; k < 3; ++k) out[k] = f.triangles[3 * t + k];
         },
         f.triangle_incidence_offset, f.triangle_incidence);
+    f.padded_triangle_width =
+        pad_incidence(f.triangle_incidence_offset, f.triangle_incidence, t_count, f.padded_triangle);
     return {};
 }
 

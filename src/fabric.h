@@ -46,6 +46,19 @@ struct Fabric {
     // Triangles incident to each particle, for normals and wind forces.
     HostVector<uint32_t> triangle_incidence_offset;
     HostVector<uint32_t> triangle_incidence;
+
+    // The same incidence lists padded to a fixed width and stored slot-major
+    // (entry k of particle p at k * particle_count + p), so that the gathers
+    // run as vectorized loops over particles. Padding points at a dummy
+    // spring (index spring_count) or triangle (index triangle_count) whose
+    // per-instance data is kept zero; its sign is 0. The order within a
+    // particle is the CSR order, so sums are formed identically.
+    uint32_t padded_spring_width = 0;
+    HostVector<uint32_t> padded_spring;
+    HostVector<uint32_t> padded_other;
+    HostVector<float> padded_sign;
+    uint32_t padded_triangle_width = 0;
+    HostVector<uint32_t> padded_triangle;
 };
 
 // Largest particle count a fabric may have.
