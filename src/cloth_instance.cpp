@@ -17,6 +17,7 @@
 #include "aerodynamics.h"
 #include "integrator_explicit.h"
 #include "solvers.h"
+#include "spring_terms.h"
 #include "springs.h"
 
 #include <cmath>
@@ -35,12 +36,9 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       pinned_(HostAllocator<uint8_t>(memory)),
       pin_target_(memory),
       pin_start_(memory),
-      spring_stiffness_(HostAllocator<float>(memory)),
-      spring_damping_(HostAllocator<float>(memory)),
       external_force_(memory),
       triangle_force_(memory),
-      spring_force_(memory),
-      spring_block_(memory),
+      springs_(make_spring_terms(memory, fabric_, material)),
       diagonal_(memory),
       diagonal_inverse_(memory),
       rhs_(memory),
@@ -61,10 +59,6 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     pinned_.assign(n, 0);
     // One zero entry past the end: the dummy that padded incidence slots point at.
     triangle_force_.resize(f.triangle_count() + 1);
-    spring_force_.resize(f.spring_count() + 1);
-    spring_block_.resize(f.spring_count() + 1);
-    spring_stiffness_.resize(f.spring_count());
-    spring_damping_.resize(f.spring_count());
     diagonal_.resize(n);
     diagonal_inverse_.resize(n);
     set_material(material);
@@ -76,10 +70,7 @@ void ClothInstance::set_material(const Material& material) {
     for (uint32_t i = 0; i < f.particle_count(); ++i) {
         mass_[i] = material.particle_mass > 0 ? material.particle_mass : material.area_density * f.rest_area[i];
     }
-    for (uint32_t s = 0; s < f.spring_count(); ++s) {
-        spring_stiffness_[s] = material.springs[f.spring_kind[s]].stiffness;
-        spring_damping_[s] = material.springs[f.spring_kind[s]].damping;
-    }
+    springs_->set_material(material);
 }
 
 void ClothInstance::pin(uint32_t particle) {
@@ -168,20 +159,21 @@ void ClothInstance::substep(float h, float frame_fraction_end, const Vec3& gravi
         external_force_.z[i] += gravity.z() * mass_[i] - v_.z[i] * drag;
     }
 
-    const SpringPass springs{&f, spring_stiffness_.data(), spring_damping_.data(), &x_, &v_, h,
-                             solver_.compression_safe_jacobian};
+    const JacobianClamp clamp = JacobianClamp::make(solver_.compression_safe_jacobian);
     if (solver_.kind == CLOTH_SOLVER_EXPLICIT) {
-        evaluate_springs(springs, 0, f.spring_count(), spring_force_, nullptr);
-        integrate_explicit(f, spring_force_, external_force_, mass_.data(), pinned_.data(), h, 0, n, v_, x_);
+        // Plain spring forces (h = 0 drops the implicit terms), then Euler.
+        springs_->evaluate(x_, v_, 0.0f, clamp, 0, springs_->item_count());
+        springs_->gather(0, n, external_force_, nullptr);
+        integrate_explicit(external_force_, mass_.data(), pinned_.data(), h, 0, n, v_, x_);
         last_solve_ = SolveReport{};
     } else {
         // 2. Springs.  3. Particle assembly (dv_ = p on exit).
-        evaluate_springs(springs, 0, f.spring_count(), spring_force_, &spring_block_);
-        const AssemblyPass assembly{&f,           &spring_force_, &spring_block_, &external_force_,
-                                    mass_.data(), pinned_.data(), h,              aero_.linear_drag};
+        springs_->evaluate(x_, v_, h, clamp, 0, springs_->item_count());
+        const AssemblyPass assembly{springs_.get(), &external_force_, mass_.data(), pinned_.data(), h,
+                                    aero_.linear_drag};
         assemble_particles(assembly, 0, n, diagonal_, diagonal_inverse_, rhs_, dv_);
         // 4. Solve.
-        const LinearSystem system{&f, n, &spring_block_, &diagonal_, &diagonal_inverse_, &rhs_, pinned_.data()};
+        const LinearSystem system{springs_.get(), n, &diagonal_, &diagonal_inverse_, &rhs_, pinned_.data()};
         if (solver_.kind == CLOTH_SOLVER_CG) {
             last_solve_ = solve_cg(system, solver_.cg_tolerance, solver_.cg_max_iterations, dv_);
         } else {

@@ -10,45 +10,13 @@
 #include "fabric.h"
 #include "host_allocator.h"
 #include "math.h"
+#include "settings.h"
 #include "soa.h"
 #include "status.h"
 
 namespace cloth {
 
-struct SpringParams {
-    float stiffness = 0;  // N/m
-    float damping = 0;    // N s/m
-};
-
-struct Material {
-    SpringParams springs[kSpringKindCount];
-    float area_density = 0.2f;  // kg/m^2
-    float particle_mass = 0;    // kg; > 0 overrides area_density
-};
-
-struct AeroParams {
-    Vec3 wind = Vec3::Zero();
-    float air_density = 1.2f;
-    float drag_coefficient = 1.0f;
-    float lift_coefficient = 0.5f;
-    float linear_drag = 0.02f;
-};
-
-struct SolverSettings {
-    cloth_solver_kind kind = CLOTH_SOLVER_JACOBI;
-    uint32_t iterations = 1;
-    uint32_t substeps = 1;
-    float cg_tolerance = 1e-6f;
-    uint32_t cg_max_iterations = 1000;
-    bool compression_safe_jacobian = true;
-};
-
-// What the last solve reported (for stats and tests).
-struct SolveReport {
-    uint32_t iterations = 0;
-    float residual = 0;
-    bool converged = true;
-};
+class SpringTerms;
 
 class ClothInstance {
 public:
@@ -103,13 +71,11 @@ private:
     HostVector<uint8_t> pinned_;
     Vec3Soa pin_target_;  // where a pinned particle is at the end of the next frame
     Vec3Soa pin_start_;   // where it was at the start of this frame
-    HostVector<float> spring_stiffness_, spring_damping_;  // per spring, from the material
 
     // Scratch, sized once at creation (no allocation per step).
     Vec3Soa external_force_;     // per particle
     Vec3Soa triangle_force_;     // per triangle, share of each corner
-    Vec3Soa spring_force_;       // per spring: f~ contribution on its first particle
-    Sym3Soa spring_block_;       // per spring: A_s = h^2 J_s + h D_s
+    std::shared_ptr<SpringTerms> springs_;  // per-spring f~ and A_s, in the layout that suits the fabric
     Sym3Soa diagonal_;           // per particle: W_ii
     Sym3Soa diagonal_inverse_;   // per particle: W_ii^-1 (zero if pinned)
     Vec3Soa rhs_;                // per particle: b_i = h f~_i

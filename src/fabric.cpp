@@ -8,7 +8,8 @@
 namespace cloth {
 
 Fabric::Fabric(const HostMemory* memory)
-    : rest_positions(HostAllocator<Vec3>(memory)),
+    : memory(memory),
+      rest_positions(HostAllocator<Vec3>(memory)),
       rest_area(HostAllocator<float>(memory)),
       triangles(HostAllocator<uint32_t>(memory)),
       spring_first(HostAllocator<uint32_t>(memory)),
@@ -24,7 +25,8 @@ Fabric::Fabric(const HostMemory* memory)
       padded_spring(HostAllocator<uint32_t>(memory)),
       padded_other(HostAllocator<uint32_t>(memory)),
       padded_sign(HostAllocator<float>(memory)),
-      padded_triangle(HostAllocator<uint32_t>(memory)) {}
+      padded_triangle(HostAllocator<uint32_t>(memory)),
+      grid_families(HostAllocator<SpringFamily>(memory)) {}
 
 namespace {
 
@@ -195,6 +197,32 @@ Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
                 f.triangles.insert(f.triangles.end(), {a, b, e, a, e, d});
             } else {
                 f.triangles.insert(f.triangles.end(), {a, b, d, b, e, d});
+            }
+        }
+    }
+
+    // Spring families: (column step, row step, kind).
+    struct Direction {
+        int dc, dr;
+        SpringKind kind;
+        uint32_t bit;
+    };
+    const Direction directions[] = {{1, 0, kStructural, CLOTH_SPRING_STRUCTURAL}, {0, 1, kStructural, CLOTH_SPRING_STRUCTURAL},
+                                    {1, 1, kShear, CLOTH_SPRING_SHEAR},           {-1, 1, kShear, CLOTH_SPRING_SHEAR},
+                                    {2, 0, kBend, CLOTH_SPRING_BEND},             {0, 2, kBend, CLOTH_SPRING_BEND}};
+    for (const Direction& d : directions) {
+        if (!(desc.spring_kinds & d.bit)) continue;
+        SpringFamily& family = f.grid_families.emplace_back(f.memory);
+        family.offset = static_cast<uint32_t>(d.dr * static_cast<int>(cols) + d.dc);
+        family.kind = d.kind;
+        family.rest_length = (u * (static_cast<float>(d.dc) / static_cast<float>(cols - 1)) +
+                              v * (static_cast<float>(d.dr) / static_cast<float>(rows - 1)))
+                                 .norm();
+        family.mask.assign(static_cast<size_t>(cols) * rows, 0.0f);
+        for (uint32_t r = 0; r + d.dr < rows; ++r) {
+            for (uint32_t c = 0; c < cols; ++c) {
+                const int to = static_cast<int>(c) + d.dc;
+                if (to >= 0 && to < static_cast<int>(cols)) family.mask[index(c, r)] = 1.0f;
             }
         }
     }

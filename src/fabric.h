@@ -11,6 +11,7 @@
 #include <cloth/cloth.h>
 
 #include <cstdint>
+#include <vector>
 
 #include "host_allocator.h"
 #include "math.h"
@@ -20,8 +21,22 @@ namespace cloth {
 
 enum SpringKind : uint8_t { kStructural = 0, kShear = 1, kBend = 2, kSpringKindCount = 3 };
 
+// A regular grid's springs grouped by direction: family f joins particle p
+// to p + offset wherever mask[p] is 1 (columns at the edge have no
+// neighbour on that side).
+struct SpringFamily {
+    explicit SpringFamily(const HostMemory* memory) : mask(HostAllocator<float>(memory)) {}
+
+    uint32_t offset = 0;
+    SpringKind kind = kStructural;
+    float rest_length = 0;
+    HostVector<float> mask;
+};
+
 struct Fabric {
     explicit Fabric(const HostMemory* memory);
+
+    const HostMemory* memory;
 
     uint32_t particle_count() const { return static_cast<uint32_t>(rest_positions.size()); }
     uint32_t triangle_count() const { return static_cast<uint32_t>(triangles.size() / 3); }
@@ -59,6 +74,9 @@ struct Fabric {
     HostVector<float> padded_sign;
     uint32_t padded_triangle_width = 0;
     HostVector<uint32_t> padded_triangle;
+
+    // Grid fabrics only: the same springs as families (empty otherwise).
+    std::vector<SpringFamily, HostAllocator<SpringFamily>> grid_families;
 };
 
 // Largest particle count a fabric may have.

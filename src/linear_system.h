@@ -4,9 +4,9 @@
 //     W dv = b,   W = M - h dF/dv - h^2 dF/dx,   b = h (f + h dF/dx v)
 //
 // stored the way the paper's stages produce it: per spring the block
-// A_s = h^2 J_s + h D_s (W_ij = -A_s), per particle W_ii, W_ii^-1 and b_i.
-// Pinned (kinematic) particles have dv = 0: their W_ii^-1 is zero and
-// their rows and columns are left out of the system.
+// A_s = h^2 J_s + h D_s (W_ij = -A_s, held by SpringTerms), per particle
+// W_ii, W_ii^-1 and b_i. Pinned (kinematic) particles have dv = 0: their
+// W_ii^-1 is zero and their rows and columns are left out of the system.
 //
 // Every solver takes this view and writes dv; a new solver kind is one
 // more function of this shape (see solvers.h).
@@ -15,13 +15,13 @@
 #include "fabric.h"
 #include "math.h"
 #include "soa.h"
+#include "spring_terms.h"
 
 namespace cloth {
 
 struct LinearSystem {
-    const Fabric* fabric;
+    const SpringTerms* springs;       // A_s
     uint32_t particle_count;
-    const Sym3Soa* spring_block;      // A_s, per spring
     const Sym3Soa* diagonal;          // W_ii, per particle
     const Sym3Soa* diagonal_inverse;  // W_ii^-1, zero for pinned particles
     const Vec3Soa* rhs;               // b_i = h f~_i
@@ -30,9 +30,7 @@ struct LinearSystem {
 
 // Inputs of the per-particle assembly stage.
 struct AssemblyPass {
-    const Fabric* fabric;
-    const Vec3Soa* spring_force;    // per spring, f~ contribution on its first particle
-    const Sym3Soa* spring_block;    // per spring, A_s
+    const SpringTerms* springs;     // evaluated for this substep
     const Vec3Soa* external_force;  // per particle
     const float* mass;
     const uint8_t* pinned;
@@ -40,9 +38,9 @@ struct AssemblyPass {
     float linear_drag;  // c: force -c m v, implicit on the diagonal
 };
 
-// Stage 2 (per particle, independent): gather the incident springs in the
-// fabric's fixed order into f~_i and W_ii = m_i (1 + h c) I + sum A_s, then
-// W_ii^-1, b_i = h f~_i and the paper's p_i = W_ii^-1 b_i (eq. 8).
+// Stage 2 (per particle, independent): f~_i = external + incident springs,
+// W_ii = m_i (1 + h c) I + sum A_s, then W_ii^-1, b_i = h f~_i and the
+// paper's p_i = W_ii^-1 b_i (eq. 8).
 void assemble_particles(const AssemblyPass& pass, uint32_t begin, uint32_t end, Sym3Soa& diagonal,
                         Sym3Soa& diagonal_inverse, Vec3Soa& rhs, Vec3Soa& p);
 

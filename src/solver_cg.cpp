@@ -13,10 +13,9 @@
 namespace cloth {
 
 SolveReport solve_cg(const LinearSystem& system, float tolerance, uint32_t max_iterations, Vec3Soa& dv) {
-    const Fabric& f = *system.fabric;
     const uint32_t n = system.particle_count;
     std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(9 * (static_cast<size_t>(n) + 2 * f.spring_count()));
+    triplets.reserve(9 * 13 * static_cast<size_t>(n));
 
     auto add_block = [&](uint32_t row, uint32_t col, const Sym3& block, double sign) {
         const Mat3 m = block.to_matrix();
@@ -27,12 +26,11 @@ SolveReport solve_cg(const LinearSystem& system, float tolerance, uint32_t max_i
     for (uint32_t i = 0; i < n; ++i) {
         add_block(i, i, system.pinned[i] ? Sym3::identity(1.0f) : system.diagonal->get(i), 1.0);
     }
-    for (uint32_t s = 0; s < f.spring_count(); ++s) {
-        const uint32_t i = f.spring_first[s], j = f.spring_second[s];
-        if (system.pinned[i] || system.pinned[j]) continue;
-        add_block(i, j, system.spring_block->get(s), -1.0);
-        add_block(j, i, system.spring_block->get(s), -1.0);
-    }
+    system.springs->for_each_block([&](uint32_t i, uint32_t j, const Sym3& block) {
+        if (system.pinned[i] || system.pinned[j]) return;
+        add_block(i, j, block, -1.0);
+        add_block(j, i, block, -1.0);
+    });
     Eigen::SparseMatrix<double> w(3 * n, 3 * n);
     w.setFromTriplets(triplets.begin(), triplets.end());
 

@@ -1,9 +1,11 @@
 // Spring forces and their Jacobians (paper eqs. 11-12; algorithm.md 1-2).
 #pragma once
 
-#include "fabric.h"
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "math.h"
-#include "soa.h"
 
 namespace cloth {
 
@@ -13,6 +15,7 @@ namespace cloth {
 //   f_i  = k (L - l0) u
 //   J_ij = k [ (1 - l0/L) I + (l0/L) u u^T ]          stretched (or compression_safe off)
 //   J_ij = k u u^T                                    compressed, compression_safe on (eq. 12)
+// The reference form, for tests; the step uses spring_term below.
 struct SpringEval {
     Vec3 force;
     Sym3 jacobian;
@@ -20,24 +23,51 @@ struct SpringEval {
 SpringEval spring_force_and_jacobian(const Vec3& xi, const Vec3& xj, float rest_length, float stiffness,
                                      bool compression_safe);
 
-// Inputs of the per-spring stage.
-struct SpringPass {
-    const Fabric* fabric;
-    const float* stiffness;  // per spring, N/m
-    const float* damping;    // per spring, N s/m
-    const Vec3Soa* x;
-    const Vec3Soa* v;
-    float h;                 // substep; used only when blocks are wanted
-    bool compression_safe;
+// J = a I + b u u^T with a = k (1 - l0/L), b = k l0/L. Compression-safe
+// (eq. 12) clamps a >= 0 and b <= k, which is exactly k u u^T when L < l0
+// and leaves stretched springs untouched.
+struct JacobianClamp {
+    float a_min, ratio_max;
+
+    static JacobianClamp make(bool compression_safe) {
+        const float inf = std::numeric_limits<float>::infinity();
+        return compression_safe ? JacobianClamp{0.0f, 1.0f} : JacobianClamp{-inf, inf};
+    }
 };
 
-// Stage 1 (per spring, independent): for springs [begin, end)
-//   force[s] = spring force + damping force on i, plus h J_ij (v_j - v_i)
-//              when `block` is given (the viscous right-hand side, eq. 4);
-//   block[s] = h^2 J_ij + h D_ij, D_ij = c u u^T the damping's velocity
-//              Jacobian, so that W_ij = -block[s] and W_ii = m_i I + sum block.
-// Pass block = nullptr for the explicit integrator (forces only).
-// Written without branches over plain arrays so that it vectorizes.
-void evaluate_springs(const SpringPass& pass, uint32_t begin, uint32_t end, Vec3Soa& force, Sym3Soa* block);
+// What one spring contributes to the substep system (algorithm.md 2):
+//   force = k (L - l0) u + c (u . rv) u + h J rv   on i (f~, eq. 4; -force on j)
+//   block = A_s = h^2 J + h c u u^T                 (W_ij = -A_s)
+// from d = x_j - x_i and rv = v_j - v_i. Branch-free, so the loops that
+// call it vectorize. Coincident particles (L = 0) exert no force. With
+// h = 0 it is the plain spring + damping force (the explicit integrator).
+struct SpringTerm {
+    float fx, fy, fz;
+    float bxx, bxy, bxz, byy, byz, bzz;
+};
+
+inline SpringTerm spring_term(float dx, float dy, float dz, float rvx, float rvy, float rvz, float rest, float k,
+                              float c, float h, JacobianClamp clamp) {
+    const float length = std::max(std::sqrt(dx * dx + dy * dy + dz * dz), 1e-9f);
+    const float inv = 1.0f / length;
+    const float ux = dx * inv, uy = dy * inv, uz = dz * inv;
+    const float ratio = rest * inv;
+    const float a = k * std::max(clamp.a_min, 1.0f - ratio);
+    const float b = k * std::min(clamp.ratio_max, ratio);
+    const float u_dot_rv = ux * rvx + uy * rvy + uz * rvz;
+    // J rv = a rv + b (u . rv) u
+    const float along = k * (length - rest) + c * u_dot_rv + h * b * u_dot_rv;
+    const float across = h * a;
+    const float alpha = h * h * a, beta = h * h * b + h * c;
+    return SpringTerm{ux * along + rvx * across,
+                      uy * along + rvy * across,
+                      uz * along + rvz * across,
+                      alpha + beta * ux * ux,
+                      beta * ux * uy,
+                      beta * ux * uz,
+                      alpha + beta * uy * uy,
+                      beta * uy * uz,
+                      alpha + beta * uz * uz};
+}
 
 }  // namespace cloth

@@ -82,7 +82,7 @@ struct Host {
     size_t live_bytes = 0;
     size_t alloc_calls = 0;
     size_t free_calls = 0;
-    long allocations_left = -1;                    // < 0: never fail
+    long allocations_left = -1;                        // < 0: never fail
     size_t max_single_allocation = size_t{256} << 20;  // refuse absurd requests
     std::vector<std::string> violations;
     std::vector<LogEntry> logs;
@@ -107,7 +107,8 @@ void* HostAlloc(size_t size, size_t alignment, void* user) {
     if (h->allocations_left == 0 || size > h->max_single_allocation) return nullptr;
     if (h->allocations_left > 0) --h->allocations_left;
     void* p = nullptr;
-    if (posix_memalign(&p, alignment < sizeof(void*) ? sizeof(void*) : alignment, size == 0 ? 1 : size) != 0) {
+    if (posix_memalign(&p, alignment < sizeof(void*) ? sizeof(void*) : alignment, size == 0 ? 1 : size) !=
+        0) {
         return nullptr;
     }
     h->live[p] = size;
@@ -199,12 +200,13 @@ uint64_t Bits(T v) {
     return out;
 }
 
-::testing::AssertionResult SameFloats(const char* what, const std::vector<float>& a, const std::vector<float>& b) {
+::testing::AssertionResult SameFloats(const char* what, const std::vector<float>& a,
+                                      const std::vector<float>& b) {
     if (a.size() != b.size()) return ::testing::AssertionFailure() << what << ": sizes differ";
     for (size_t i = 0; i < a.size(); ++i) {
         if (Bits(a[i]) != Bits(b[i])) {
-            return ::testing::AssertionFailure() << what << "[" << i / 3 << "]." << "xyz"[i % 3] << " was "
-                                                 << a[i] << ", now " << b[i];
+            return ::testing::AssertionFailure() << what << "[" << i / 3 << "]."
+                                                 << "xyz"[i % 3] << " was " << a[i] << ", now " << b[i];
         }
     }
     return ::testing::AssertionSuccess();
@@ -213,19 +215,20 @@ uint64_t Bits(T v) {
 // Bit-identical state. `compare_step_diagnostics` is off only across a
 // cloth_step, which legitimately updates last_step_result and the solver
 // diagnostics (last_solver_iterations/residual) even when it restores the state.
-::testing::AssertionResult SameState(const Snapshot& a, const Snapshot& b, bool compare_step_diagnostics = true) {
+::testing::AssertionResult SameState(const Snapshot& a, const Snapshot& b,
+                                     bool compare_step_diagnostics = true) {
     if (a.count != b.count) {
         return ::testing::AssertionFailure() << "particle count was " << a.count << ", now " << b.count;
     }
-    for (auto r : {SameFloats("position", a.positions, b.positions),
-                   SameFloats("velocity", a.velocities, b.velocities),
-                   SameFloats("normal", a.normals, b.normals)}) {
+    for (auto r :
+         {SameFloats("position", a.positions, b.positions),
+          SameFloats("velocity", a.velocities, b.velocities), SameFloats("normal", a.normals, b.normals)}) {
         if (!r) return r;
     }
     for (size_t i = 0; i < a.pinned.size(); ++i) {
         if (a.pinned[i] != b.pinned[i]) {
-            return ::testing::AssertionFailure() << "pin state of particle " << i << " was " << int(a.pinned[i])
-                                                 << ", now " << int(b.pinned[i]);
+            return ::testing::AssertionFailure() << "pin state of particle " << i << " was "
+                                                 << int(a.pinned[i]) << ", now " << int(b.pinned[i]);
         }
     }
     const cloth_solver_settings& x = a.solver;
@@ -234,28 +237,29 @@ uint64_t Bits(T v) {
         Bits(x.cg_tolerance) != Bits(y.cg_tolerance) || x.cg_max_iterations != y.cg_max_iterations ||
         x.compression_safe_jacobian != y.compression_safe_jacobian) {
         return ::testing::AssertionFailure()
-               << "solver settings changed: kind " << x.kind << "->" << y.kind << ", iterations " << x.iterations
-               << "->" << y.iterations << ", substeps " << x.substeps << "->" << y.substeps << ", cg_tolerance "
-               << x.cg_tolerance << "->" << y.cg_tolerance << ", cg_max_iterations " << x.cg_max_iterations
-               << "->" << y.cg_max_iterations;
+               << "solver settings changed: kind " << x.kind << "->" << y.kind << ", iterations "
+               << x.iterations << "->" << y.iterations << ", substeps " << x.substeps << "->" << y.substeps
+               << ", cg_tolerance " << x.cg_tolerance << "->" << y.cg_tolerance << ", cg_max_iterations "
+               << x.cg_max_iterations << "->" << y.cg_max_iterations;
     }
     const cloth_stats& s = a.stats;
     const cloth_stats& t = b.stats;
-    if (Bits(s.kinetic_energy) != Bits(t.kinetic_energy) || Bits(s.gravity_energy) != Bits(t.gravity_energy) ||
+    if (Bits(s.kinetic_energy) != Bits(t.kinetic_energy) ||
+        Bits(s.gravity_energy) != Bits(t.gravity_energy) ||
         Bits(s.elastic_energy) != Bits(t.elastic_energy) || Bits(s.max_strain) != Bits(t.max_strain) ||
         Bits(s.mean_strain) != Bits(t.mean_strain) || Bits(s.max_speed) != Bits(t.max_speed) ||
-        (compare_step_diagnostics &&
-         (s.last_solver_iterations != t.last_solver_iterations ||
-          Bits(s.last_solver_residual) != Bits(t.last_solver_residual) ||
-          s.last_step_result != t.last_step_result))) {
+        (compare_step_diagnostics && (s.last_solver_iterations != t.last_solver_iterations ||
+                                      Bits(s.last_solver_residual) != Bits(t.last_solver_residual) ||
+                                      s.last_step_result != t.last_step_result))) {
         return ::testing::AssertionFailure()
                << "stats changed: kinetic " << s.kinetic_energy << "->" << t.kinetic_energy << ", gravity "
                << s.gravity_energy << "->" << t.gravity_energy << ", elastic " << s.elastic_energy << "->"
-               << t.elastic_energy << ", max_strain " << s.max_strain << "->" << t.max_strain << ", mean_strain "
-               << s.mean_strain << "->" << t.mean_strain << ", max_speed " << s.max_speed << "->" << t.max_speed
-               << ", last_solver_iterations " << s.last_solver_iterations << "->" << t.last_solver_iterations
-               << ", last_solver_residual " << s.last_solver_residual << "->" << t.last_solver_residual
-               << ", last_step_result " << Name(s.last_step_result) << "->" << Name(t.last_step_result);
+               << t.elastic_energy << ", max_strain " << s.max_strain << "->" << t.max_strain
+               << ", mean_strain " << s.mean_strain << "->" << t.mean_strain << ", max_speed " << s.max_speed
+               << "->" << t.max_speed << ", last_solver_iterations " << s.last_solver_iterations << "->"
+               << t.last_solver_iterations << ", last_solver_residual " << s.last_solver_residual << "->"
+               << t.last_solver_residual << ", last_step_result " << Name(s.last_step_result) << "->"
+               << Name(t.last_step_result);
     }
     return ::testing::AssertionSuccess();
 }
@@ -319,8 +323,7 @@ cloth_grid_desc SmallGrid() {
 }
 
 std::string WriteTempFile(const std::string& name, const std::string& text) {
-    const std::string path =
-        ::testing::TempDir() + "cloth_capi_" + std::to_string(::getpid()) + "_" + name;
+    const std::string path = ::testing::TempDir() + "cloth_capi_" + std::to_string(::getpid()) + "_" + name;
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out << text;
     return path;
@@ -354,12 +357,13 @@ struct Scene {
 
 enum class Logged { kYes, kNotChecked };
 
-#define EXPECT_REJECTED(expected, call) ExpectRejected((expected), #call, [&]() -> cloth_result { return (call); })
+#define EXPECT_REJECTED(expected, call) \
+    ExpectRejected((expected), #call, [&]() -> cloth_result { return (call); })
 #define EXPECT_REJECTED_UNLOGGED(expected, call) \
     ExpectRejected((expected), #call, [&]() -> cloth_result { return (call); }, Logged::kNotChecked)
 
 class BadInput : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         BuildScene(a_);
         if (HasFatalFailure()) return;
@@ -381,7 +385,8 @@ protected:
             EXPECT_EQ(s->host.alloc_calls, s->host.free_calls);
             for (const std::string& v : s->host.violations) ADD_FAILURE() << "allocator/log misuse: " << v;
         }
-        EXPECT_EQ(g_wrong_user_pointer.load(), 0) << "a callback received a user pointer that is not desc.user";
+        EXPECT_EQ(g_wrong_user_pointer.load(), 0)
+            << "a callback received a user pointer that is not desc.user";
     }
 
     void BuildScene(Scene& s) {
@@ -424,10 +429,11 @@ protected:
         const float other_wind[3] = {-1.0f, 0.0f, 2.0f};
         ASSERT_EQ(cloth_set_wind(s.cloth, wind), CLOTH_OK);
         ASSERT_EQ(cloth_set_wind(s.other, other_wind), CLOTH_OK);
-        for (int i = 0; i < 5; ++i) ASSERT_EQ(cloth_step(s.world, kFrame), CLOTH_OK) << cloth_get_last_error();
+        for (int i = 0; i < 5; ++i)
+            ASSERT_EQ(cloth_step(s.world, kFrame), CLOTH_OK) << cloth_get_last_error();
         for (const LogEntry& e : s.host.logs) {
-            ASSERT_NE(e.level, CLOTH_LOG_ERROR) << "an error was logged while building a valid scene: "
-                                                << e.message;
+            ASSERT_NE(e.level, CLOTH_LOG_ERROR)
+                << "an error was logged while building a valid scene: " << e.message;
         }
         s.host.logs.clear();
     }
@@ -478,8 +484,8 @@ protected:
     bool OutsUnchanged() const { return std::memcmp(&outs_, &pristine_outs_, sizeof outs_) == 0; }
     bool* OutPinned() { return reinterpret_cast<bool*>(&outs_.pinned_byte); }
 
-    void ExpectRejected(cloth_result expected, const std::string& what, const std::function<cloth_result()>& call,
-                        Logged logged = Logged::kYes) {
+    void ExpectRejected(cloth_result expected, const std::string& what,
+                        const std::function<cloth_result()>& call, Logged logged = Logged::kYes) {
         SCOPED_TRACE(what);
         ++g_bad_inputs;
         const Snapshot cloth_before = TakeSnapshot(a_.cloth);
@@ -490,9 +496,9 @@ protected:
 
         const Outcome o = RunOnFreshThread(call);
 
-        EXPECT_EQ(o.result, expected) << "\n    call: " << what << "\n    expected " << Name(expected)
-                                      << ", got " << Name(o.result)
-                                      << (o.error_after.empty() ? "" : "\n    message: " + o.error_after);
+        EXPECT_EQ(o.result, expected)
+            << "\n    call: " << what << "\n    expected " << Name(expected) << ", got " << Name(o.result)
+            << (o.error_after.empty() ? "" : "\n    message: " + o.error_after);
         EXPECT_FALSE(o.error_before_null) << "cloth_get_last_error() returned NULL on a fresh thread";
         EXPECT_EQ(o.error_before, "") << "cloth_get_last_error() is not \"\" on a thread that made no call";
         EXPECT_FALSE(o.error_after_null) << what << ": cloth_get_last_error() returned NULL";
@@ -505,7 +511,8 @@ protected:
             if (last_error == nullptr) {
                 ADD_FAILURE() << what << ": the world's log callback did not receive the error";
             } else {
-                EXPECT_EQ(last_error->code, o.result) << what << ": logged code differs from the returned one";
+                EXPECT_EQ(last_error->code, o.result)
+                    << what << ": logged code differs from the returned one";
                 EXPECT_EQ(last_error->message, o.error_after)
                     << what << ": logged message differs from cloth_get_last_error()";
             }
@@ -567,8 +574,10 @@ TEST_F(BadInput, EveryWorldFunctionRejectsNullStaleAndOutOfTableWorldIdsAndChang
         SCOPED_TRACE(b.what);
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_world_set_gravity(b.id, gravity));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_step(b.id, kFrame));
-        EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_fabric_create_grid(b.id, &grid, &outs_.fabric));
-        EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_fabric_create_mesh(b.id, &mesh, &outs_.fabric));
+        EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                                 cloth_fabric_create_grid(b.id, &grid, &outs_.fabric));
+        EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                                 cloth_fabric_create_mesh(b.id, &mesh, &outs_.fabric));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE,
                                  cloth_fabric_create_obj(b.id, obj.c_str(), CLOTH_SPRING_ALL, &outs_.fabric));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_create(b.id, &desc, &outs_.cloth));
@@ -593,8 +602,10 @@ TEST_F(BadInput, EveryFabricFunctionRejectsNullStaleWrongGenerationAndOutOfTable
     };
     for (const NamedFabric& b : bad) {
         SCOPED_TRACE(b.what);
-        EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_fabric_get_particle_count(b.id, &outs_.count));
-        EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_fabric_get_triangle_count(b.id, &outs_.count));
+        EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                                 cloth_fabric_get_particle_count(b.id, &outs_.count));
+        EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                                 cloth_fabric_get_triangle_count(b.id, &outs_.count));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE,
                                  cloth_fabric_get_spring_count(b.id, CLOTH_SPRING_ALL, &outs_.count));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE,
@@ -631,7 +642,8 @@ TEST_F(BadInput, EveryClothFunctionRejectsNullStaleWrongGenerationAndOutOfTableC
         const cloth_id id = b.id;
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_get_particle_count(id, &outs_.count));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_read_positions(id, outs_.floats, kFloats));
-        EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_read_velocities(id, outs_.floats, kFloats));
+        EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                                 cloth_read_velocities(id, outs_.floats, kFloats));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_read_normals(id, outs_.floats, kFloats));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_set_positions(id, index, xyz, 1));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_pin(id, index, 1));
@@ -640,7 +652,8 @@ TEST_F(BadInput, EveryClothFunctionRejectsNullStaleWrongGenerationAndOutOfTableC
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_is_pinned(id, 0, OutPinned()));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_set_solver(id, &solver));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_get_solver(id, &outs_.solver));
-        EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_set_spring_params(id, CLOTH_SPRING_ALL, spring));
+        EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                                 cloth_set_spring_params(id, CLOTH_SPRING_ALL, spring));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_set_aero(id, &aero));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_set_wind(id, xyz));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_get_stats(id, &outs_.stats));
@@ -721,10 +734,12 @@ TEST_F(BadInput, IdsOfADestroyedWorldStayInvalidWhenItsSlotIsReused) {
     EXPECT_FALSE(cloth == dead_cloth_)
         << "the new world's cloth has the very id of the destroyed world's cloth; cloth_id carries no world "
            "generation, so the library must keep slot generations unique across world re-use";
-    EXPECT_FALSE(fabric == dead_fabric_) << "the new world's fabric has the very id of the destroyed world's fabric";
+    EXPECT_FALSE(fabric == dead_fabric_)
+        << "the new world's fabric has the very id of the destroyed world's fabric";
 
     EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_get_particle_count(dead_cloth_, &outs_.count));
-    EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_fabric_get_particle_count(dead_fabric_, &outs_.count));
+    EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                             cloth_fabric_get_particle_count(dead_fabric_, &outs_.count));
     EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_world_destroy(dead_world_));
     EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_destroy(dead_cloth_));
     EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_fabric_destroy(dead_fabric_));
@@ -760,7 +775,8 @@ TEST_F(BadInput, FabricFunctionsRejectEachNullPointerAndChangeNothing) {
     EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_fabric_create_mesh(a_.world, &mesh, nullptr));
     cloth_mesh_desc no_positions = QuadMesh();
     no_positions.positions = nullptr;
-    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_fabric_create_mesh(a_.world, &no_positions, &outs_.fabric));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER,
+                    cloth_fabric_create_mesh(a_.world, &no_positions, &outs_.fabric));
     cloth_mesh_desc no_indices = QuadMesh();
     no_indices.indices = nullptr;
     EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_fabric_create_mesh(a_.world, &no_indices, &outs_.fabric));
@@ -768,12 +784,14 @@ TEST_F(BadInput, FabricFunctionsRejectEachNullPointerAndChangeNothing) {
     const std::string obj = WriteTempFile("null.obj", "v 0 0 0\nv 1 0 0\nv 1 0 1\nf 1 2 3\n");
     EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER,
                     cloth_fabric_create_obj(a_.world, nullptr, CLOTH_SPRING_ALL, &outs_.fabric));
-    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_fabric_create_obj(a_.world, obj.c_str(), CLOTH_SPRING_ALL, nullptr));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER,
+                    cloth_fabric_create_obj(a_.world, obj.c_str(), CLOTH_SPRING_ALL, nullptr));
     std::remove(obj.c_str());
 
     EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_fabric_get_particle_count(a_.fabric, nullptr));
     EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_fabric_get_triangle_count(a_.fabric, nullptr));
-    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_fabric_get_spring_count(a_.fabric, CLOTH_SPRING_ALL, nullptr));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER,
+                    cloth_fabric_get_spring_count(a_.fabric, CLOTH_SPRING_ALL, nullptr));
     EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_fabric_read_triangles(a_.fabric, nullptr, 1000));
 }
 
@@ -868,7 +886,8 @@ TEST_F(BadInput, CreateClothWithADescNotFromDefaultOrAWrongSizeReturnsInvalidDes
         EXPECT_REJECTED(CLOTH_ERROR_INVALID_DESC, cloth_create(a_.world, &desc, &outs_.cloth));
     }
     // The nested solver settings carry their own struct_size.
-    for (uint32_t size : {0u, uint32_t(sizeof(cloth_solver_settings) - 1), uint32_t(sizeof(cloth_solver_settings) + 1)}) {
+    for (uint32_t size :
+         {0u, uint32_t(sizeof(cloth_solver_settings) - 1), uint32_t(sizeof(cloth_solver_settings) + 1)}) {
         SCOPED_TRACE("desc.solver.struct_size " + std::to_string(size));
         cloth_desc desc = ValidClothDesc();
         desc.solver.struct_size = size;
@@ -880,7 +899,8 @@ TEST_F(BadInput, SetSolverWithAWrongStructSizeReturnsInvalidDescAndKeepsTheSolve
     cloth_solver_settings zero;
     std::memset(&zero, 0, sizeof zero);
     EXPECT_REJECTED(CLOTH_ERROR_INVALID_DESC, cloth_set_solver(a_.cloth, &zero));
-    for (uint32_t size : {0u, uint32_t(sizeof(cloth_solver_settings) - 1), uint32_t(sizeof(cloth_solver_settings) + 1)}) {
+    for (uint32_t size :
+         {0u, uint32_t(sizeof(cloth_solver_settings) - 1), uint32_t(sizeof(cloth_solver_settings) + 1)}) {
         SCOPED_TRACE("struct_size " + std::to_string(size));
         cloth_solver_settings s = cloth_default_solver_settings();
         s.kind = CLOTH_SOLVER_CG;  // a visible change, if it were accepted
@@ -898,7 +918,8 @@ TEST_F(BadInput, GetStatsWithAWrongStructSizeReturnsInvalidDescAndWritesNothing)
         cloth_stats copy;
         std::memcpy(&copy, &stats, sizeof stats);
         EXPECT_REJECTED(CLOTH_ERROR_INVALID_DESC, cloth_get_stats(a_.cloth, &stats));
-        EXPECT_EQ(std::memcmp(&stats, &copy, sizeof stats), 0) << "cloth_get_stats wrote into a rejected struct";
+        EXPECT_EQ(std::memcmp(&stats, &copy, sizeof stats), 0)
+            << "cloth_get_stats wrote into a rejected struct";
     }
 }
 
@@ -1027,11 +1048,11 @@ void ExpectRejectedInChild(const std::function<cloth_result()>& call, const Snap
     std::_Exit(0);
 }
 
-#define EXPECT_REJECTED_IN_CHILD(expected_name, call)                                                        \
-    EXPECT_EXIT(ExpectRejectedInChild(                                                                        \
-                    [&]() -> cloth_result { return (call); }, TakeSnapshot(a_.cloth),                         \
-                    [&] { return TakeSnapshot(a_.cloth); }, a_.host, a_.host.live_bytes),                     \
-                ::testing::ExitedWithCode(0), "result=" expected_name ";message=set;state=same;memory=same;") \
+#define EXPECT_REJECTED_IN_CHILD(expected_name, call)                                                       \
+    EXPECT_EXIT(ExpectRejectedInChild([&]() -> cloth_result { return (call); }, TakeSnapshot(a_.cloth),     \
+                                      [&] { return TakeSnapshot(a_.cloth); }, a_.host, a_.host.live_bytes), \
+                ::testing::ExitedWithCode(0),                                                               \
+                "result=" expected_name ";message=set;state=same;memory=same;")                             \
         << #call
 
 TEST_F(BadInputDeathTest, GridWhoseParticleCountOverflowsReturnsInvalidCount) {
@@ -1040,15 +1061,18 @@ TEST_F(BadInputDeathTest, GridWhoseParticleCountOverflowsReturnsInvalidCount) {
     cloth_grid_desc wraps = SmallGrid();  // 65536 * 65536 wraps to 0 in 32 bits
     wraps.columns = 65536;
     wraps.rows = 65536;
-    EXPECT_REJECTED_IN_CHILD("CLOTH_ERROR_INVALID_COUNT", cloth_fabric_create_grid(a_.world, &wraps, &outs_.fabric));
+    EXPECT_REJECTED_IN_CHILD("CLOTH_ERROR_INVALID_COUNT",
+                             cloth_fabric_create_grid(a_.world, &wraps, &outs_.fabric));
     cloth_grid_desc huge = SmallGrid();
     huge.columns = UINT32_MAX;
     huge.rows = 2;
-    EXPECT_REJECTED_IN_CHILD("CLOTH_ERROR_INVALID_COUNT", cloth_fabric_create_grid(a_.world, &huge, &outs_.fabric));
+    EXPECT_REJECTED_IN_CHILD("CLOTH_ERROR_INVALID_COUNT",
+                             cloth_fabric_create_grid(a_.world, &huge, &outs_.fabric));
     cloth_grid_desc over = SmallGrid();  // 0x55560000 particles: 3 * count > UINT32_MAX
     over.columns = 0x10000;
     over.rows = 0x5556;
-    EXPECT_REJECTED_IN_CHILD("CLOTH_ERROR_INVALID_COUNT", cloth_fabric_create_grid(a_.world, &over, &outs_.fabric));
+    EXPECT_REJECTED_IN_CHILD("CLOTH_ERROR_INVALID_COUNT",
+                             cloth_fabric_create_grid(a_.world, &over, &outs_.fabric));
 }
 
 TEST_F(BadInputDeathTest, MeshWithHugeCountsReturnsInvalidCountWithoutReadingTheArrays) {
@@ -1056,10 +1080,12 @@ TEST_F(BadInputDeathTest, MeshWithHugeCountsReturnsInvalidCountWithoutReadingThe
     g_bad_inputs += 2;
     cloth_mesh_desc vertices = QuadMesh();
     vertices.vertex_count = UINT32_MAX;
-    EXPECT_REJECTED_IN_CHILD("CLOTH_ERROR_INVALID_COUNT", cloth_fabric_create_mesh(a_.world, &vertices, &outs_.fabric));
+    EXPECT_REJECTED_IN_CHILD("CLOTH_ERROR_INVALID_COUNT",
+                             cloth_fabric_create_mesh(a_.world, &vertices, &outs_.fabric));
     cloth_mesh_desc triangles = QuadMesh();
     triangles.triangle_count = UINT32_MAX;
-    EXPECT_REJECTED_IN_CHILD("CLOTH_ERROR_INVALID_COUNT", cloth_fabric_create_mesh(a_.world, &triangles, &outs_.fabric));
+    EXPECT_REJECTED_IN_CHILD("CLOTH_ERROR_INVALID_COUNT",
+                             cloth_fabric_create_mesh(a_.world, &triangles, &outs_.fabric));
 }
 
 TEST_F(BadInput, GridWithNonFiniteOriginOrEdgeReturnsNotFinite) {
@@ -1068,8 +1094,10 @@ TEST_F(BadInput, GridWithNonFiniteOriginOrEdgeReturnsNotFinite) {
             cloth_grid_desc grid = SmallGrid();
             float* v = field == 0 ? grid.origin : field == 1 ? grid.u : grid.v;
             v[field] = bad;  // a different component of each vector
-            SCOPED_TRACE(std::string(field == 0 ? "origin" : field == 1 ? "u" : "v") + "[" + std::to_string(field) +
-                         "] = " + std::to_string(bad));
+            SCOPED_TRACE(std::string(field == 0   ? "origin"
+                                     : field == 1 ? "u"
+                                                  : "v") +
+                         "[" + std::to_string(field) + "] = " + std::to_string(bad));
             EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_fabric_create_grid(a_.world, &grid, &outs_.fabric));
         }
     }
@@ -1078,19 +1106,23 @@ TEST_F(BadInput, GridWithNonFiniteOriginOrEdgeReturnsNotFinite) {
 TEST_F(BadInput, GridWithAZeroOrParallelEdgeReturnsDegenerateGeometry) {
     cloth_grid_desc zero_u = SmallGrid();
     zero_u.u[0] = zero_u.u[1] = zero_u.u[2] = 0.0f;
-    EXPECT_REJECTED(CLOTH_ERROR_DEGENERATE_GEOMETRY, cloth_fabric_create_grid(a_.world, &zero_u, &outs_.fabric));
+    EXPECT_REJECTED(CLOTH_ERROR_DEGENERATE_GEOMETRY,
+                    cloth_fabric_create_grid(a_.world, &zero_u, &outs_.fabric));
     cloth_grid_desc zero_v = SmallGrid();
     zero_v.v[0] = zero_v.v[1] = zero_v.v[2] = 0.0f;
-    EXPECT_REJECTED(CLOTH_ERROR_DEGENERATE_GEOMETRY, cloth_fabric_create_grid(a_.world, &zero_v, &outs_.fabric));
+    EXPECT_REJECTED(CLOTH_ERROR_DEGENERATE_GEOMETRY,
+                    cloth_fabric_create_grid(a_.world, &zero_v, &outs_.fabric));
     cloth_grid_desc parallel = SmallGrid();  // u = (1,0,0), v = (-2,0,0): zero-area triangles
     parallel.v[0] = -2.0f;
     parallel.v[1] = 0.0f;
     parallel.v[2] = 0.0f;
-    EXPECT_REJECTED(CLOTH_ERROR_DEGENERATE_GEOMETRY, cloth_fabric_create_grid(a_.world, &parallel, &outs_.fabric));
+    EXPECT_REJECTED(CLOTH_ERROR_DEGENERATE_GEOMETRY,
+                    cloth_fabric_create_grid(a_.world, &parallel, &outs_.fabric));
 }
 
 TEST_F(BadInput, UnknownSpringKindBitsReturnInvalidValue) {
-    const std::string obj = WriteTempFile("kinds.obj", "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 2 3\nf 1 3 4\n");
+    const std::string obj =
+        WriteTempFile("kinds.obj", "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 2 3\nf 1 3 4\n");
     for (uint32_t kinds : {8u, 0x80000000u, CLOTH_SPRING_ALL | 16u}) {
         SCOPED_TRACE("spring kinds " + std::to_string(kinds));
         cloth_grid_desc grid = SmallGrid();
@@ -1099,8 +1131,10 @@ TEST_F(BadInput, UnknownSpringKindBitsReturnInvalidValue) {
         cloth_mesh_desc mesh = QuadMesh();
         mesh.spring_kinds = kinds;
         EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_fabric_create_mesh(a_.world, &mesh, &outs_.fabric));
-        EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_fabric_create_obj(a_.world, obj.c_str(), kinds, &outs_.fabric));
-        EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_fabric_get_spring_count(a_.fabric, kinds, &outs_.count));
+        EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE,
+                        cloth_fabric_create_obj(a_.world, obj.c_str(), kinds, &outs_.fabric));
+        EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE,
+                        cloth_fabric_get_spring_count(a_.fabric, kinds, &outs_.count));
         EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE,
                         cloth_set_spring_params(a_.cloth, kinds, cloth_spring_params{1.0f, 0.0f}));
     }
@@ -1110,13 +1144,16 @@ TEST_F(BadInput, UnknownSpringKindBitsReturnInvalidValue) {
 TEST_F(BadInput, MeshWithTooFewVerticesOrTrianglesReturnsInvalidCount) {
     cloth_mesh_desc no_vertices = QuadMesh();
     no_vertices.vertex_count = 0;
-    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, cloth_fabric_create_mesh(a_.world, &no_vertices, &outs_.fabric));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                    cloth_fabric_create_mesh(a_.world, &no_vertices, &outs_.fabric));
     cloth_mesh_desc two_vertices = QuadMesh();
     two_vertices.vertex_count = 2;
-    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, cloth_fabric_create_mesh(a_.world, &two_vertices, &outs_.fabric));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                    cloth_fabric_create_mesh(a_.world, &two_vertices, &outs_.fabric));
     cloth_mesh_desc no_triangles = QuadMesh();
     no_triangles.triangle_count = 0;
-    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, cloth_fabric_create_mesh(a_.world, &no_triangles, &outs_.fabric));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                    cloth_fabric_create_mesh(a_.world, &no_triangles, &outs_.fabric));
 }
 
 TEST_F(BadInput, MeshWithAnIndexOutOfRangeReturnsIndexOutOfRange) {
@@ -1128,7 +1165,8 @@ TEST_F(BadInput, MeshWithAnIndexOutOfRangeReturnsIndexOutOfRange) {
             indices[slot] = bad;
             cloth_mesh_desc mesh = QuadMesh();
             mesh.indices = indices;
-            EXPECT_REJECTED(CLOTH_ERROR_INDEX_OUT_OF_RANGE, cloth_fabric_create_mesh(a_.world, &mesh, &outs_.fabric));
+            EXPECT_REJECTED(CLOTH_ERROR_INDEX_OUT_OF_RANGE,
+                            cloth_fabric_create_mesh(a_.world, &mesh, &outs_.fabric));
         }
     }
 }
@@ -1155,21 +1193,23 @@ TEST_F(BadInput, MeshWithADegenerateTriangleReturnsDegenerateGeometry) {
     struct Case {
         const char* what;
         const float* positions;
+        uint32_t vertex_count;
         uint32_t indices[6];
     };
     const Case cases[] = {
-        {"repeated vertex index (0, 0, 1)", kQuadPositions, {0, 0, 1, 0, 2, 3}},
-        {"repeated vertex index (0, 2, 2)", kQuadPositions, {0, 1, 2, 0, 2, 2}},
-        {"zero-area triangle of three collinear vertices", positions, {0, 1, 2, 0, 1, 4}},
-        {"zero-length edge between two coincident vertices", coincident, {0, 1, 2, 0, 2, 4}},
+        {"repeated vertex index (0, 0, 1)", kQuadPositions, 4, {0, 0, 1, 0, 2, 3}},
+        {"repeated vertex index (0, 2, 2)", kQuadPositions, 4, {0, 1, 2, 0, 2, 2}},
+        {"zero-area triangle of three collinear vertices", positions, 5, {0, 1, 2, 0, 1, 4}},
+        {"zero-length edge between two coincident vertices", coincident, 5, {0, 1, 2, 0, 2, 4}},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.what);
         cloth_mesh_desc mesh = QuadMesh();
         mesh.positions = c.positions;
-        mesh.vertex_count = 5;
+        mesh.vertex_count = c.vertex_count;
         mesh.indices = c.indices;
-        EXPECT_REJECTED(CLOTH_ERROR_DEGENERATE_GEOMETRY, cloth_fabric_create_mesh(a_.world, &mesh, &outs_.fabric));
+        EXPECT_REJECTED(CLOTH_ERROR_DEGENERATE_GEOMETRY,
+                        cloth_fabric_create_mesh(a_.world, &mesh, &outs_.fabric));
     }
 }
 
@@ -1207,7 +1247,8 @@ TEST_F(BadInput, ReadTrianglesWithTooSmallCapacityReturnsInvalidCountAndWritesNo
     ASSERT_EQ(triangles, 2 * (kColumns - 1) * (kRows - 1));
     for (uint32_t capacity : {0u, 1u, 3 * triangles - 1}) {
         SCOPED_TRACE("capacity " + std::to_string(capacity));
-        EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, cloth_fabric_read_triangles(a_.fabric, outs_.uints, capacity));
+        EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                        cloth_fabric_read_triangles(a_.fabric, outs_.uints, capacity));
     }
 }
 
@@ -1215,7 +1256,8 @@ TEST_F(BadInput, CreatingMoreFabricsThanMaxFabricsReturnsCapacity) {
     check_twin_ = false;
     const cloth_grid_desc grid = SmallGrid();
     cloth_fabric_id third{};
-    ASSERT_EQ(cloth_fabric_create_grid(a_.world, &grid, &third), CLOTH_OK) << "the fixture leaves one slot free";
+    ASSERT_EQ(cloth_fabric_create_grid(a_.world, &grid, &third), CLOTH_OK)
+        << "the fixture leaves one slot free";
     EXPECT_REJECTED(CLOTH_ERROR_CAPACITY, cloth_fabric_create_grid(a_.world, &grid, &outs_.fabric));
     const cloth_mesh_desc mesh = QuadMesh();
     EXPECT_REJECTED(CLOTH_ERROR_CAPACITY, cloth_fabric_create_mesh(a_.world, &mesh, &outs_.fabric));
@@ -1242,10 +1284,10 @@ void AddSpringCases(std::vector<DescCase>& cases) {
                          CLOTH_ERROR_INVALID_VALUE});
         cases.push_back({n + ".damping = -0.5", [m](cloth_desc& d) { (d.*m).damping = -0.5f; },
                          CLOTH_ERROR_INVALID_VALUE});
-        cases.push_back(
-            {n + ".stiffness = NaN", [m](cloth_desc& d) { (d.*m).stiffness = kNaN; }, CLOTH_ERROR_NOT_FINITE});
-        cases.push_back(
-            {n + ".stiffness = inf", [m](cloth_desc& d) { (d.*m).stiffness = kInf; }, CLOTH_ERROR_NOT_FINITE});
+        cases.push_back({n + ".stiffness = NaN", [m](cloth_desc& d) { (d.*m).stiffness = kNaN; },
+                         CLOTH_ERROR_NOT_FINITE});
+        cases.push_back({n + ".stiffness = inf", [m](cloth_desc& d) { (d.*m).stiffness = kInf; },
+                         CLOTH_ERROR_NOT_FINITE});
         cases.push_back(
             {n + ".damping = inf", [m](cloth_desc& d) { (d.*m).damping = kInf; }, CLOTH_ERROR_NOT_FINITE});
         cases.push_back(
@@ -1257,21 +1299,33 @@ void AddSpringCases(std::vector<DescCase>& cases) {
 std::vector<std::tuple<std::string, std::function<void(cloth_solver_settings&)>, cloth_result>> BadSolver() {
     using S = cloth_solver_settings;
     std::vector<std::tuple<std::string, std::function<void(S&)>, cloth_result>> out;
-    out.emplace_back("kind 4 (unknown)", [](S& s) { s.kind = static_cast<cloth_solver_kind>(4); },
-                     CLOTH_ERROR_INVALID_VALUE);
-    out.emplace_back("kind FORCE_U32", [](S& s) { s.kind = CLOTH_SOLVER_KIND_FORCE_U32; }, CLOTH_ERROR_INVALID_VALUE);
-    out.emplace_back("iterations 0", [](S& s) { s.iterations = 0; }, CLOTH_ERROR_INVALID_VALUE);
-    out.emplace_back("iterations 257", [](S& s) { s.iterations = 257; }, CLOTH_ERROR_INVALID_VALUE);
-    out.emplace_back("substeps 0", [](S& s) { s.substeps = 0; }, CLOTH_ERROR_INVALID_VALUE);
-    out.emplace_back("substeps 65", [](S& s) { s.substeps = 65; }, CLOTH_ERROR_INVALID_VALUE);
-    out.emplace_back("cg_tolerance 0", [](S& s) { s.cg_tolerance = 0.0f; }, CLOTH_ERROR_INVALID_VALUE);
-    out.emplace_back("cg_tolerance 1", [](S& s) { s.cg_tolerance = 1.0f; }, CLOTH_ERROR_INVALID_VALUE);
-    out.emplace_back("cg_tolerance -1e-6", [](S& s) { s.cg_tolerance = -1e-6f; }, CLOTH_ERROR_INVALID_VALUE);
-    out.emplace_back("cg_tolerance NaN", [](S& s) { s.cg_tolerance = kNaN; }, CLOTH_ERROR_NOT_FINITE);
-    out.emplace_back("cg_tolerance inf", [](S& s) { s.cg_tolerance = kInf; }, CLOTH_ERROR_NOT_FINITE);
-    out.emplace_back("cg_max_iterations 0", [](S& s) { s.cg_max_iterations = 0; }, CLOTH_ERROR_INVALID_VALUE);
-    out.emplace_back("cg_max_iterations 100001", [](S& s) { s.cg_max_iterations = 100001; },
-                     CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "kind 4 (unknown)", [](S& s) { s.kind = static_cast<cloth_solver_kind>(4); },
+        CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "kind FORCE_U32", [](S& s) { s.kind = CLOTH_SOLVER_KIND_FORCE_U32; }, CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "iterations 0", [](S& s) { s.iterations = 0; }, CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "iterations 257", [](S& s) { s.iterations = 257; }, CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "substeps 0", [](S& s) { s.substeps = 0; }, CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "substeps 65", [](S& s) { s.substeps = 65; }, CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "cg_tolerance 0", [](S& s) { s.cg_tolerance = 0.0f; }, CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "cg_tolerance 1", [](S& s) { s.cg_tolerance = 1.0f; }, CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "cg_tolerance -1e-6", [](S& s) { s.cg_tolerance = -1e-6f; }, CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "cg_tolerance NaN", [](S& s) { s.cg_tolerance = kNaN; }, CLOTH_ERROR_NOT_FINITE);
+    out.emplace_back(
+        "cg_tolerance inf", [](S& s) { s.cg_tolerance = kInf; }, CLOTH_ERROR_NOT_FINITE);
+    out.emplace_back(
+        "cg_max_iterations 0", [](S& s) { s.cg_max_iterations = 0; }, CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "cg_max_iterations 100001", [](S& s) { s.cg_max_iterations = 100001; }, CLOTH_ERROR_INVALID_VALUE);
     return out;
 }
 
@@ -1279,34 +1333,42 @@ std::vector<std::tuple<std::string, std::function<void(cloth_solver_settings&)>,
 std::vector<std::tuple<std::string, std::function<void(cloth_aero_params&)>, cloth_result>> BadAero() {
     std::vector<std::tuple<std::string, std::function<void(cloth_aero_params&)>, cloth_result>> out;
     for (int axis = 0; axis < 3; ++axis) {
-        out.emplace_back("wind[" + std::to_string(axis) + "] = NaN",
-                         [axis](cloth_aero_params& a) { a.wind[axis] = kNaN; }, CLOTH_ERROR_NOT_FINITE);
-        out.emplace_back("wind[" + std::to_string(axis) + "] = -inf",
-                         [axis](cloth_aero_params& a) { a.wind[axis] = -kInf; }, CLOTH_ERROR_NOT_FINITE);
+        out.emplace_back(
+            "wind[" + std::to_string(axis) + "] = NaN", [axis](cloth_aero_params& a) { a.wind[axis] = kNaN; },
+            CLOTH_ERROR_NOT_FINITE);
+        out.emplace_back(
+            "wind[" + std::to_string(axis) + "] = -inf",
+            [axis](cloth_aero_params& a) { a.wind[axis] = -kInf; }, CLOTH_ERROR_NOT_FINITE);
     }
-    out.emplace_back("air_density = -1", [](cloth_aero_params& a) { a.air_density = -1.0f; },
-                     CLOTH_ERROR_INVALID_VALUE);
-    out.emplace_back("air_density = NaN", [](cloth_aero_params& a) { a.air_density = kNaN; },
-                     CLOTH_ERROR_NOT_FINITE);
-    out.emplace_back("drag_coefficient = -0.1", [](cloth_aero_params& a) { a.drag_coefficient = -0.1f; },
-                     CLOTH_ERROR_INVALID_VALUE);
-    out.emplace_back("drag_coefficient = inf", [](cloth_aero_params& a) { a.drag_coefficient = kInf; },
-                     CLOTH_ERROR_NOT_FINITE);
-    out.emplace_back("lift_coefficient = -0.1", [](cloth_aero_params& a) { a.lift_coefficient = -0.1f; },
-                     CLOTH_ERROR_INVALID_VALUE);
-    out.emplace_back("lift_coefficient = NaN", [](cloth_aero_params& a) { a.lift_coefficient = kNaN; },
-                     CLOTH_ERROR_NOT_FINITE);
-    out.emplace_back("linear_drag = -0.02", [](cloth_aero_params& a) { a.linear_drag = -0.02f; },
-                     CLOTH_ERROR_INVALID_VALUE);
-    out.emplace_back("linear_drag = inf", [](cloth_aero_params& a) { a.linear_drag = kInf; },
-                     CLOTH_ERROR_NOT_FINITE);
+    out.emplace_back(
+        "air_density = -1", [](cloth_aero_params& a) { a.air_density = -1.0f; }, CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "air_density = NaN", [](cloth_aero_params& a) { a.air_density = kNaN; }, CLOTH_ERROR_NOT_FINITE);
+    out.emplace_back(
+        "drag_coefficient = -0.1", [](cloth_aero_params& a) { a.drag_coefficient = -0.1f; },
+        CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "drag_coefficient = inf", [](cloth_aero_params& a) { a.drag_coefficient = kInf; },
+        CLOTH_ERROR_NOT_FINITE);
+    out.emplace_back(
+        "lift_coefficient = -0.1", [](cloth_aero_params& a) { a.lift_coefficient = -0.1f; },
+        CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "lift_coefficient = NaN", [](cloth_aero_params& a) { a.lift_coefficient = kNaN; },
+        CLOTH_ERROR_NOT_FINITE);
+    out.emplace_back(
+        "linear_drag = -0.02", [](cloth_aero_params& a) { a.linear_drag = -0.02f; },
+        CLOTH_ERROR_INVALID_VALUE);
+    out.emplace_back(
+        "linear_drag = inf", [](cloth_aero_params& a) { a.linear_drag = kInf; }, CLOTH_ERROR_NOT_FINITE);
     return out;
 }
 
 TEST_F(BadInput, CreateClothWithNonPositiveOrNonFiniteAreaDensityIsRejected) {
     const std::pair<float, cloth_result> cases[] = {
-        {0.0f, CLOTH_ERROR_INVALID_VALUE},  {-0.0f, CLOTH_ERROR_INVALID_VALUE}, {-0.2f, CLOTH_ERROR_INVALID_VALUE},
-        {kNaN, CLOTH_ERROR_NOT_FINITE},     {kInf, CLOTH_ERROR_NOT_FINITE},     {-kInf, CLOTH_ERROR_NOT_FINITE},
+        {0.0f, CLOTH_ERROR_INVALID_VALUE},  {-0.0f, CLOTH_ERROR_INVALID_VALUE},
+        {-0.2f, CLOTH_ERROR_INVALID_VALUE}, {kNaN, CLOTH_ERROR_NOT_FINITE},
+        {kInf, CLOTH_ERROR_NOT_FINITE},     {-kInf, CLOTH_ERROR_NOT_FINITE},
     };
     for (const auto& [density, expected] : cases) {
         SCOPED_TRACE("area_density = " + std::to_string(density));
@@ -1318,8 +1380,10 @@ TEST_F(BadInput, CreateClothWithNonPositiveOrNonFiniteAreaDensityIsRejected) {
 
 TEST_F(BadInput, CreateClothWithNegativeOrNonFiniteParticleMassIsRejected) {
     const std::pair<float, cloth_result> cases[] = {
-        {-0.01f, CLOTH_ERROR_INVALID_VALUE}, {-kInf, CLOTH_ERROR_NOT_FINITE},
-        {kNaN, CLOTH_ERROR_NOT_FINITE},      {kInf, CLOTH_ERROR_NOT_FINITE},
+        {-0.01f, CLOTH_ERROR_INVALID_VALUE},
+        {-kInf, CLOTH_ERROR_NOT_FINITE},
+        {kNaN, CLOTH_ERROR_NOT_FINITE},
+        {kInf, CLOTH_ERROR_NOT_FINITE},
     };
     for (const auto& [mass, expected] : cases) {
         SCOPED_TRACE("particle_mass = " + std::to_string(mass));
@@ -1401,8 +1465,8 @@ TEST_F(BadInput, SetSpringParamsNegativeOrNonFiniteIsRejectedAndKeepsTheOldParam
         {{kNaN, 0.5f}, CLOTH_ERROR_NOT_FINITE},     {{kInf, 0.5f}, CLOTH_ERROR_NOT_FINITE},
         {{1000.0f, kNaN}, CLOTH_ERROR_NOT_FINITE},  {{1000.0f, -kInf}, CLOTH_ERROR_NOT_FINITE},
     };
-    for (uint32_t kinds : {uint32_t{CLOTH_SPRING_STRUCTURAL}, uint32_t{CLOTH_SPRING_SHEAR | CLOTH_SPRING_BEND},
-                           uint32_t{CLOTH_SPRING_ALL}}) {
+    for (uint32_t kinds : {uint32_t{CLOTH_SPRING_STRUCTURAL},
+                           uint32_t{CLOTH_SPRING_SHEAR | CLOTH_SPRING_BEND}, uint32_t{CLOTH_SPRING_ALL}}) {
         for (const auto& c : cases) {
             const cloth_spring_params params = c.first;
             SCOPED_TRACE("kinds " + std::to_string(kinds) + " {" + std::to_string(params.stiffness) + ", " +
@@ -1508,7 +1572,8 @@ TEST_F(BadInput, SetPinTargetsWithZeroCountOrBadIndexOrNonFiniteTargetChangesNot
         const uint32_t alone[] = {bad};
         EXPECT_REJECTED(CLOTH_ERROR_INDEX_OUT_OF_RANGE, cloth_set_pin_targets(a_.cloth, alone, targets, 1));
         const uint32_t second_bad[] = {0, bad};
-        EXPECT_REJECTED(CLOTH_ERROR_INDEX_OUT_OF_RANGE, cloth_set_pin_targets(a_.cloth, second_bad, targets, 2));
+        EXPECT_REJECTED(CLOTH_ERROR_INDEX_OUT_OF_RANGE,
+                        cloth_set_pin_targets(a_.cloth, second_bad, targets, 2));
     }
     for (int i : {1, 5}) {
         for (float bad : {kNaN, kInf, -kInf}) {
@@ -1550,7 +1615,8 @@ TEST_F(BadInput, StepThatGoesNonFiniteRestoresThatClothAndStillAdvancesTheOthers
     EXPECT_NE(o.error_after, "") << "cloth_step failed but cloth_get_last_error() is empty";
     bool logged = false;
     for (size_t i = logs_before; i < a_.host.logs.size(); ++i) {
-        logged |= a_.host.logs[i].level == CLOTH_LOG_ERROR && a_.host.logs[i].code == CLOTH_ERROR_NONFINITE_STATE;
+        logged |=
+            a_.host.logs[i].level == CLOTH_LOG_ERROR && a_.host.logs[i].code == CLOTH_ERROR_NONFINITE_STATE;
     }
     EXPECT_TRUE(logged) << "the log callback did not receive CLOTH_ERROR_NONFINITE_STATE";
 
@@ -1559,7 +1625,8 @@ TEST_F(BadInput, StepThatGoesNonFiniteRestoresThatClothAndStillAdvancesTheOthers
     EXPECT_TRUE(SameFloats("position", bad_before.positions, bad_after.positions));
     EXPECT_TRUE(SameFloats("velocity", bad_before.velocities, bad_after.velocities));
     EXPECT_TRUE(SameState(bad_before, bad_after, /*compare_step_diagnostics=*/false));
-    EXPECT_EQ(bad_after.stats.last_step_result, CLOTH_ERROR_NONFINITE_STATE) << Name(bad_after.stats.last_step_result);
+    EXPECT_EQ(bad_after.stats.last_step_result, CLOTH_ERROR_NONFINITE_STATE)
+        << Name(bad_after.stats.last_step_result);
 
     // The healthy cloth advanced in the same call, exactly as it does in the
     // twin world where nothing blew up.
@@ -1640,7 +1707,8 @@ TEST_F(BadInput, CreateFabricWhenTheAllocatorFailsReturnsOutOfMemoryAndLeaksNoth
         a_.host.allocations_left = n;
         SCOPED_TRACE("allocator fails after " + std::to_string(n) + " allocations");
         const size_t live_before = a_.host.live_bytes;
-        const Outcome o = RunOnFreshThread([&] { return cloth_fabric_create_grid(a_.world, &grid, &fabric); });
+        const Outcome o =
+            RunOnFreshThread([&] { return cloth_fabric_create_grid(a_.world, &grid, &fabric); });
         a_.host.allocations_left = -1;
         if (o.result == CLOTH_OK) {
             created = true;
@@ -1726,7 +1794,8 @@ TEST_F(BadInput, LogCallbackReceivesEachErrorWithItsCodeAndTheLastErrorMessage) 
         const cloth_result r = c.call();
         EXPECT_EQ(r, c.expected) << Name(r);
         size_t errors = 0;
-        for (size_t i = before; i < a_.host.logs.size(); ++i) errors += a_.host.logs[i].level == CLOTH_LOG_ERROR;
+        for (size_t i = before; i < a_.host.logs.size(); ++i)
+            errors += a_.host.logs[i].level == CLOTH_LOG_ERROR;
         ASSERT_EQ(errors, 1u) << "expected exactly one error logged for " << Name(c.expected);
         const LogEntry& e = a_.host.logs.back();
         EXPECT_EQ(e.level, CLOTH_LOG_ERROR);
@@ -1777,7 +1846,8 @@ TEST_F(BadInput, LastErrorKeepsTheMessageOfTheLastFailedCallAcrossSuccessfulCall
     });
     t.join();
     EXPECT_NE(failed, "");
-    EXPECT_EQ(after_success, failed) << "the header: \"the message of the last failed call made on this thread\"";
+    EXPECT_EQ(after_success, failed)
+        << "the header: \"the message of the last failed call made on this thread\"";
 }
 
 TEST_F(BadInput, ResultNameIsTheEnumeratorNameAndNeverNull) {
@@ -1813,7 +1883,7 @@ TEST_F(BadInput, ResultNameIsTheEnumeratorNameAndNeverNull) {
 
 // Prints how many bad inputs the run exercised.
 class CountReporter : public ::testing::Environment {
-public:
+  public:
     void TearDown() override {
         std::printf("[ cloth    ] %d bad inputs exercised through the C API\n", g_bad_inputs.load());
     }

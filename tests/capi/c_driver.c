@@ -6,7 +6,6 @@
  * program returns 1.
  */
 #include <cloth/cloth.h>
-
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,25 +19,25 @@
 
 static int g_failures = 0;
 
-#define CHECK(cond, ...)                                             \
-    do {                                                             \
-        if (!(cond)) {                                               \
-            ++g_failures;                                            \
+#define CHECK(cond, ...)                                                         \
+    do {                                                                         \
+        if (!(cond)) {                                                           \
+            ++g_failures;                                                        \
             fprintf(stderr, "c_driver: FAILED %s (line %d): ", #cond, __LINE__); \
-            fprintf(stderr, __VA_ARGS__);                            \
-            fprintf(stderr, "\n");                                   \
-        }                                                            \
+            fprintf(stderr, __VA_ARGS__);                                        \
+            fprintf(stderr, "\n");                                               \
+        }                                                                        \
     } while (0)
 
 /* A call that must succeed. */
-#define CHECK_OK(call)                                                                                   \
-    do {                                                                                                 \
-        cloth_result check_ok_result_ = (call);                                                          \
-        if (check_ok_result_ != CLOTH_OK) {                                                              \
-            ++g_failures;                                                                                \
-            fprintf(stderr, "c_driver: FAILED %s (line %d): returned %s: %s\n", #call, __LINE__,         \
-                    cloth_result_name(check_ok_result_), cloth_get_last_error());                       \
-        }                                                                                                \
+#define CHECK_OK(call)                                                                           \
+    do {                                                                                         \
+        cloth_result check_ok_result_ = (call);                                                  \
+        if (check_ok_result_ != CLOTH_OK) {                                                      \
+            ++g_failures;                                                                        \
+            fprintf(stderr, "c_driver: FAILED %s (line %d): returned %s: %s\n", #call, __LINE__, \
+                    cloth_result_name(check_ok_result_), cloth_get_last_error());                \
+        }                                                                                        \
     } while (0)
 
 /* ------------------------------------------------------------------ */
@@ -175,7 +174,8 @@ static void check_stats(const char* what, cloth_id cloth) {
     CHECK(isfinite(stats.kinetic_energy) && isfinite(stats.gravity_energy) && isfinite(stats.elastic_energy),
           "%s: non-finite energy", what);
     CHECK(stats.kinetic_energy >= 0.0 && stats.elastic_energy >= 0.0, "%s: negative energy", what);
-    CHECK(isfinite(stats.max_speed) && stats.max_speed >= 0.0f, "%s: max_speed %g", what, (double)stats.max_speed);
+    CHECK(isfinite(stats.max_speed) && stats.max_speed >= 0.0f, "%s: max_speed %g", what,
+          (double)stats.max_speed);
 }
 
 /* ------------------------------------------------------------------ */
@@ -346,7 +346,8 @@ int main(void) {
         CHECK(r == CLOTH_ERROR_NOT_FINITE, "cloth_set_wind(inf) returned %s", cloth_result_name(r));
         CHECK(cloth_get_last_error()[0] != '\0', "no last-error message after a failed call");
         CHECK(h.log_errors == 1 && h.last_logged_code == CLOTH_ERROR_NOT_FINITE,
-              "log callback got %lu errors, last code %s", h.log_errors, cloth_result_name(h.last_logged_code));
+              "log callback got %lu errors, last code %s", h.log_errors,
+              cloth_result_name(h.last_logged_code));
         CHECK(strcmp(h.last_logged_message, cloth_get_last_error()) == 0,
               "logged message \"%s\" differs from cloth_get_last_error() \"%s\"", h.last_logged_message,
               cloth_get_last_error());
@@ -364,7 +365,8 @@ int main(void) {
 
     CHECK(h.allocs > 0, "the world never used the host allocator");
     CHECK(h.allocs == h.frees, "%lu allocations, %lu frees", h.allocs, h.frees);
-    CHECK(h.live_bytes == 0, "%lu bytes still allocated after cloth_world_destroy", (unsigned long)h.live_bytes);
+    CHECK(h.live_bytes == 0, "%lu bytes still allocated after cloth_world_destroy",
+          (unsigned long)h.live_bytes);
     CHECK(h.bad_calls == 0, "%lu invalid allocator/log calls", h.bad_calls);
 
     if (g_failures != 0) {

@@ -51,18 +51,22 @@ CLOTH_HEADER_CHECK(code_11, CLOTH_ERROR_IO == 11);
 CLOTH_HEADER_CHECK(code_12, CLOTH_ERROR_NONFINITE_STATE == 12);
 CLOTH_HEADER_CHECK(code_13, CLOTH_ERROR_SOLVER_FAILED == 13);
 CLOTH_HEADER_CHECK(code_14, CLOTH_ERROR_INTERNAL == 14);
-CLOTH_HEADER_CHECK(spring_all, CLOTH_SPRING_ALL == (CLOTH_SPRING_STRUCTURAL | CLOTH_SPRING_SHEAR | CLOTH_SPRING_BEND));
+CLOTH_HEADER_CHECK(spring_all,
+                   CLOTH_SPRING_ALL == (CLOTH_SPRING_STRUCTURAL | CLOTH_SPRING_SHEAR | CLOTH_SPRING_BEND));
 CLOTH_HEADER_CHECK(solver_default_zero, CLOTH_SOLVER_DEFAULT == 0);
 CLOTH_HEADER_CHECK(version_major, CLOTH_VERSION_MAJOR == 1);
 
 /* Exact layout on 64-bit targets (LP64 and LLP64 agree for these structs).
  * The same numbers are checked in header_cxx.cpp. */
 #if UINTPTR_MAX == 0xFFFFFFFFFFFFFFFFu
-CLOTH_HEADER_CHECK(world_desc_layout, sizeof(cloth_world_desc) == 64 && offsetof(cloth_world_desc, alloc) == 16 &&
+CLOTH_HEADER_CHECK(world_desc_layout, sizeof(cloth_world_desc) == 64 &&
+                                          offsetof(cloth_world_desc, alloc) == 16 &&
                                           offsetof(cloth_world_desc, user) == 40 &&
                                           offsetof(cloth_world_desc, internal_cookie) == 56);
-CLOTH_HEADER_CHECK(grid_desc_layout, sizeof(cloth_grid_desc) == 56 && offsetof(cloth_grid_desc, spring_kinds) == 48);
-CLOTH_HEADER_CHECK(mesh_desc_layout, sizeof(cloth_mesh_desc) == 48 && offsetof(cloth_mesh_desc, indices) == 24 &&
+CLOTH_HEADER_CHECK(grid_desc_layout,
+                   sizeof(cloth_grid_desc) == 56 && offsetof(cloth_grid_desc, spring_kinds) == 48);
+CLOTH_HEADER_CHECK(mesh_desc_layout, sizeof(cloth_mesh_desc) == 48 &&
+                                         offsetof(cloth_mesh_desc, indices) == 24 &&
                                          offsetof(cloth_mesh_desc, internal_cookie) == 40);
 CLOTH_HEADER_CHECK(solver_layout, sizeof(cloth_solver_settings) == 28 &&
                                       offsetof(cloth_solver_settings, compression_safe_jacobian) == 24);
@@ -203,9 +207,10 @@ uint32_t cloth_header_c99_uses_every_type(void) {
         CLOTH_ERROR_INTERNAL,
         CLOTH_RESULT_FORCE_U32,
     };
-    cloth_log_level levels[] = {CLOTH_LOG_ERROR, CLOTH_LOG_WARNING, CLOTH_LOG_INFO, CLOTH_LOG_LEVEL_FORCE_U32};
-    cloth_spring_kind kinds[] = {CLOTH_SPRING_STRUCTURAL, CLOTH_SPRING_SHEAR, CLOTH_SPRING_BEND, CLOTH_SPRING_ALL,
-                                 CLOTH_SPRING_KIND_FORCE_U32};
+    cloth_log_level levels[] = {CLOTH_LOG_ERROR, CLOTH_LOG_WARNING, CLOTH_LOG_INFO,
+                                CLOTH_LOG_LEVEL_FORCE_U32};
+    cloth_spring_kind kinds[] = {CLOTH_SPRING_STRUCTURAL, CLOTH_SPRING_SHEAR, CLOTH_SPRING_BEND,
+                                 CLOTH_SPRING_ALL, CLOTH_SPRING_KIND_FORCE_U32};
     cloth_solver_kind solvers[] = {CLOTH_SOLVER_DEFAULT, CLOTH_SOLVER_JACOBI, CLOTH_SOLVER_CG,
                                    CLOTH_SOLVER_EXPLICIT, CLOTH_SOLVER_KIND_FORCE_U32};
     cloth_world_id world = {0, 0};
@@ -295,20 +300,24 @@ uint32_t cloth_header_c99_uses_every_type(void) {
     sum += world.index1 + world.generation;
     sum += fabric.index1 + fabric.world1 + fabric.generation;
     sum += cloth.index1 + cloth.world1 + cloth.generation;
-    sum += world_desc.struct_size + world_desc.max_cloths + world_desc.max_fabrics + world_desc.internal_cookie;
+    sum +=
+        world_desc.struct_size + world_desc.max_cloths + world_desc.max_fabrics + world_desc.internal_cookie;
     sum += (world_desc.alloc(1, 1, world_desc.user) == NULL) ? 1u : 0u;
     world_desc.free(&sum, 0, world_desc.user);
     world_desc.log(CLOTH_LOG_ERROR, CLOTH_OK, "", world_desc.user);
     sum += (uint32_t)(world_desc.gravity[1] < 0.0f);
     sum += grid_desc.columns + grid_desc.rows + grid_desc.spring_kinds + grid_desc.internal_cookie;
     sum += (uint32_t)(grid_desc.origin[0] + grid_desc.u[0] + grid_desc.v[0]);
-    sum += mesh_desc.vertex_count + mesh_desc.triangle_count + mesh_desc.spring_kinds + mesh_desc.internal_cookie;
+    sum += mesh_desc.vertex_count + mesh_desc.triangle_count + mesh_desc.spring_kinds +
+           mesh_desc.internal_cookie;
     sum += (uint32_t)(mesh_desc.positions == NULL) + (uint32_t)(mesh_desc.indices == NULL);
-    sum += desc.struct_size + desc.fabric.index1 + desc.internal_cookie + (uint32_t)(desc.initial_positions == NULL);
-    sum += (uint32_t)(desc.area_density + desc.particle_mass + desc.structural.stiffness + desc.shear.damping +
-                      desc.bend.stiffness);
-    sum += desc.solver.struct_size + (uint32_t)desc.solver.kind + desc.solver.iterations + desc.solver.substeps +
-           desc.solver.cg_max_iterations + (uint32_t)desc.solver.compression_safe_jacobian;
+    sum += desc.struct_size + desc.fabric.index1 + desc.internal_cookie +
+           (uint32_t)(desc.initial_positions == NULL);
+    sum += (uint32_t)(desc.area_density + desc.particle_mass + desc.structural.stiffness +
+                      desc.shear.damping + desc.bend.stiffness);
+    sum += desc.solver.struct_size + (uint32_t)desc.solver.kind + desc.solver.iterations +
+           desc.solver.substeps + desc.solver.cg_max_iterations +
+           (uint32_t)desc.solver.compression_safe_jacobian;
     sum += (uint32_t)(desc.solver.cg_tolerance > 0.0f);
     sum += (uint32_t)(desc.aero.wind[0] + desc.aero.air_density + desc.aero.drag_coefficient +
                       desc.aero.lift_coefficient + desc.aero.linear_drag);

@@ -18,7 +18,8 @@
 namespace {
 
 template <typename T>
-struct IsCType : std::integral_constant<bool, std::is_standard_layout<T>::value && std::is_trivial<T>::value> {};
+struct IsCType
+    : std::integral_constant<bool, std::is_standard_layout<T>::value && std::is_trivial<T>::value> {};
 
 static_assert(IsCType<cloth_version>::value, "cloth_version must be a C type");
 static_assert(IsCType<cloth_world_id>::value, "cloth_world_id must be a C type");
@@ -130,10 +131,12 @@ CLOTH_CHECK_SIGNATURE(cloth_get_particle_count, cloth_result (*)(cloth_id, uint3
 CLOTH_CHECK_SIGNATURE(cloth_read_positions, cloth_result (*)(cloth_id, float*, uint32_t));
 CLOTH_CHECK_SIGNATURE(cloth_read_velocities, cloth_result (*)(cloth_id, float*, uint32_t));
 CLOTH_CHECK_SIGNATURE(cloth_read_normals, cloth_result (*)(cloth_id, float*, uint32_t));
-CLOTH_CHECK_SIGNATURE(cloth_set_positions, cloth_result (*)(cloth_id, const uint32_t*, const float*, uint32_t));
+CLOTH_CHECK_SIGNATURE(cloth_set_positions,
+                      cloth_result (*)(cloth_id, const uint32_t*, const float*, uint32_t));
 CLOTH_CHECK_SIGNATURE(cloth_pin, cloth_result (*)(cloth_id, const uint32_t*, uint32_t));
 CLOTH_CHECK_SIGNATURE(cloth_unpin, cloth_result (*)(cloth_id, const uint32_t*, uint32_t));
-CLOTH_CHECK_SIGNATURE(cloth_set_pin_targets, cloth_result (*)(cloth_id, const uint32_t*, const float*, uint32_t));
+CLOTH_CHECK_SIGNATURE(cloth_set_pin_targets,
+                      cloth_result (*)(cloth_id, const uint32_t*, const float*, uint32_t));
 CLOTH_CHECK_SIGNATURE(cloth_is_pinned, cloth_result (*)(cloth_id, uint32_t, bool*));
 CLOTH_CHECK_SIGNATURE(cloth_set_solver, cloth_result (*)(cloth_id, const cloth_solver_settings*));
 CLOTH_CHECK_SIGNATURE(cloth_get_solver, cloth_result (*)(cloth_id, cloth_solver_settings*));
@@ -189,15 +192,18 @@ std::uint32_t cloth_header_cxx_uses_every_type() {
     cloth_alloc_fn* const alloc = HeaderAlloc;
     cloth_free_fn* const free_fn = HeaderFree;
     cloth_log_fn* const log = HeaderLog;
-    const cloth_world_desc world_desc{sizeof(cloth_world_desc), {0.0f, -9.81f, 0.0f}, alloc, free_fn, log,
-                                      nullptr, 1024, 256, 0};
-    const cloth_grid_desc grid_desc{sizeof(cloth_grid_desc), 32, 32, {0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f},
-                                    {0.0f, -1.0f, 0.0f}, CLOTH_SPRING_ALL, 0};
+    const cloth_world_desc world_desc{
+        sizeof(cloth_world_desc), {0.0f, -9.81f, 0.0f}, alloc, free_fn, log, nullptr, 1024, 256, 0};
+    const cloth_grid_desc grid_desc{
+        sizeof(cloth_grid_desc), 32, 32, {0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, -1.0f, 0.0f},
+        CLOTH_SPRING_ALL,        0};
     const cloth_mesh_desc mesh_desc{sizeof(cloth_mesh_desc), nullptr, 3, nullptr, 1, CLOTH_SPRING_ALL, 0};
     const cloth_spring_params spring{1000.0f, 0.5f};
-    const cloth_solver_settings solver{sizeof(cloth_solver_settings), CLOTH_SOLVER_JACOBI, 1, 1, 1e-6f, 1000, true};
+    const cloth_solver_settings solver{
+        sizeof(cloth_solver_settings), CLOTH_SOLVER_JACOBI, 1, 1, 1e-6f, 1000, true};
     const cloth_aero_params aero{{0.0f, 0.0f, 0.0f}, 1.2f, 1.0f, 0.5f, 0.02f};
-    const cloth_desc desc{sizeof(cloth_desc), fabric, 0.2f, 0.0f, nullptr, spring, spring, spring, solver, aero, 0};
+    const cloth_desc desc{
+        sizeof(cloth_desc), fabric, 0.2f, 0.0f, nullptr, spring, spring, spring, solver, aero, 0};
     const cloth_stats stats{sizeof(cloth_stats), 0.0, 0.0, 0.0, 0.0f, 0.0f, 0.0f, 0, 0.0f, CLOTH_OK};
 
     std::uint32_t sum = version.major + version.minor + version.patch;
@@ -207,29 +213,36 @@ std::uint32_t cloth_header_cxx_uses_every_type() {
     for (cloth_solver_kind s : solvers) sum += static_cast<std::uint32_t>(s);
     sum += world.index1 + world.generation + fabric.index1 + fabric.world1 + fabric.generation;
     sum += cloth.index1 + cloth.world1 + cloth.generation;
-    sum += world_desc.struct_size + world_desc.max_cloths + world_desc.max_fabrics + world_desc.internal_cookie;
+    sum +=
+        world_desc.struct_size + world_desc.max_cloths + world_desc.max_fabrics + world_desc.internal_cookie;
     sum += world_desc.alloc(1, 1, world_desc.user) == nullptr ? 1u : 0u;
     world_desc.free(&sum, 0, world_desc.user);
     world_desc.log(CLOTH_LOG_ERROR, CLOTH_OK, "", world_desc.user);
     sum += world_desc.gravity[1] < 0.0f ? 1u : 0u;
     sum += grid_desc.columns + grid_desc.rows + grid_desc.spring_kinds + grid_desc.internal_cookie;
     sum += grid_desc.origin[0] + grid_desc.u[0] + grid_desc.v[1] < 0.0f ? 1u : 0u;
-    sum += mesh_desc.vertex_count + mesh_desc.triangle_count + mesh_desc.spring_kinds + mesh_desc.internal_cookie;
+    sum += mesh_desc.vertex_count + mesh_desc.triangle_count + mesh_desc.spring_kinds +
+           mesh_desc.internal_cookie;
     sum += (mesh_desc.positions == nullptr ? 1u : 0u) + (mesh_desc.indices == nullptr ? 1u : 0u);
     sum += desc.struct_size + desc.fabric.index1 + desc.internal_cookie + (desc.initial_positions ? 0u : 1u);
     sum += desc.area_density + desc.particle_mass + desc.structural.stiffness + desc.shear.damping +
-                   desc.bend.stiffness > 0.0f
+                       desc.bend.stiffness >
+                   0.0f
                ? 1u
                : 0u;
     sum += desc.solver.struct_size + static_cast<std::uint32_t>(desc.solver.kind) + desc.solver.iterations +
-           desc.solver.substeps + desc.solver.cg_max_iterations + (desc.solver.compression_safe_jacobian ? 1u : 0u);
+           desc.solver.substeps + desc.solver.cg_max_iterations +
+           (desc.solver.compression_safe_jacobian ? 1u : 0u);
     sum += desc.solver.cg_tolerance > 0.0f ? 1u : 0u;
-    sum += desc.aero.wind[0] + desc.aero.air_density + desc.aero.drag_coefficient + desc.aero.lift_coefficient +
-                   desc.aero.linear_drag > 0.0f
+    sum += desc.aero.wind[0] + desc.aero.air_density + desc.aero.drag_coefficient +
+                       desc.aero.lift_coefficient + desc.aero.linear_drag >
+                   0.0f
                ? 1u
                : 0u;
-    sum += stats.struct_size + stats.last_solver_iterations + static_cast<std::uint32_t>(stats.last_step_result);
+    sum +=
+        stats.struct_size + stats.last_solver_iterations + static_cast<std::uint32_t>(stats.last_step_result);
     sum += stats.kinetic_energy + stats.gravity_energy + stats.elastic_energy > 0.0 ? 1u : 0u;
-    sum += stats.max_strain + stats.mean_strain + stats.max_speed + stats.last_solver_residual > 0.0f ? 1u : 0u;
+    sum +=
+        stats.max_strain + stats.mean_strain + stats.max_speed + stats.last_solver_residual > 0.0f ? 1u : 0u;
     return sum;
 }

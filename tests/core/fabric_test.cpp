@@ -106,3 +106,27 @@ TEST(Fabric, ObjFileLoadsLikeTheSameMesh) {
 
 }  // namespace
 }  // namespace cloth
+
+namespace cloth {
+namespace {
+
+TEST(Fabric, GridFamiliesHoldExactlyTheGridSprings) {
+    const uint32_t c = 6, r = 5;
+    auto fabric = cloth::testing::make_grid(c, r);
+    ASSERT_EQ(fabric->grid_families.size(), 6u);
+    uint32_t per_kind[kSpringKindCount] = {0, 0, 0};
+    for (const SpringFamily& family : fabric->grid_families) {
+        for (uint32_t p = 0; p < c * r; ++p) {
+            if (family.mask[p] == 0.0f) continue;
+            ASSERT_LT(p + family.offset, c * r);
+            ++per_kind[family.kind];
+            // The family's rest length is the distance at rest.
+            const float rest = (fabric->rest_positions[p + family.offset] - fabric->rest_positions[p]).norm();
+            EXPECT_NEAR(family.rest_length, rest, 1e-6f);
+        }
+    }
+    for (int k = 0; k < kSpringKindCount; ++k) EXPECT_EQ(per_kind[k], fabric->springs_of_kind[k]) << "kind " << k;
+}
+
+}  // namespace
+}  // namespace cloth

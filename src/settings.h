@@ -1,0 +1,48 @@
+// Per-cloth settings of the core: material, air, solver; and what a solve reports.
+#pragma once
+
+#include <cloth/cloth.h>
+
+#include <cstdint>
+
+#include "fabric.h"
+#include "math.h"
+
+namespace cloth {
+
+struct SpringParams {
+    float stiffness = 0;  // N/m
+    float damping = 0;    // N s/m
+};
+
+struct Material {
+    SpringParams springs[kSpringKindCount];
+    float area_density = 0.2f;  // kg/m^2
+    float particle_mass = 0;    // kg; > 0 overrides area_density
+};
+
+struct AeroParams {
+    Vec3 wind = Vec3::Zero();
+    float air_density = 1.2f;
+    float drag_coefficient = 1.0f;
+    float lift_coefficient = 0.5f;
+    float linear_drag = 0.02f;
+};
+
+struct SolverSettings {
+    cloth_solver_kind kind = CLOTH_SOLVER_JACOBI;
+    uint32_t iterations = 1;
+    uint32_t substeps = 1;
+    float cg_tolerance = 1e-6f;
+    uint32_t cg_max_iterations = 1000;
+    bool compression_safe_jacobian = true;
+};
+
+// What the last solve reported (for stats and tests).
+struct SolveReport {
+    uint32_t iterations = 0;
+    float residual = 0;
+    bool converged = true;
+};
+
+}  // namespace cloth
