@@ -47,11 +47,10 @@ World* find_world(cloth_world_id id) {
     return world;
 }
 
-World* find_world_by_index1(uint16_t index1) {
-    if (index1 == 0 || index1 > kMaxWorlds) return nullptr;
-    WorldTable& table = world_table();
-    std::lock_guard<std::mutex> lock(table.mutex);
-    return table.worlds[index1 - 1];
+// The world a fabric or cloth id names, if that world is still alive.
+template <class Id>
+World* find_owning_world(Id id) {
+    return find_world(cloth_world_id{id.world1, id.world_generation});
 }
 
 // ---------------------------------------------------------------- results
@@ -94,7 +93,7 @@ Status get_world(cloth_world_id id, World*& world, const World*& log_world) {
 }
 
 Status get_cloth(cloth_id id, ClothInstance*& cloth, const World*& log_world) {
-    World* world = find_world_by_index1(id.world1);
+    World* world = find_owning_world(id);
     cloth = world ? world->find_cloth(id) : nullptr;
     if (!cloth) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "cloth handle is null, destroyed or unknown");
     log_world = world;
@@ -102,7 +101,7 @@ Status get_cloth(cloth_id id, ClothInstance*& cloth, const World*& log_world) {
 }
 
 Status get_fabric(cloth_fabric_id id, std::shared_ptr<Fabric>& fabric, World*& world, const World*& log_world) {
-    world = find_world_by_index1(id.world1);
+    world = find_owning_world(id);
     fabric = world ? world->find_fabric(id) : nullptr;
     if (!fabric) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is null, destroyed or unknown");
     log_world = world;
@@ -266,7 +265,7 @@ CLOTH_API cloth_result cloth_world_create(const cloth_world_desc* desc, cloth_wo
         if (!s.ok()) return s;
         if (!finite3(desc->gravity)) return Status::error(CLOTH_ERROR_NOT_FINITE, "gravity is not finite");
         if ((desc->alloc == nullptr) != (desc->free == nullptr)) {
-            return Status::error(CLOTH_ERROR_INVALID_DESC, "set both alloc and free, or neither");
+            return Status::error(CLOTH_ERROR_INVALID_VALUE, "set both alloc and free, or neither");
         }
         if (desc->max_cloths < 1 || desc->max_cloths > 65535 || desc->max_fabrics < 1 || desc->max_fabrics > 65535) {
             return Status::error(CLOTH_ERROR_INVALID_COUNT, "max_cloths and max_fabrics must be in 1..65535");
@@ -277,19 +276,20 @@ CLOTH_API cloth_result cloth_world_create(const cloth_world_desc* desc, cloth_wo
         uint16_t index = 0;
         while (index < kMaxWorlds && table.worlds[index]) ++index;
         if (index == kMaxWorlds) return Status::error(CLOTH_ERROR_CAPACITY, "%u worlds exist already", kMaxWorlds);
+        if (table.generations[index] == 0) table.generations[index] = 1;
+        const uint16_t generation = table.generations[index];
 
         const HostMemory memory{desc->alloc, desc->free, desc->user};
         void* storage = memory.allocate(sizeof(World), alignof(World));
         World* world = nullptr;
         try {
-            world = new (storage) World(*desc, index);
+            world = new (storage) World(*desc, index, generation);
         } catch (...) {
             memory.deallocate(storage, sizeof(World));
             throw;
         }
         table.worlds[index] = world;
-        if (table.generations[index] == 0) table.generations[index] = 1;
-        *out_world = cloth_world_id{static_cast<uint16_t>(index + 1), table.generations[index]};
+        *out_world = cloth_world_id{static_cast<uint16_t>(index + 1), generation};
         return {};
     });
 }
@@ -512,7 +512,7 @@ CLOTH_API cloth_result cloth_create(cloth_world_id id, const cloth_desc* desc, c
         if (!out_cloth) return null_error("out_cloth");
         s = check_desc(desc->struct_size, sizeof(cloth_desc), desc->internal_cookie, "cloth_desc");
         if (!s.ok()) return s;
-        if (desc->fabric.world1 != id.index1) {
+        if (desc->fabric.world1 != id.index1 || desc->fabric.world_generation != id.generation) {
             return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle belongs to another world");
         }
         std::shared_ptr<const Fabric> fabric = world->find_fabric(desc->fabric);
@@ -545,7 +545,7 @@ CLOTH_API cloth_result cloth_create(cloth_world_id id, const cloth_desc* desc, c
 
 CLOTH_API cloth_result cloth_destroy(cloth_id id) {
     return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world = find_world_by_index1(id.world1);
+        World* world = find_owning_world(id);
         if (!world) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "cloth handle is null, destroyed or unknown");
         log_world = world;
         return world->destroy_cloth(id);
@@ -762,7 +762,7 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id id, cloth_stats* out) {
             return Status::error(CLOTH_ERROR_INVALID_DESC, "cloth_stats.struct_size is %u, expected %zu",
                                  out->struct_size, sizeof(cloth_stats));
         }
-        World* world = find_world_by_index1(id.world1);
+        const World* world = log_world;
         const ClothMeasure m = measure(*cloth, world->gravity);
         out->kinetic_energy = m.kinetic_energy;
         out->gravity_energy = m.gravity_energy;

@@ -26,11 +26,12 @@ void HostMemory::deallocate(void* ptr, size_t size) const {
     }
 }
 
-World::World(const cloth_world_desc& desc, uint16_t index)
+World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
     : gravity(desc.gravity[0], desc.gravity[1], desc.gravity[2]),
       memory_{desc.alloc, desc.free, desc.user},
       log_(desc.log),
       index_(index),
+      generation_(generation),
       fabrics_(HostAllocator<Slot<Fabric>>(&memory_)),
       cloths_(HostAllocator<Slot<ClothInstance>>(&memory_)) {
     fabrics_.resize(desc.max_fabrics);
@@ -87,7 +88,8 @@ Status World::create_cloth(std::shared_ptr<const Fabric> fabric, const Material&
         }
     }
     cloths_[slot].object = std::move(cloth);
-    *out = cloth_id{slot + 1, static_cast<uint16_t>(index_ + 1), cloths_[slot].generation};
+    *out = cloth_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1), cloths_[slot].generation,
+                    generation_};
     return {};
 }
 

@@ -25,7 +25,7 @@ struct Slot {
 
 class World {
 public:
-    World(const cloth_world_desc& desc, uint16_t index);
+    World(const cloth_world_desc& desc, uint16_t index, uint16_t generation);
 
     const HostMemory* memory() const { return &memory_; }
     uint16_t index() const { return index_; }
@@ -58,6 +58,7 @@ private:
     HostMemory memory_;
     cloth_log_fn* log_ = nullptr;
     uint16_t index_;
+    uint16_t generation_;
     HostVector<Slot<Fabric>> fabrics_;
     HostVector<Slot<ClothInstance>> cloths_;
 };
@@ -81,7 +82,8 @@ Status World::create_fabric(Build build, cloth_fabric_id* out) {
     Status status = build(*fabric);
     if (!status.ok()) return status;
     fabrics_[slot].object = std::move(fabric);
-    *out = cloth_fabric_id{slot + 1, static_cast<uint16_t>(index_ + 1), fabrics_[slot].generation};
+    *out = cloth_fabric_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1), fabrics_[slot].generation,
+                           generation_};
     return {};
 }
 

@@ -26,7 +26,14 @@
  * Descriptions. Every create call takes a description that must come from
  * its cloth_default_*() function (a hidden cookie catches an uninitialised
  * one) and carries struct_size, so a caller built against an older header
- * keeps working with a newer library. Fields are only ever appended.
+ * keeps working with a newer library. Fields are only ever appended to the
+ * outermost struct; a struct embedded by value in another
+ * (cloth_spring_params, cloth_solver_settings, cloth_aero_params) is frozen
+ * as it is, and later settings arrive as new fields of the outer struct or
+ * through new functions.
+ *
+ * Limits: at most 128 worlds, 65535 fabrics and 65535 cloths per world,
+ * 2^24 particles per fabric.
  *
  * Units: metres, kilograms, seconds. Vectors are float[3] (x, y, z).
  *
@@ -124,18 +131,23 @@ typedef struct cloth_world_id {
     uint16_t generation; ///< reuse counter of the slot
 } cloth_world_id;
 
-/// A fabric (shared topology) inside a world. All-zero is null.
+/// A fabric (shared topology) inside a world. All-zero is null. It names
+/// its world's slot and generation too, so an id outlives neither its own
+/// slot's reuse nor its world's.
 typedef struct cloth_fabric_id {
-    uint32_t index1;     ///< slot index + 1; 0 means null
-    uint16_t world1;     ///< owning world index + 1
-    uint16_t generation; ///< reuse counter of the slot
+    uint16_t index1;           ///< slot index + 1; 0 means null
+    uint16_t world1;           ///< owning world index + 1
+    uint16_t generation;       ///< reuse counter of the slot
+    uint16_t world_generation; ///< generation of the owning world
 } cloth_fabric_id;
 
-/// A cloth instance inside a world. All-zero is null.
+/// A cloth instance inside a world. All-zero is null. Same layout and
+/// rules as cloth_fabric_id.
 typedef struct cloth_id {
-    uint32_t index1;     ///< slot index + 1; 0 means null
-    uint16_t world1;     ///< owning world index + 1
-    uint16_t generation; ///< reuse counter of the slot
+    uint16_t index1;           ///< slot index + 1; 0 means null
+    uint16_t world1;           ///< owning world index + 1
+    uint16_t generation;       ///< reuse counter of the slot
+    uint16_t world_generation; ///< generation of the owning world
 } cloth_id;
 
 /* ------------------------------------------------------------------ */
@@ -162,7 +174,7 @@ typedef void cloth_log_fn(cloth_log_level level, cloth_result code, const char* 
 typedef struct cloth_world_desc {
     uint32_t struct_size;   ///< sizeof(cloth_world_desc); set by cloth_default_world_desc()
     float gravity[3];       ///< m/s^2; default (0, -9.81, 0)
-    cloth_alloc_fn* alloc;  ///< optional; both alloc and free, or neither (default: C heap)
+    cloth_alloc_fn* alloc;  ///< optional; both alloc and free, or neither (CLOTH_ERROR_INVALID_VALUE); default: C heap
     cloth_free_fn* free;    ///< optional
     cloth_log_fn* log;      ///< optional
     void* user;             ///< passed to alloc, free and log
@@ -217,6 +229,8 @@ CLOTH_API cloth_grid_desc cloth_default_grid_desc(void);
 
 /// An arbitrary triangle mesh. Structural springs on every edge, bend
 /// springs across every edge shared by two triangles; no shear springs.
+/// Every vertex must belong to a triangle (it gets its mass from them), and
+/// no triangle may have zero area: else CLOTH_ERROR_DEGENERATE_GEOMETRY.
 typedef struct cloth_mesh_desc {
     uint32_t struct_size;      ///< sizeof(cloth_mesh_desc)
     const float* positions;    ///< vertex_count * 3 floats
@@ -315,6 +329,10 @@ CLOTH_API cloth_result cloth_read_velocities(cloth_id cloth, float* out_xyz, uin
 /// Copy unit per-vertex normals (area-weighted triangle normals), same layout.
 CLOTH_API cloth_result cloth_read_normals(cloth_id cloth, float* out_xyz, uint32_t capacity);
 
+/// Calls that take `indices` and `count` need 1 <= count <= particle count
+/// (else CLOTH_ERROR_INVALID_COUNT) and every index < particle count (else
+/// CLOTH_ERROR_INDEX_OUT_OF_RANGE); they change nothing unless all are valid.
+
 /// Teleport particles: set positions (and zero their velocities).
 CLOTH_API cloth_result cloth_set_positions(cloth_id cloth, const uint32_t* indices, const float* positions_xyz, uint32_t count);
 
@@ -330,6 +348,7 @@ CLOTH_API cloth_result cloth_set_pin_targets(cloth_id cloth, const uint32_t* ind
 CLOTH_API cloth_result cloth_is_pinned(cloth_id cloth, uint32_t index, bool* out_pinned);
 
 CLOTH_API cloth_result cloth_set_solver(cloth_id cloth, const cloth_solver_settings* settings);
+/// Fills the whole struct, struct_size included.
 CLOTH_API cloth_result cloth_get_solver(cloth_id cloth, cloth_solver_settings* out_settings);
 /// Change one or more spring kinds (a bit set of cloth_spring_kind).
 CLOTH_API cloth_result cloth_set_spring_params(cloth_id cloth, uint32_t kinds, cloth_spring_params params);
@@ -346,7 +365,7 @@ typedef struct cloth_stats {
     float max_strain;          ///< max over structural springs of (L - l0) / l0
     float mean_strain;         ///< mean of |L - l0| / l0 over structural springs
     float max_speed;           ///< m/s
-    uint32_t last_solver_iterations; ///< iterations used by the last solve (CG: last substep)
+    uint32_t last_solver_iterations; ///< iterations of the last solve (CG: last substep), also of a step that was undone
     float last_solver_residual;      ///< relative residual of the last solve (CG only; else 0)
     cloth_result last_step_result;   ///< CLOTH_OK, or what the last cloth_step reported for this cloth
 } cloth_stats;

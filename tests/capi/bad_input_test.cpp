@@ -330,10 +330,12 @@ std::string WriteTempFile(const std::string& name, const std::string& text) {
 }
 
 bool operator==(const cloth_id& a, const cloth_id& b) {
-    return a.index1 == b.index1 && a.world1 == b.world1 && a.generation == b.generation;
+    return a.index1 == b.index1 && a.world1 == b.world1 && a.generation == b.generation &&
+           a.world_generation == b.world_generation;
 }
 bool operator==(const cloth_fabric_id& a, const cloth_fabric_id& b) {
-    return a.index1 == b.index1 && a.world1 == b.world1 && a.generation == b.generation;
+    return a.index1 == b.index1 && a.world1 == b.world1 && a.generation == b.generation &&
+           a.world_generation == b.world_generation;
 }
 
 // ---------------------------------------------------------------------------
@@ -589,13 +591,14 @@ TEST_F(BadInput, EveryWorldFunctionRejectsNullStaleAndOutOfTableWorldIdsAndChang
 TEST_F(BadInput, EveryFabricFunctionRejectsNullStaleWrongGenerationAndOutOfTableFabricIdsAndChangesNothing) {
     const cloth_fabric_id f = a_.fabric;
     const NamedFabric bad[] = {
-        {"null fabric id", {0, 0, 0}},
-        {"zero index in a live world", {0, f.world1, f.generation}},
-        {"zero world", {f.index1, 0, f.generation}},
-        {"world index past the world table", {f.index1, 0xFFFF, f.generation}},
-        {"index past the fabric table", {kMaxFabrics + 1, f.world1, f.generation}},
-        {"index UINT32_MAX", {UINT32_MAX, f.world1, f.generation}},
-        {"wrong generation of a live slot", {f.index1, f.world1, static_cast<uint16_t>(f.generation + 1)}},
+        {"null fabric id", {0, 0, 0, 0}},
+        {"zero index in a live world", {0, f.world1, f.generation, f.world_generation}},
+        {"zero world", {f.index1, 0, f.generation, f.world_generation}},
+        {"world index past the world table", {f.index1, 0xFFFF, f.generation, f.world_generation}},
+        {"wrong world generation", {f.index1, f.world1, f.generation, static_cast<uint16_t>(f.world_generation + 1)}},
+        {"index past the fabric table", {kMaxFabrics + 1, f.world1, f.generation, f.world_generation}},
+        {"index 0xFFFF", {0xFFFF, f.world1, f.generation, f.world_generation}},
+        {"wrong generation of a live slot", {f.index1, f.world1, static_cast<uint16_t>(f.generation + 1), f.world_generation}},
         {"destroyed fabric whose slot was re-used", a_.stale_fabric},
         {"destroyed fabric whose slot is free", a_.freed_fabric},
         {"fabric of a destroyed world", dead_fabric_},
@@ -621,13 +624,14 @@ TEST_F(BadInput, EveryFabricFunctionRejectsNullStaleWrongGenerationAndOutOfTable
 TEST_F(BadInput, EveryClothFunctionRejectsNullStaleWrongGenerationAndOutOfTableClothIdsAndChangesNothing) {
     const cloth_id c = a_.cloth;
     const NamedCloth bad[] = {
-        {"null cloth id", {0, 0, 0}},
-        {"zero index in a live world", {0, c.world1, c.generation}},
-        {"zero world", {c.index1, 0, c.generation}},
-        {"world index past the world table", {c.index1, 0xFFFF, c.generation}},
-        {"index past the cloth table", {kMaxCloths + 1, c.world1, c.generation}},
-        {"index UINT32_MAX", {UINT32_MAX, c.world1, c.generation}},
-        {"wrong generation of a live slot", {c.index1, c.world1, static_cast<uint16_t>(c.generation + 1)}},
+        {"null cloth id", {0, 0, 0, 0}},
+        {"zero index in a live world", {0, c.world1, c.generation, c.world_generation}},
+        {"zero world", {c.index1, 0, c.generation, c.world_generation}},
+        {"world index past the world table", {c.index1, 0xFFFF, c.generation, c.world_generation}},
+        {"wrong world generation", {c.index1, c.world1, c.generation, static_cast<uint16_t>(c.world_generation + 1)}},
+        {"index past the cloth table", {kMaxCloths + 1, c.world1, c.generation, c.world_generation}},
+        {"index 0xFFFF", {0xFFFF, c.world1, c.generation, c.world_generation}},
+        {"wrong generation of a live slot", {c.index1, c.world1, static_cast<uint16_t>(c.generation + 1), c.world_generation}},
         {"destroyed cloth whose slot was re-used", a_.stale_cloth},
         {"destroyed cloth whose slot is free", a_.freed_cloth},
         {"cloth of a destroyed world", dead_cloth_},
@@ -1668,7 +1672,7 @@ TEST_F(BadInput, CreateClothWhenTheAllocatorFailsReturnsOutOfMemoryLeaksNothingA
         const size_t live_before = a_.host.live_bytes;
         const size_t calls_before = a_.host.alloc_calls;
         const Snapshot before = TakeSnapshot(a_.cloth);
-        cloth_id out = cloth_id{0xA5A5A5A5u, 0xA5A5, 0xA5A5};
+        cloth_id out = cloth_id{0xA5A5, 0xA5A5, 0xA5A5, 0xA5A5};
         const Outcome o = RunOnFreshThread([&] { return cloth_create(a_.world, &desc, &out); });
         a_.host.allocations_left = -1;
         if (o.result == CLOTH_OK) {
@@ -1683,7 +1687,7 @@ TEST_F(BadInput, CreateClothWhenTheAllocatorFailsReturnsOutOfMemoryLeaksNothingA
         EXPECT_EQ(o.result, CLOTH_ERROR_OUT_OF_MEMORY) << Name(o.result);
         EXPECT_NE(o.error_after, "");
         EXPECT_EQ(a_.host.live_bytes, live_before) << "memory leaked by a failed cloth_create";
-        EXPECT_TRUE(out == (cloth_id{0xA5A5A5A5u, 0xA5A5, 0xA5A5})) << "out_cloth written on failure";
+        EXPECT_TRUE(out == (cloth_id{0xA5A5, 0xA5A5, 0xA5A5, 0xA5A5})) << "out_cloth written on failure";
         EXPECT_TRUE(SameState(before, TakeSnapshot(a_.cloth)));
         ASSERT_FALSE(HasFailure()) << "stopping at the first failing allocation count";
     }

@@ -214,8 +214,8 @@ uint32_t cloth_header_c99_uses_every_type(void) {
     cloth_solver_kind solvers[] = {CLOTH_SOLVER_DEFAULT, CLOTH_SOLVER_JACOBI, CLOTH_SOLVER_CG,
                                    CLOTH_SOLVER_EXPLICIT, CLOTH_SOLVER_KIND_FORCE_U32};
     cloth_world_id world = {0, 0};
-    cloth_fabric_id fabric = {0, 0, 0};
-    cloth_id cloth = {0, 0, 0};
+    cloth_fabric_id fabric = {0, 0, 0, 0};
+    cloth_id cloth = {0, 0, 0, 0};
     cloth_alloc_fn* alloc = header_alloc;
     cloth_free_fn* free_fn = header_free;
     cloth_log_fn* log = header_log;
