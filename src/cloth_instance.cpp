@@ -33,7 +33,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       x_(memory),
       v_(memory),
       mass_(HostAllocator<float>(memory)),
-      pinned_(HostAllocator<uint8_t>(memory)),
+      pinned_(HostAllocator<float>(memory)),
       pin_target_(memory),
       pin_start_(memory),
       external_force_(memory),
@@ -56,7 +56,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     for (uint32_t i = 0; i < n; ++i) x_.set(i, f.rest_positions[i]);
     pin_target_ = x_;
     mass_.resize(n);
-    pinned_.assign(n, 0);
+    pinned_.assign(n, 0.0f);
     // One zero entry past the end: the dummy that padded incidence slots point at.
     triangle_force_.resize(f.triangle_count() + 1);
     diagonal_.resize(n);
@@ -74,11 +74,11 @@ void ClothInstance::set_material(const Material& material) {
 }
 
 void ClothInstance::pin(uint32_t particle) {
-    pinned_[particle] = 1;
+    pinned_[particle] = 1.0f;
     pin_target_.set(particle, x_.get(particle));
 }
 
-void ClothInstance::unpin(uint32_t particle) { pinned_[particle] = 0; }
+void ClothInstance::unpin(uint32_t particle) { pinned_[particle] = 0.0f; }
 
 void ClothInstance::set_position(uint32_t particle, const Vec3& x) {
     x_.set(particle, x);

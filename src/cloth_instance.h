@@ -40,7 +40,7 @@ public:
 
     void pin(uint32_t particle);
     void unpin(uint32_t particle);
-    bool is_pinned(uint32_t particle) const { return pinned_[particle] != 0; }
+    bool is_pinned(uint32_t particle) const { return pinned_[particle] != 0.0f; }
     void set_pin_target(uint32_t particle, const Vec3& target) { pin_target_.set(particle, target); }
     // Teleport a particle: new position, zero velocity (and pin target).
     void set_position(uint32_t particle, const Vec3& x);
@@ -68,7 +68,7 @@ private:
     // State.
     Vec3Soa x_, v_;
     HostVector<float> mass_;
-    HostVector<uint8_t> pinned_;
+    HostVector<float> pinned_;  // 1 pinned, 0 free (a factor in branch-free loops)
     Vec3Soa pin_target_;  // where a pinned particle is at the end of the next frame
     Vec3Soa pin_start_;   // where it was at the start of this frame
 

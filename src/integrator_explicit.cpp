@@ -2,7 +2,7 @@
 
 namespace cloth {
 
-void integrate_explicit(const Vec3Soa& force, const float* mass, const uint8_t* pinned, float h, uint32_t begin,
+void integrate_explicit(const Vec3Soa& force, const float* mass, const float* pinned, float h, uint32_t begin,
                         uint32_t end, Vec3Soa& v, Vec3Soa& x) {
     for (uint32_t i = begin; i < end; ++i) {
         if (pinned[i]) continue;

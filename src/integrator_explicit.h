@@ -9,7 +9,7 @@ namespace cloth {
 // Per particle i in [begin, end): v_i += h f_i / m_i; x_i += h v_i, where
 // `force` already holds external and spring forces. Pinned particles are
 // left alone.
-void integrate_explicit(const Vec3Soa& force, const float* mass, const uint8_t* pinned, float h, uint32_t begin,
+void integrate_explicit(const Vec3Soa& force, const float* mass, const float* pinned, float h, uint32_t begin,
                         uint32_t end, Vec3Soa& v, Vec3Soa& x);
 
 }  // namespace cloth

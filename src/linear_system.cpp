@@ -1,22 +1,55 @@
 #include "linear_system.h"
 
+#include "lanes.h"
+
 namespace cloth {
 
 void assemble_particles(const AssemblyPass& pass, uint32_t begin, uint32_t end, Sym3Soa& diagonal,
                         Sym3Soa& diagonal_inverse, Vec3Soa& rhs, Vec3Soa& p) {
-    // rhs accumulates f~ (scaled by h below), diagonal accumulates W_ii.
-    for (uint32_t i = begin; i < end; ++i) {
-        rhs.set(i, pass.external_force->get(i));
-        diagonal.set(i, Sym3::identity(pass.mass[i] * (1.0f + pass.h * pass.linear_drag)));
-    }
+    const Vec3Soa& external = *pass.external_force;
+    const float mass_factor = 1.0f + pass.h * pass.linear_drag;
+    // rhs starts as the external force, diagonal as m (1 + h c) I; the
+    // springs add theirs.
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        const typename L::type zero{};
+        L::store(&rhs.x[i], L::load(&external.x[i]));
+        L::store(&rhs.y[i], L::load(&external.y[i]));
+        L::store(&rhs.z[i], L::load(&external.z[i]));
+        const typename L::type m = L::load(&pass.mass[i]) * mass_factor;
+        L::store(&diagonal.xx[i], m);
+        L::store(&diagonal.yy[i], m);
+        L::store(&diagonal.zz[i], m);
+        L::store(&diagonal.xy[i], zero);
+        L::store(&diagonal.xz[i], zero);
+        L::store(&diagonal.yz[i], zero);
+    });
     pass.springs->gather(begin, end, rhs, &diagonal);
-    for (uint32_t i = begin; i < end; ++i) {
-        const Vec3 b = rhs.get(i) * pass.h;
-        rhs.set(i, b);
-        const Sym3 inverse = pass.pinned[i] ? Sym3{} : diagonal.get(i).inverse();
-        diagonal_inverse.set(i, inverse);
-        p.set(i, inverse * b);
-    }
+    // b = h f~, W^-1 by cofactors (zero for pinned particles), p = W^-1 b.
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        using T = typename L::type;
+        const T xx = L::load(&diagonal.xx[i]), xy = L::load(&diagonal.xy[i]), xz = L::load(&diagonal.xz[i]);
+        const T yy = L::load(&diagonal.yy[i]), yz = L::load(&diagonal.yz[i]), zz = L::load(&diagonal.zz[i]);
+        const T c_xx = yy * zz - yz * yz, c_xy = xz * yz - xy * zz, c_xz = xy * yz - xz * yy;
+        const T det = xx * c_xx + xy * c_xy + xz * c_xz;
+        const T scale = (1.0f - L::load(&pass.pinned[i])) / det;
+        const T ixx = c_xx * scale, ixy = c_xy * scale, ixz = c_xz * scale;
+        const T iyy = (xx * zz - xz * xz) * scale, iyz = (xy * xz - xx * yz) * scale, izz = (xx * yy - xy * xy) * scale;
+        L::store(&diagonal_inverse.xx[i], ixx);
+        L::store(&diagonal_inverse.xy[i], ixy);
+        L::store(&diagonal_inverse.xz[i], ixz);
+        L::store(&diagonal_inverse.yy[i], iyy);
+        L::store(&diagonal_inverse.yz[i], iyz);
+        L::store(&diagonal_inverse.zz[i], izz);
+        const T bx = L::load(&rhs.x[i]) * pass.h, by = L::load(&rhs.y[i]) * pass.h, bz = L::load(&rhs.z[i]) * pass.h;
+        L::store(&rhs.x[i], bx);
+        L::store(&rhs.y[i], by);
+        L::store(&rhs.z[i], bz);
+        L::store(&p.x[i], ixx * bx + ixy * by + ixz * bz);
+        L::store(&p.y[i], ixy * bx + iyy * by + iyz * bz);
+        L::store(&p.z[i], ixz * bx + iyz * by + izz * bz);
+    });
 }
 
 void jacobi_sweep(const LinearSystem& system, const Vec3Soa& current, uint32_t begin, uint32_t end, Vec3Soa& next) {

@@ -25,7 +25,7 @@ struct LinearSystem {
     const Sym3Soa* diagonal;          // W_ii, per particle
     const Sym3Soa* diagonal_inverse;  // W_ii^-1, zero for pinned particles
     const Vec3Soa* rhs;               // b_i = h f~_i
-    const uint8_t* pinned;
+    const float* pinned;         // 1 for pinned particles, 0 for free ones
 };
 
 // Inputs of the per-particle assembly stage.
@@ -33,7 +33,7 @@ struct AssemblyPass {
     const SpringTerms* springs;     // evaluated for this substep
     const Vec3Soa* external_force;  // per particle
     const float* mass;
-    const uint8_t* pinned;
+    const float* pinned;         // 1 for pinned particles, 0 for free ones
     float h;
     float linear_drag;  // c: force -c m v, implicit on the diagonal
 };

@@ -1,16 +1,20 @@
 // GridSprings: a regular grid's springs as families (fabric.h); family f
 // joins particle p to p + offset_f. Per family the forces and blocks are
-// stored by first particle, so every loop here is a plain range loop with
-// contiguous loads: particle p reads its family-f spring as first particle
-// at p and as second particle at p - offset_f. Entries past n - offset_f
-// are never written and stay zero.
+// stored by first particle, so every loop here has contiguous loads only:
+// particle p reads its family-f spring as first particle at p and as second
+// particle at p - offset_f. Entries past n - offset_f are never written and
+// stay zero. The per-spring loop is vectorized by the compiler; the
+// per-particle gathers sum all families in registers, four particles at a
+// time (lanes.h) for the force and diagonal gather; the products gather
+// family by family over L1-sized chunks, which vectorizes best.
+#include "lanes.h"
 #include "spring_terms.h"
 
 namespace cloth {
 namespace {
 
 // Every array is a __restrict parameter so GCC vectorizes the loops.
-void evaluate_family_kernel(uint32_t begin, uint32_t end, uint32_t offset, float rest, float k, float c, float h,
+CLOTH_HOT_LOOP void evaluate_family_kernel(uint32_t begin, uint32_t end, uint32_t offset, float rest, float k, float c, float h,
                             JacobianClamp clamp, const float* __restrict mask, const float* __restrict px,
                             const float* __restrict py, const float* __restrict pz, const float* __restrict vx,
                             const float* __restrict vy, const float* __restrict vz, float* __restrict fx,
@@ -35,35 +39,9 @@ void evaluate_family_kernel(uint32_t begin, uint32_t end, uint32_t offset, float
     }
 }
 
-// f_p += sign * force[p - shift]
-void gather_force_kernel(uint32_t begin, uint32_t end, uint32_t shift, float sign, const float* __restrict sfx,
-                         const float* __restrict sfy, const float* __restrict sfz, float* __restrict fx,
-                         float* __restrict fy, float* __restrict fz) {
-    for (uint32_t p = begin; p < end; ++p) {
-        fx[p] += sfx[p - shift] * sign;
-        fy[p] += sfy[p - shift] * sign;
-        fz[p] += sfz[p - shift] * sign;
-    }
-}
-
-// w_p += A[p - shift]
-void gather_block_kernel(uint32_t begin, uint32_t end, uint32_t shift, const float* __restrict sxx,
-                         const float* __restrict sxy, const float* __restrict sxz, const float* __restrict syy,
-                         const float* __restrict syz, const float* __restrict szz, float* __restrict wxx,
-                         float* __restrict wxy, float* __restrict wxz, float* __restrict wyy, float* __restrict wyz,
-                         float* __restrict wzz) {
-    for (uint32_t p = begin; p < end; ++p) {
-        wxx[p] += sxx[p - shift];
-        wxy[p] += sxy[p - shift];
-        wxz[p] += sxz[p - shift];
-        wyy[p] += syy[p - shift];
-        wyz[p] += syz[p - shift];
-        wzz[p] += szz[p - shift];
-    }
-}
-
-// q_p += A[p + block_shift] x[p + x_shift]
-void product_kernel(uint32_t begin, uint32_t end, int64_t block_shift, int64_t x_shift, const float* __restrict sxx,
+// q_p += A[p + block_shift] x[p + x_shift]; every array a __restrict
+// parameter so GCC vectorizes the loop.
+CLOTH_HOT_LOOP void product_kernel(uint32_t begin, uint32_t end, int64_t block_shift, int64_t x_shift, const float* __restrict sxx,
                     const float* __restrict sxy, const float* __restrict sxz, const float* __restrict syy,
                     const float* __restrict syz, const float* __restrict szz, const float* __restrict xx,
                     const float* __restrict xy, const float* __restrict xz, float* __restrict qx,
@@ -77,6 +55,9 @@ void product_kernel(uint32_t begin, uint32_t end, int64_t block_shift, int64_t x
     }
 }
 
+// Particles per chunk of neighbour_sums: its accumulators stay in L1.
+constexpr uint32_t kChunk = 512;
+
 struct FamilyTerms {
     explicit FamilyTerms(const HostMemory* memory) : force(memory), block(memory) {}
     Vec3Soa force;  // by first particle
@@ -87,12 +68,15 @@ struct FamilyTerms {
 class GridSprings final : public SpringTerms {
 public:
     GridSprings(const HostMemory* memory, std::shared_ptr<const Fabric> fabric, const Material& material)
-        : fabric_(std::move(fabric)), terms_(HostAllocator<FamilyTerms>(memory)) {
+        : fabric_(std::move(fabric)), terms_(HostAllocator<FamilyTerms>(memory)),
+          offsets_(HostAllocator<uint32_t>(memory)) {
         const uint32_t n = fabric_->particle_count();
-        for (size_t f = 0; f < fabric_->grid_families.size(); ++f) {
+        for (const SpringFamily& family : fabric_->grid_families) {
             FamilyTerms& t = terms_.emplace_back(memory);
             t.force.resize(n);
             t.block.resize(n);
+            offsets_.push_back(family.offset);
+            max_offset_ = std::max(max_offset_, family.offset);
         }
         set_material(material);
     }
@@ -120,48 +104,79 @@ public:
         }
     }
 
+    // The particle loops below read, for each family, a particle's spring
+    // as first particle (at p) and as second (at p - offset). Particles at
+    // least max_offset_ from both ends need no bounds checks and run four
+    // at a time; the rest run one at a time through the same code.
     void gather(uint32_t begin, uint32_t end, Vec3Soa& force, Sym3Soa* diagonal) const override {
-        for (size_t f = 0; f < terms_.size(); ++f) {
-            const uint32_t offset = fabric_->grid_families[f].offset;
-            const FamilyTerms& t = terms_[f];
-            // As first particle: +force[p]; as second: -force[p - offset].
-            const uint32_t second_begin = std::max(begin, offset);
-            gather_force_kernel(begin, end, 0, 1.0f, t.force.x.data(), t.force.y.data(), t.force.z.data(),
-                                force.x.data(), force.y.data(), force.z.data());
-            if (second_begin < end) {
-                gather_force_kernel(second_begin, end, offset, -1.0f, t.force.x.data(), t.force.y.data(),
-                                    t.force.z.data(), force.x.data(), force.y.data(), force.z.data());
+        const uint32_t n = fabric_->particle_count();
+        const uint32_t safe_end = n > max_offset_ ? n - max_offset_ : 0;
+        for_each_lane_group(begin, end, max_offset_, safe_end, [&](auto lanes, uint32_t p) {
+            using L = decltype(lanes);
+            typename L::type fx = L::load(&force.x[p]), fy = L::load(&force.y[p]), fz = L::load(&force.z[p]);
+            for (size_t f = 0; f < terms_.size(); ++f) {
+                const Vec3Soa& t = terms_[f].force;
+                fx += L::load(&t.x[p]);
+                fy += L::load(&t.y[p]);
+                fz += L::load(&t.z[p]);
+                const uint32_t offset = offsets_[f];
+                if (p >= offset) {
+                    fx -= L::load(&t.x[p - offset]);
+                    fy -= L::load(&t.y[p - offset]);
+                    fz -= L::load(&t.z[p - offset]);
+                }
             }
-            if (!diagonal) continue;
-            for (uint32_t shift : {0u, offset}) {
-                const uint32_t from = std::max(begin, shift);
-                if (from >= end) continue;
-                gather_block_kernel(from, end, shift, t.block.xx.data(), t.block.xy.data(), t.block.xz.data(),
-                                    t.block.yy.data(), t.block.yz.data(), t.block.zz.data(), diagonal->xx.data(),
-                                    diagonal->xy.data(), diagonal->xz.data(), diagonal->yy.data(),
-                                    diagonal->yz.data(), diagonal->zz.data());
+            L::store(&force.x[p], fx);
+            L::store(&force.y[p], fy);
+            L::store(&force.z[p], fz);
+            if (!diagonal) return;
+            Sym3Soa& w = *diagonal;
+            typename L::type xx = L::load(&w.xx[p]), xy = L::load(&w.xy[p]), xz = L::load(&w.xz[p]);
+            typename L::type yy = L::load(&w.yy[p]), yz = L::load(&w.yz[p]), zz = L::load(&w.zz[p]);
+            for (size_t f = 0; f < terms_.size(); ++f) {
+                const Sym3Soa& b = terms_[f].block;
+                for (uint32_t shift : {0u, offsets_[f]}) {
+                    if (p < shift) continue;
+                    const uint32_t s = p - shift;
+                    xx += L::load(&b.xx[s]);
+                    xy += L::load(&b.xy[s]);
+                    xz += L::load(&b.xz[s]);
+                    yy += L::load(&b.yy[s]);
+                    yz += L::load(&b.yz[s]);
+                    zz += L::load(&b.zz[s]);
+                }
             }
-        }
+            L::store(&w.xx[p], xx);
+            L::store(&w.xy[p], xy);
+            L::store(&w.xz[p], xz);
+            L::store(&w.yy[p], yy);
+            L::store(&w.yz[p], yz);
+            L::store(&w.zz[p], zz);
+        });
     }
 
     void neighbour_sums(const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& q) const override {
         const uint32_t n = fabric_->particle_count();
         for (HostVector<float>* a : {&q.x, &q.y, &q.z}) std::fill(a->begin() + begin, a->begin() + end, 0.0f);
-        for (size_t f = 0; f < terms_.size(); ++f) {
-            const int64_t offset = fabric_->grid_families[f].offset;
-            const Sym3Soa& b = terms_[f].block;
-            // As first particle: A[p] x[p + offset]; as second: A[p - offset] x[p - offset].
-            const uint32_t first_end = std::min<uint32_t>(end, n - static_cast<uint32_t>(offset));
-            if (begin < first_end) {
-                product_kernel(begin, first_end, 0, offset, b.xx.data(), b.xy.data(), b.xz.data(), b.yy.data(),
-                               b.yz.data(), b.zz.data(), x.x.data(), x.y.data(), x.z.data(), q.x.data(), q.y.data(),
-                               q.z.data());
-            }
-            const uint32_t second_begin = std::max<uint32_t>(begin, static_cast<uint32_t>(offset));
-            if (second_begin < end) {
-                product_kernel(second_begin, end, -offset, -offset, b.xx.data(), b.xy.data(), b.xz.data(),
-                               b.yy.data(), b.yz.data(), b.zz.data(), x.x.data(), x.y.data(), x.z.data(), q.x.data(),
-                               q.y.data(), q.z.data());
+        for (uint32_t chunk = begin; chunk < end; chunk += kChunk) {
+            const uint32_t chunk_end = std::min(end, chunk + kChunk);
+            for (size_t f = 0; f < terms_.size(); ++f) {
+                const uint32_t offset = offsets_[f];
+                const Sym3Soa& b = terms_[f].block;
+                // As first particle: A[p] x[p + offset]; as second: A[p - offset] x[p - offset].
+                const uint32_t first_end = std::min(chunk_end, n - offset);
+                if (chunk < first_end) {
+                    product_kernel(chunk, first_end, 0, offset, b.xx.data(), b.xy.data(), b.xz.data(), b.yy.data(),
+                                   b.yz.data(), b.zz.data(), x.x.data(), x.y.data(), x.z.data(), q.x.data(),
+                                   q.y.data(), q.z.data());
+                }
+                const uint32_t second_begin = std::max(chunk, offset);
+                if (second_begin < chunk_end) {
+                    const int64_t back = -static_cast<int64_t>(offset);
+                    product_kernel(second_begin, chunk_end, back, back, b.xx.data(), b.xy.data(), b.xz.data(),
+                                   b.yy.data(), b.yz.data(), b.zz.data(), x.x.data(), x.y.data(), x.z.data(),
+                                   q.x.data(), q.y.data(), q.z.data());
+                }
             }
         }
     }
@@ -179,6 +194,8 @@ public:
 private:
     std::shared_ptr<const Fabric> fabric_;
     std::vector<FamilyTerms, HostAllocator<FamilyTerms>> terms_;
+    std::vector<uint32_t, HostAllocator<uint32_t>> offsets_;  // per family
+    uint32_t max_offset_ = 0;
 };
 
 }  // namespace

@@ -1,0 +1,51 @@
+// Lanes: the same per-particle code run on one particle (float) or on four
+// consecutive particles at once (a GCC/Clang vector of four floats), so a
+// loop's vector body and its scalar edges are one source and sum in the
+// same order: results do not depend on which particles went through which.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+// Hot loops are compiled twice on x86-64, for AVX2 and for the baseline,
+// and the loader picks one per machine. No FMA in either (-ffp-contract=off
+// and no "fma" target), so both give the same bits.
+#if defined(__x86_64__) && defined(__GNUC__) && defined(__ELF__)
+#define CLOTH_HOT_LOOP __attribute__((target_clones("avx2", "default")))
+#else
+#define CLOTH_HOT_LOOP
+#endif
+
+namespace cloth {
+
+struct ScalarLanes {
+    using type = float;
+    static constexpr uint32_t width = 1;
+    static float load(const float* p) { return *p; }
+    static void store(float* p, float v) { *p = v; }
+};
+
+struct VectorLanes {
+    typedef float type __attribute__((vector_size(16)));
+    static constexpr uint32_t width = 4;
+    static type load(const float* p) {
+        type v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+    }
+    static void store(float* p, type v) { std::memcpy(p, &v, sizeof v); }
+};
+
+// Calls body(lanes, p) over [begin, end): four particles at a time where
+// [p, p + 4) lies inside [vector_begin, vector_end), one at a time elsewhere.
+template <class Body>
+void for_each_lane_group(uint32_t begin, uint32_t end, uint32_t vector_begin, uint32_t vector_end, Body body) {
+    uint32_t p = begin;
+    for (; p < end && p < vector_begin; ++p) body(ScalarLanes{}, p);
+    for (; p + VectorLanes::width <= end && p + VectorLanes::width <= vector_end; p += VectorLanes::width) {
+        body(VectorLanes{}, p);
+    }
+    for (; p < end; ++p) body(ScalarLanes{}, p);
+}
+
+}  // namespace cloth
