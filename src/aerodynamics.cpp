@@ -3,86 +3,170 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cloth_instance.h"
+#include "lanes.h"
+#include "settings.h"
 
 namespace cloth {
-
 namespace {
 
-// Every array is a __restrict parameter so GCC vectorizes the indexed loads.
-void triangle_air_kernel(uint32_t begin, uint32_t end, const AeroParams& air, const uint32_t* __restrict tri,
-                         const float* __restrict px, const float* __restrict py, const float* __restrict pz,
-                         const float* __restrict vx, const float* __restrict vy, const float* __restrict vz,
-                         float* __restrict fx, float* __restrict fy, float* __restrict fz) {
+struct AirConstants {
+    float wx, wy, wz;
+    float pressure_scale;  // a third of 1/2 rho, times 1/2 for A = |cross| / 2
+    float drag, lift;
+
+    explicit AirConstants(const AeroParams& air)
+        : wx(air.wind.x()),
+          wy(air.wind.y()),
+          wz(air.wind.z()),
+          pressure_scale(0.5f * air.air_density * 0.5f / 3.0f),
+          drag(air.drag_coefficient),
+          lift(air.lift_coefficient) {}
+};
+
+// The force on each corner of a triangle with edges e1, e2 whose corner
+// velocities sum to (svx, svy, svz). Branch-free so the loops vectorize;
+// still air or a collapsed triangle gives zero.
+inline void corner_force(const AirConstants& k, float e1x, float e1y, float e1z, float e2x, float e2y, float e2z,
+                         float svx, float svy, float svz, float& fx, float& fy, float& fz) {
     const float third = 1.0f / 3.0f;
-    // Per corner: a third of 1/2 rho |u|^2 A, with A = |cross| / 2.
-    const float pressure_scale = 0.5f * air.air_density * 0.5f * third;
-    const float wx = air.wind.x(), wy = air.wind.y(), wz = air.wind.z();
-    const float drag_coefficient = air.drag_coefficient, lift_coefficient = air.lift_coefficient;
+    const float nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
+    const float twice_area = std::sqrt(nx * nx + ny * ny + nz * nz);
+    const float ux = k.wx - svx * third, uy = k.wy - svy * third, uz = k.wz - svz * third;
+    const float speed_squared = ux * ux + uy * uy + uz * uz;
+    const float speed = std::sqrt(speed_squared);
+    const bool active = twice_area > 0.0f && speed_squared > 1e-12f;
+    const float inv_area = active ? 1.0f / twice_area : 0.0f;
+    const float inv_speed = active ? 1.0f / speed : 0.0f;
+    const float cosine_signed = (nx * ux + ny * uy + nz * uz) * inv_area * inv_speed;
+    const float side = cosine_signed < 0.0f ? -inv_area : inv_area;  // n downwind
+    const float cosine = std::fabs(cosine_signed);
+    const float pressure = k.pressure_scale * speed_squared * twice_area;
+    const float normal_part = pressure * cosine * (k.drag * cosine + k.lift) * side;
+    const float wind_part = -pressure * k.lift * cosine * cosine * inv_speed;
+    fx = nx * normal_part + ux * wind_part;
+    fy = ny * normal_part + uy * wind_part;
+    fz = nz * normal_part + uz * wind_part;
+}
+
+// Every array is a __restrict parameter so GCC vectorizes the loops.
+CLOTH_HOT_LOOP void triangle_air_kernel(uint32_t begin, uint32_t end, AirConstants k,
+                                        const uint32_t* __restrict tri, const float* __restrict px,
+                                        const float* __restrict py, const float* __restrict pz,
+                                        const float* __restrict vx, const float* __restrict vy,
+                                        const float* __restrict vz, float* __restrict fx, float* __restrict fy,
+                                        float* __restrict fz) {
     for (uint32_t t = begin; t < end; ++t) {
         const uint32_t a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
-        const float e1x = px[b] - px[a], e1y = py[b] - py[a], e1z = pz[b] - pz[a];
-        const float e2x = px[c] - px[a], e2y = py[c] - py[a], e2z = pz[c] - pz[a];
-        const float nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
-        const float twice_area = std::sqrt(nx * nx + ny * ny + nz * nz);
-        const float ux = wx - (vx[a] + vx[b] + vx[c]) * third;
-        const float uy = wy - (vy[a] + vy[b] + vy[c]) * third;
-        const float uz = wz - (vz[a] + vz[b] + vz[c]) * third;
-        const float speed_squared = ux * ux + uy * uy + uz * uz;
-        const float speed = std::sqrt(speed_squared);
-        // Still air or a collapsed triangle: no force (a select, not a branch).
-        const bool active = twice_area > 0.0f && speed_squared > 1e-12f;
-        const float inv_area = active ? 1.0f / twice_area : 0.0f;
-        const float inv_speed = active ? 1.0f / speed : 0.0f;
-        const float cosine_signed = (nx * ux + ny * uy + nz * uz) * inv_area * inv_speed;
-        // Face the normal downwind: n . u >= 0.
-        const float side = cosine_signed < 0.0f ? -inv_area : inv_area;
-        const float cosine = std::fabs(cosine_signed);
-        const float pressure = pressure_scale * speed_squared * twice_area;
-        // drag along n: Cd cos^2; lift along (n - cos u/|u|): Cl cos.
-        const float normal_part = pressure * cosine * (drag_coefficient * cosine + lift_coefficient) * side;
-        const float wind_part = -pressure * lift_coefficient * cosine * cosine * inv_speed;
-        fx[t] = nx * normal_part + ux * wind_part;
-        fy[t] = ny * normal_part + uy * wind_part;
-        fz[t] = nz * normal_part + uz * wind_part;
+        corner_force(k, px[b] - px[a], py[b] - py[a], pz[b] - pz[a], px[c] - px[a], py[c] - py[a], pz[c] - pz[a],
+                     vx[a] + vx[b] + vx[c], vy[a] + vy[b] + vy[c], vz[a] + vz[b] + vz[c], fx[t], fy[t], fz[t]);
     }
 }
 
-}  // namespace
-
-void evaluate_triangle_air(const Fabric& fabric, const AeroParams& air, const Vec3Soa& x, const Vec3Soa& v,
-                           uint32_t begin, uint32_t end, Vec3Soa& corner_force) {
-    triangle_air_kernel(begin, end, air, fabric.triangles.data(), x.x.data(), x.y.data(), x.z.data(), v.x.data(),
-                        v.y.data(), v.z.data(), corner_force.x.data(), corner_force.y.data(),
-                        corner_force.z.data());
-}
-
-namespace {
-
-void gather_triangles_kernel(uint32_t begin, uint32_t end, size_t slot, const uint32_t* __restrict triangle,
-                             const float* __restrict cx, const float* __restrict cy, const float* __restrict cz,
-                             float* __restrict fx, float* __restrict fy, float* __restrict fz) {
-    for (uint32_t i = begin; i < end; ++i) {
-        const uint32_t t = triangle[slot + i];
-        fx[i] += cx[t];
-        fy[i] += cy[t];
-        fz[i] += cz[t];
+// One triangle shape of a grid: corners p + o0, p + o1, p + o2, cells
+// where mask[p] is 1.
+CLOTH_HOT_LOOP void grid_air_kernel(uint32_t begin, uint32_t end, AirConstants k, uint32_t o0, uint32_t o1,
+                                    uint32_t o2, const float* __restrict mask, const float* __restrict px,
+                                    const float* __restrict py, const float* __restrict pz,
+                                    const float* __restrict vx, const float* __restrict vy,
+                                    const float* __restrict vz, float* __restrict fx, float* __restrict fy,
+                                    float* __restrict fz) {
+    for (uint32_t p = begin; p < end; ++p) {
+        const uint32_t a = p + o0, b = p + o1, c = p + o2;
+        float x, y, z;
+        corner_force(k, px[b] - px[a], py[b] - py[a], pz[b] - pz[a], px[c] - px[a], py[c] - py[a], pz[c] - pz[a],
+                     vx[a] + vx[b] + vx[c], vy[a] + vy[b] + vy[c], vz[a] + vz[b] + vz[c], x, y, z);
+        fx[p] = x * mask[p];
+        fy[p] = y * mask[p];
+        fz[p] = z * mask[p];
     }
 }
 
+bool is_grid(const Fabric& fabric) { return !fabric.grid_cell_mask.empty(); }
+
 }  // namespace
 
-void gather_triangle_forces(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begin, uint32_t end,
-                            Vec3Soa& particle_force) {
+uint32_t air_item_count(const Fabric& fabric) {
+    return is_grid(fabric) ? fabric.particle_count() : fabric.triangle_count();
+}
+
+size_t air_storage_size(const Fabric& fabric) {
+    // Grids: one entry per shape per particle. Meshes: one per triangle plus
+    // the zero dummy that padded incidence slots point at.
+    return is_grid(fabric) ? fabric.grid_triangle_shapes.size() / 3 * fabric.particle_count()
+                           : fabric.triangle_count() + 1;
+}
+
+void evaluate_air(const Fabric& fabric, const AeroParams& air, const Vec3Soa& x, const Vec3Soa& v, uint32_t begin,
+                  uint32_t end, Vec3Soa& corner_force) {
+    const AirConstants k(air);
+    if (!is_grid(fabric)) {
+        triangle_air_kernel(begin, end, k, fabric.triangles.data(), x.x.data(), x.y.data(), x.z.data(), v.x.data(),
+                            v.y.data(), v.z.data(), corner_force.x.data(), corner_force.y.data(),
+                            corner_force.z.data());
+        return;
+    }
+    const uint32_t n = fabric.particle_count();
+    const uint32_t* shape = fabric.grid_triangle_shapes.data();
+    for (size_t s = 0; s < fabric.grid_triangle_shapes.size() / 3; ++s, shape += 3) {
+        // Cells whose far corner would fall past the grid have no triangles
+        // (their mask is 0) and their entries are never written.
+        const uint32_t reach = std::max({shape[0], shape[1], shape[2]});
+        const size_t base = s * n;
+        grid_air_kernel(begin, std::min(end, n - reach), k, shape[0], shape[1], shape[2],
+                        fabric.grid_cell_mask.data(), x.x.data(), x.y.data(), x.z.data(), v.x.data(), v.y.data(),
+                        v.z.data(), corner_force.x.data() + base, corner_force.y.data() + base,
+                        corner_force.z.data() + base);
+    }
+}
+
+void gather_air(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begin, uint32_t end,
+                Vec3Soa& particle_force) {
     const size_t n = fabric.particle_count();
-    std::fill(particle_force.x.begin() + begin, particle_force.x.begin() + end, 0.0f);
-    std::fill(particle_force.y.begin() + begin, particle_force.y.begin() + end, 0.0f);
-    std::fill(particle_force.z.begin() + begin, particle_force.z.begin() + end, 0.0f);
-    for (uint32_t k = 0; k < fabric.padded_triangle_width; ++k) {
-        gather_triangles_kernel(begin, end, k * n, fabric.padded_triangle.data(), corner_force.x.data(),
-                                corner_force.y.data(), corner_force.z.data(), particle_force.x.data(),
-                                particle_force.y.data(), particle_force.z.data());
+    if (!is_grid(fabric)) {
+        // Padded incidence slots, one particle lane group at a time.
+        const uint32_t width = fabric.padded_triangle_width;
+        for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t p) {
+            using L = decltype(lanes);
+            typename L::type fx{}, fy{}, fz{};
+            for (uint32_t k = 0; k < width; ++k) {
+                const uint32_t* slot = &fabric.padded_triangle[k * n + p];
+                float gx[L::width], gy[L::width], gz[L::width];
+                for (uint32_t lane = 0; lane < L::width; ++lane) {
+                    gx[lane] = corner_force.x[slot[lane]];
+                    gy[lane] = corner_force.y[slot[lane]];
+                    gz[lane] = corner_force.z[slot[lane]];
+                }
+                fx += L::load(gx);
+                fy += L::load(gy);
+                fz += L::load(gz);
+            }
+            L::store(&particle_force.x[p], fx);
+            L::store(&particle_force.y[p], fy);
+            L::store(&particle_force.z[p], fz);
+        });
+        return;
     }
+    // Grid: particle p is corner i of shape s of the cell at p - offset_i.
+    const uint32_t shapes = static_cast<uint32_t>(fabric.grid_triangle_shapes.size() / 3);
+    uint32_t max_offset = 0;
+    for (uint32_t o : fabric.grid_triangle_shapes) max_offset = std::max(max_offset, o);
+    for_each_lane_group(begin, end, max_offset, static_cast<uint32_t>(n), [&](auto lanes, uint32_t p) {
+        using L = decltype(lanes);
+        typename L::type fx{}, fy{}, fz{};
+        for (uint32_t s = 0; s < shapes; ++s) {
+            for (uint32_t i = 0; i < 3; ++i) {
+                const uint32_t offset = fabric.grid_triangle_shapes[3 * s + i];
+                if (p < offset) continue;
+                const size_t entry = s * n + (p - offset);
+                fx += L::load(&corner_force.x[entry]);
+                fy += L::load(&corner_force.y[entry]);
+                fz += L::load(&corner_force.z[entry]);
+            }
+        }
+        L::store(&particle_force.x[p], fx);
+        L::store(&particle_force.y[p], fy);
+        L::store(&particle_force.z[p], fz);
+    });
 }
 
 void compute_vertex_normals(const Fabric& fabric, const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& normal) {

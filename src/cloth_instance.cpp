@@ -15,11 +15,13 @@
 #include "cloth_instance.h"
 
 #include "aerodynamics.h"
+#include "lanes.h"
 #include "integrator_explicit.h"
 #include "solvers.h"
 #include "spring_terms.h"
 #include "springs.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace cloth {
@@ -34,6 +36,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       v_(memory),
       mass_(HostAllocator<float>(memory)),
       pinned_(HostAllocator<float>(memory)),
+      pinned_list_(HostAllocator<uint32_t>(memory)),
       pin_target_(memory),
       pin_start_(memory),
       external_force_(memory),
@@ -57,8 +60,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     pin_target_ = x_;
     mass_.resize(n);
     pinned_.assign(n, 0.0f);
-    // One zero entry past the end: the dummy that padded incidence slots point at.
-    triangle_force_.resize(f.triangle_count() + 1);
+    triangle_force_.resize(air_storage_size(f));
     diagonal_.resize(n);
     diagonal_inverse_.resize(n);
     set_material(material);
@@ -74,11 +76,19 @@ void ClothInstance::set_material(const Material& material) {
 }
 
 void ClothInstance::pin(uint32_t particle) {
+    if (!is_pinned(particle)) {
+        pinned_list_.insert(std::lower_bound(pinned_list_.begin(), pinned_list_.end(), particle), particle);
+    }
     pinned_[particle] = 1.0f;
     pin_target_.set(particle, x_.get(particle));
 }
 
-void ClothInstance::unpin(uint32_t particle) { pinned_[particle] = 0.0f; }
+void ClothInstance::unpin(uint32_t particle) {
+    if (is_pinned(particle)) {
+        pinned_list_.erase(std::lower_bound(pinned_list_.begin(), pinned_list_.end(), particle));
+    }
+    pinned_[particle] = 0.0f;
+}
 
 void ClothInstance::set_position(uint32_t particle, const Vec3& x) {
     x_.set(particle, x);
@@ -101,12 +111,9 @@ bool ClothInstance::state_is_finite() const {
 }
 
 Status ClothInstance::step(float dt, const Vec3& gravity) {
-    const uint32_t n = particle_count();
     backup_x_ = x_;
     backup_v_ = v_;
-    for (uint32_t i = 0; i < n; ++i) {
-        if (pinned_[i]) pin_start_.set(i, x_.get(i));
-    }
+    for (uint32_t i : pinned_list_) pin_start_.set(i, x_.get(i));
     const uint32_t substeps = solver_.substeps;
     const float h = dt / static_cast<float>(substeps);
     bool converged = true;
@@ -140,24 +147,24 @@ void ClothInstance::substep(float h, float frame_fraction_end, const Vec3& gravi
     const uint32_t n = f.particle_count();
 
     // 0. Pinned particles move linearly towards their frame-end targets.
-    for (uint32_t i = 0; i < n; ++i) {
-        if (pinned_[i]) v_.set(i, (pin_position(i, frame_fraction_end) - x_.get(i)) / h);
-    }
+    for (uint32_t i : pinned_list_) v_.set(i, (pin_position(i, frame_fraction_end) - x_.get(i)) / h);
 
     // 1. External forces: air (only when the scene has air), gravity, linear drag.
     const bool has_air = aero_.air_density > 0 && (aero_.drag_coefficient > 0 || aero_.lift_coefficient > 0);
     if (has_air) {
-        evaluate_triangle_air(f, aero_, x_, v_, 0, f.triangle_count(), triangle_force_);
-        gather_triangle_forces(f, triangle_force_, 0, n, external_force_);
+        evaluate_air(f, aero_, x_, v_, 0, air_item_count(f), triangle_force_);
+        gather_air(f, triangle_force_, 0, n, external_force_);
     } else {
         external_force_.fill(Vec3::Zero());
     }
-    for (uint32_t i = 0; i < n; ++i) {
-        const float drag = aero_.linear_drag * mass_[i];
-        external_force_.x[i] += gravity.x() * mass_[i] - v_.x[i] * drag;
-        external_force_.y[i] += gravity.y() * mass_[i] - v_.y[i] * drag;
-        external_force_.z[i] += gravity.z() * mass_[i] - v_.z[i] * drag;
-    }
+    const float linear_drag = aero_.linear_drag;
+    for_each_lane_group(0, n, 0, n, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        const typename L::type m = L::load(&mass_[i]), drag = m * linear_drag;
+        L::store(&external_force_.x[i], L::load(&external_force_.x[i]) + m * gravity.x() - L::load(&v_.x[i]) * drag);
+        L::store(&external_force_.y[i], L::load(&external_force_.y[i]) + m * gravity.y() - L::load(&v_.y[i]) * drag);
+        L::store(&external_force_.z[i], L::load(&external_force_.z[i]) + m * gravity.z() - L::load(&v_.z[i]) * drag);
+    });
 
     const JacobianClamp clamp = JacobianClamp::make(solver_.compression_safe_jacobian);
     if (solver_.kind == CLOTH_SOLVER_EXPLICIT) {
@@ -179,21 +186,23 @@ void ClothInstance::substep(float h, float frame_fraction_end, const Vec3& gravi
         } else {
             last_solve_ = solve_jacobi(system, solver_.iterations, dv_, dv_scratch_);
         }
-        // 5. Integrate the free particles (dv is zero on pinned ones).
-        for (uint32_t i = 0; i < n; ++i) {
-            v_.x[i] += dv_.x[i];
-            v_.y[i] += dv_.y[i];
-            v_.z[i] += dv_.z[i];
-            x_.x[i] += v_.x[i] * h;
-            x_.y[i] += v_.y[i] * h;
-            x_.z[i] += v_.z[i] * h;
-        }
+        // 5. Integrate (dv is zero on pinned particles; they are placed below).
+        for_each_lane_group(0, n, 0, n, [&](auto lanes, uint32_t i) {
+            using L = decltype(lanes);
+            const typename L::type vx = L::load(&v_.x[i]) + L::load(&dv_.x[i]);
+            const typename L::type vy = L::load(&v_.y[i]) + L::load(&dv_.y[i]);
+            const typename L::type vz = L::load(&v_.z[i]) + L::load(&dv_.z[i]);
+            L::store(&v_.x[i], vx);
+            L::store(&v_.y[i], vy);
+            L::store(&v_.z[i], vz);
+            L::store(&x_.x[i], L::load(&x_.x[i]) + vx * h);
+            L::store(&x_.y[i], L::load(&x_.y[i]) + vy * h);
+            L::store(&x_.z[i], L::load(&x_.z[i]) + vz * h);
+        });
     }
 
     // Pinned particles land exactly on their substep targets.
-    for (uint32_t i = 0; i < n; ++i) {
-        if (pinned_[i]) x_.set(i, pin_position(i, frame_fraction_end));
-    }
+    for (uint32_t i : pinned_list_) x_.set(i, pin_position(i, frame_fraction_end));
 }
 
 }  // namespace cloth

@@ -68,7 +68,8 @@ private:
     // State.
     Vec3Soa x_, v_;
     HostVector<float> mass_;
-    HostVector<float> pinned_;  // 1 pinned, 0 free (a factor in branch-free loops)
+    HostVector<float> pinned_;          // 1 pinned, 0 free (a factor in branch-free loops)
+    HostVector<uint32_t> pinned_list_;  // the pinned particles, ascending
     Vec3Soa pin_target_;  // where a pinned particle is at the end of the next frame
     Vec3Soa pin_start_;   // where it was at the start of this frame
 

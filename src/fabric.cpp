@@ -26,7 +26,9 @@ Fabric::Fabric(const HostMemory* memory)
       padded_other(HostAllocator<uint32_t>(memory)),
       padded_sign(HostAllocator<float>(memory)),
       padded_triangle(HostAllocator<uint32_t>(memory)),
-      grid_families(HostAllocator<SpringFamily>(memory)) {}
+      grid_families(HostAllocator<SpringFamily>(memory)),
+      grid_triangle_shapes(HostAllocator<uint32_t>(memory)),
+      grid_cell_mask(HostAllocator<float>(memory)) {}
 
 namespace {
 
@@ -187,16 +189,19 @@ Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
                                             v * (static_cast<float>(r) / static_cast<float>(rows - 1));
         }
     }
-    // Two triangles per cell, diagonals alternating in a checkerboard so the
-    // mesh has no preferred shear direction.
+    // Two triangles per cell, split along the same diagonal everywhere:
+    // every interior particle then touches six triangles and gets the same
+    // lumped mass, and the triangles of cell p are two fixed shapes at p.
+    const uint32_t shapes[2][3] = {{0, 1, cols + 1}, {0, cols + 1, cols}};
+    f.grid_triangle_shapes.assign(&shapes[0][0], &shapes[0][0] + 6);
+    f.grid_cell_mask.assign(static_cast<size_t>(cols) * rows, 0.0f);
     f.triangles.reserve(static_cast<size_t>(cols - 1) * (rows - 1) * 6);
     for (uint32_t r = 0; r + 1 < rows; ++r) {
         for (uint32_t c = 0; c + 1 < cols; ++c) {
-            const uint32_t a = index(c, r), b = index(c + 1, r), d = index(c, r + 1), e = index(c + 1, r + 1);
-            if ((c + r) % 2 == 0) {
-                f.triangles.insert(f.triangles.end(), {a, b, e, a, e, d});
-            } else {
-                f.triangles.insert(f.triangles.end(), {a, b, d, b, e, d});
+            const uint32_t p = index(c, r);
+            f.grid_cell_mask[p] = 1.0f;
+            for (const auto& shape : shapes) {
+                for (uint32_t corner : shape) f.triangles.push_back(p + corner);
             }
         }
     }

@@ -75,8 +75,13 @@ struct Fabric {
     uint32_t padded_triangle_width = 0;
     HostVector<uint32_t> padded_triangle;
 
-    // Grid fabrics only: the same springs as families (empty otherwise).
+    // Grid fabrics only (empty otherwise): the same springs as families,
+    // and the triangles as two shapes per cell. Shape k of the cell whose
+    // first corner is particle p has corners p + grid_triangle_shapes[3k + i];
+    // the cell exists where grid_cell_mask[p] is 1.
     std::vector<SpringFamily, HostAllocator<SpringFamily>> grid_families;
+    HostVector<uint32_t> grid_triangle_shapes;
+    HostVector<float> grid_cell_mask;
 };
 
 // Largest particle count a fabric may have.

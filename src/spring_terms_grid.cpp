@@ -65,6 +65,59 @@ struct FamilyTerms {
     float stiffness = 0, damping = 0;
 };
 
+// force_p += sum over families of force[p] - force[p - offset] and, unless
+// diagonal is null, diagonal_p += A[p] + A[p - offset]: all families summed
+// in registers, eight particles at a time away from the grid's ends (where
+// no bounds check is needed), one at a time near them, in the same order.
+CLOTH_HOT_LOOP void gather_families(uint32_t begin, uint32_t end, uint32_t n, uint32_t max_offset,
+                                    const uint32_t* offsets, const FamilyTerms* terms, uint32_t family_count,
+                                    Vec3Soa& force, Sym3Soa* diagonal) {
+    const uint32_t safe_end = n > max_offset ? n - max_offset : 0;
+    for_each_lane_group(begin, end, max_offset, safe_end, [&](auto lanes, uint32_t p) {
+        using L = decltype(lanes);
+        using T = typename L::type;
+        T fx = L::load(&force.x[p]), fy = L::load(&force.y[p]), fz = L::load(&force.z[p]);
+        for (uint32_t f = 0; f < family_count; ++f) {
+            const Vec3Soa& t = terms[f].force;
+            fx += L::load(&t.x[p]);
+            fy += L::load(&t.y[p]);
+            fz += L::load(&t.z[p]);
+            if (p >= offsets[f]) {
+                const uint32_t s = p - offsets[f];
+                fx -= L::load(&t.x[s]);
+                fy -= L::load(&t.y[s]);
+                fz -= L::load(&t.z[s]);
+            }
+        }
+        L::store(&force.x[p], fx);
+        L::store(&force.y[p], fy);
+        L::store(&force.z[p], fz);
+        if (!diagonal) return;
+        Sym3Soa& w = *diagonal;
+        T xx = L::load(&w.xx[p]), xy = L::load(&w.xy[p]), xz = L::load(&w.xz[p]);
+        T yy = L::load(&w.yy[p]), yz = L::load(&w.yz[p]), zz = L::load(&w.zz[p]);
+        for (uint32_t f = 0; f < family_count; ++f) {
+            const Sym3Soa& b = terms[f].block;
+            for (uint32_t shift : {0u, offsets[f]}) {
+                if (p < shift) continue;
+                const uint32_t s = p - shift;
+                xx += L::load(&b.xx[s]);
+                xy += L::load(&b.xy[s]);
+                xz += L::load(&b.xz[s]);
+                yy += L::load(&b.yy[s]);
+                yz += L::load(&b.yz[s]);
+                zz += L::load(&b.zz[s]);
+            }
+        }
+        L::store(&w.xx[p], xx);
+        L::store(&w.xy[p], xy);
+        L::store(&w.xz[p], xz);
+        L::store(&w.yy[p], yy);
+        L::store(&w.yz[p], yz);
+        L::store(&w.zz[p], zz);
+    });
+}
+
 class GridSprings final : public SpringTerms {
 public:
     GridSprings(const HostMemory* memory, std::shared_ptr<const Fabric> fabric, const Material& material)
@@ -104,55 +157,9 @@ public:
         }
     }
 
-    // The particle loops below read, for each family, a particle's spring
-    // as first particle (at p) and as second (at p - offset). Particles at
-    // least max_offset_ from both ends need no bounds checks and run four
-    // at a time; the rest run one at a time through the same code.
     void gather(uint32_t begin, uint32_t end, Vec3Soa& force, Sym3Soa* diagonal) const override {
-        const uint32_t n = fabric_->particle_count();
-        const uint32_t safe_end = n > max_offset_ ? n - max_offset_ : 0;
-        for_each_lane_group(begin, end, max_offset_, safe_end, [&](auto lanes, uint32_t p) {
-            using L = decltype(lanes);
-            typename L::type fx = L::load(&force.x[p]), fy = L::load(&force.y[p]), fz = L::load(&force.z[p]);
-            for (size_t f = 0; f < terms_.size(); ++f) {
-                const Vec3Soa& t = terms_[f].force;
-                fx += L::load(&t.x[p]);
-                fy += L::load(&t.y[p]);
-                fz += L::load(&t.z[p]);
-                const uint32_t offset = offsets_[f];
-                if (p >= offset) {
-                    fx -= L::load(&t.x[p - offset]);
-                    fy -= L::load(&t.y[p - offset]);
-                    fz -= L::load(&t.z[p - offset]);
-                }
-            }
-            L::store(&force.x[p], fx);
-            L::store(&force.y[p], fy);
-            L::store(&force.z[p], fz);
-            if (!diagonal) return;
-            Sym3Soa& w = *diagonal;
-            typename L::type xx = L::load(&w.xx[p]), xy = L::load(&w.xy[p]), xz = L::load(&w.xz[p]);
-            typename L::type yy = L::load(&w.yy[p]), yz = L::load(&w.yz[p]), zz = L::load(&w.zz[p]);
-            for (size_t f = 0; f < terms_.size(); ++f) {
-                const Sym3Soa& b = terms_[f].block;
-                for (uint32_t shift : {0u, offsets_[f]}) {
-                    if (p < shift) continue;
-                    const uint32_t s = p - shift;
-                    xx += L::load(&b.xx[s]);
-                    xy += L::load(&b.xy[s]);
-                    xz += L::load(&b.xz[s]);
-                    yy += L::load(&b.yy[s]);
-                    yz += L::load(&b.yz[s]);
-                    zz += L::load(&b.zz[s]);
-                }
-            }
-            L::store(&w.xx[p], xx);
-            L::store(&w.xy[p], xy);
-            L::store(&w.xz[p], xz);
-            L::store(&w.yy[p], yy);
-            L::store(&w.yz[p], yz);
-            L::store(&w.zz[p], zz);
-        });
+        gather_families(begin, end, fabric_->particle_count(), max_offset_, offsets_.data(), terms_.data(),
+                        static_cast<uint32_t>(terms_.size()), force, diagonal);
     }
 
     void neighbour_sums(const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& q) const override {
