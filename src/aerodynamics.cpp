@@ -34,10 +34,12 @@ inline void corner_force(const AirConstants& k, float e1x, float e1y, float e1z,
     const float ux = k.wx - svx * third, uy = k.wy - svy * third, uz = k.wz - svz * third;
     const float speed_squared = ux * ux + uy * uy + uz * uz;
     const float speed = std::sqrt(speed_squared);
+    // One division: 1 / (|n| |u|) gives both reciprocals.
     const bool active = twice_area > 0.0f && speed_squared > 1e-12f;
-    const float inv_area = active ? 1.0f / twice_area : 0.0f;
-    const float inv_speed = active ? 1.0f / speed : 0.0f;
-    const float cosine_signed = (nx * ux + ny * uy + nz * uz) * inv_area * inv_speed;
+    const float inv_product = active ? 1.0f / (twice_area * speed) : 0.0f;
+    const float inv_area = speed * inv_product;
+    const float inv_speed = twice_area * inv_product;
+    const float cosine_signed = (nx * ux + ny * uy + nz * uz) * inv_product;
     const float side = cosine_signed < 0.0f ? -inv_area : inv_area;  // n downwind
     const float cosine = std::fabs(cosine_signed);
     const float pressure = k.pressure_scale * speed_squared * twice_area;

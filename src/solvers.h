@@ -4,8 +4,8 @@
 // functions of this shape.
 #pragma once
 
-#include "cloth_instance.h"
 #include "linear_system.h"
+#include "settings.h"
 
 namespace cloth {
 
