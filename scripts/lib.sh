@@ -19,10 +19,13 @@ cloth_install_packages() {
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
-# cloth_build BUILD_DIR [cmake options...]
+# cloth_build BUILD_DIR TARGET [cmake options...]: configure (tests, samples
+# and benchmarks on, so demo and test share one build tree) and build TARGET
+# ("all" for everything).
 cloth_build() {
-    local dir="$1"
-    shift
-    cmake -S "$CLOTH_ROOT" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
-    cmake --build "$dir" --parallel "$(nproc)"
+    local dir="$1" target="$2"
+    shift 2
+    cmake -S "$CLOTH_ROOT" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCLOTH_BUILD_TESTS=ON \
+        -DCLOTH_BUILD_SAMPLES=ON -DCLOTH_BUILD_BENCHMARKS=ON "$@" >/dev/null
+    cmake --build "$dir" --target "$target" --parallel "$(nproc)"
 }
