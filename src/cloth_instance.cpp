@@ -102,12 +102,20 @@ const Vec3Soa& ClothInstance::normals() const {
 }
 
 bool ClothInstance::state_is_finite() const {
-    // A sum is finite only if every term is: one pass, no branches.
-    float sum = 0;
-    for (const Vec3Soa* a : {&x_, &v_}) {
-        for (uint32_t i = 0; i < particle_count(); ++i) sum += (a->x[i] * 0.0f) + (a->y[i] * 0.0f) + (a->z[i] * 0.0f);
-    }
-    return std::isfinite(sum);
+    // x * 0 is 0 for finite x and NaN otherwise; NaN survives any sum.
+    const uint32_t n = particle_count();
+    float sum[VectorLanes::width] = {};
+    for_each_lane_group(0, n, 0, n, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        typename L::type acc = L::load(sum);
+        for (const Vec3Soa* a : {&x_, &v_}) {
+            acc += L::load(&a->x[i]) * 0.0f + L::load(&a->y[i]) * 0.0f + L::load(&a->z[i]) * 0.0f;
+        }
+        L::store(sum, acc);
+    });
+    float total = 0;
+    for (float s : sum) total += s;
+    return std::isfinite(total);
 }
 
 Status ClothInstance::step(float dt, const Vec3& gravity) {

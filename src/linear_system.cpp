@@ -54,9 +54,19 @@ void assemble_particles(const AssemblyPass& pass, uint32_t begin, uint32_t end, 
 
 void jacobi_sweep(const LinearSystem& system, const Vec3Soa& current, uint32_t begin, uint32_t end, Vec3Soa& next) {
     system.springs->neighbour_sums(current, begin, end, next);
-    for (uint32_t i = begin; i < end; ++i) {
-        next.set(i, system.diagonal_inverse->get(i) * (system.rhs->get(i) + next.get(i)));
-    }
+    const Sym3Soa& w = *system.diagonal_inverse;
+    const Vec3Soa& b = *system.rhs;
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        using T = typename L::type;
+        const T x = L::load(&b.x[i]) + L::load(&next.x[i]);
+        const T y = L::load(&b.y[i]) + L::load(&next.y[i]);
+        const T z = L::load(&b.z[i]) + L::load(&next.z[i]);
+        const T xy = L::load(&w.xy[i]), xz = L::load(&w.xz[i]), yz = L::load(&w.yz[i]);
+        L::store(&next.x[i], L::load(&w.xx[i]) * x + xy * y + xz * z);
+        L::store(&next.y[i], xy * x + L::load(&w.yy[i]) * y + yz * z);
+        L::store(&next.z[i], xz * x + yz * y + L::load(&w.zz[i]) * z);
+    });
 }
 
 void multiply_system(const LinearSystem& system, const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& y) {
