@@ -71,12 +71,17 @@ cloth_result api_call(const char* function, Body body) {
         status = Status::error(CLOTH_ERROR_INTERNAL, "internal error");
     }
     if (status.ok()) return CLOTH_OK;
-    char message[1024];
-    std::snprintf(message, sizeof message, "%s: %s", function, status.message.c_str());
+    // Reporting allocates nothing (Status holds its message in place).
+    char message[512];
+    std::snprintf(message, sizeof message, "%s: %s", function, status.message);
     set_last_error(message);
     if (log_world) {
         const bool warning = status.code == CLOTH_ERROR_SOLVER_FAILED;
-        log_world->log(warning ? CLOTH_LOG_WARNING : CLOTH_LOG_ERROR, status.code, message);
+        try {
+            log_world->log(warning ? CLOTH_LOG_WARNING : CLOTH_LOG_ERROR, status.code, message);
+        } catch (...) {
+            // A host callback that throws must not take the exception through the ABI.
+        }
     }
     return status.code;
 }
@@ -100,7 +105,8 @@ Status get_cloth(cloth_id id, ClothInstance*& cloth, const World*& log_world) {
     return {};
 }
 
-Status get_fabric(cloth_fabric_id id, std::shared_ptr<Fabric>& fabric, World*& world, const World*& log_world) {
+Status get_fabric(cloth_fabric_id id, std::shared_ptr<const Fabric>& fabric, World*& world,
+                  const World*& log_world) {
     world = find_owning_world(id);
     fabric = world ? world->find_fabric(id) : nullptr;
     if (!fabric) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is null, destroyed or unknown");
@@ -408,18 +414,16 @@ CLOTH_API cloth_result cloth_fabric_create_obj(cloth_world_id id, const char* pa
 
 CLOTH_API cloth_result cloth_fabric_destroy(cloth_fabric_id id) {
     return api_call(__func__, [&](const World*& log_world) -> Status {
-        std::shared_ptr<Fabric> fabric;
-        World* world;
-        Status s = get_fabric(id, fabric, world, log_world);
-        if (!s.ok()) return s;
-        fabric.reset();
+        World* world = find_owning_world(id);
+        if (!world) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is null, destroyed or unknown");
+        log_world = world;
         return world->destroy_fabric(id);
     });
 }
 
 CLOTH_API cloth_result cloth_fabric_get_particle_count(cloth_fabric_id id, uint32_t* out_count) {
     return api_call(__func__, [&](const World*& log_world) -> Status {
-        std::shared_ptr<Fabric> fabric;
+        std::shared_ptr<const Fabric> fabric;
         World* world;
         Status s = get_fabric(id, fabric, world, log_world);
         if (!s.ok()) return s;
@@ -431,7 +435,7 @@ CLOTH_API cloth_result cloth_fabric_get_particle_count(cloth_fabric_id id, uint3
 
 CLOTH_API cloth_result cloth_fabric_get_triangle_count(cloth_fabric_id id, uint32_t* out_count) {
     return api_call(__func__, [&](const World*& log_world) -> Status {
-        std::shared_ptr<Fabric> fabric;
+        std::shared_ptr<const Fabric> fabric;
         World* world;
         Status s = get_fabric(id, fabric, world, log_world);
         if (!s.ok()) return s;
@@ -443,7 +447,7 @@ CLOTH_API cloth_result cloth_fabric_get_triangle_count(cloth_fabric_id id, uint3
 
 CLOTH_API cloth_result cloth_fabric_get_spring_count(cloth_fabric_id id, uint32_t kinds, uint32_t* out_count) {
     return api_call(__func__, [&](const World*& log_world) -> Status {
-        std::shared_ptr<Fabric> fabric;
+        std::shared_ptr<const Fabric> fabric;
         World* world;
         Status s = get_fabric(id, fabric, world, log_world);
         if (!s.ok()) return s;
@@ -462,7 +466,7 @@ CLOTH_API cloth_result cloth_fabric_get_spring_count(cloth_fabric_id id, uint32_
 
 CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id id, uint32_t* out_indices, uint32_t capacity) {
     return api_call(__func__, [&](const World*& log_world) -> Status {
-        std::shared_ptr<Fabric> fabric;
+        std::shared_ptr<const Fabric> fabric;
         World* world;
         Status s = get_fabric(id, fabric, world, log_world);
         if (!s.ok()) return s;
@@ -624,7 +628,7 @@ CLOTH_API cloth_result cloth_pin(cloth_id id, const uint32_t* indices, uint32_t 
         Status s = get_cloth(id, cloth, log_world);
         if (s.ok()) s = check_indices(indices, count, cloth->particle_count());
         if (!s.ok()) return s;
-        for (uint32_t k = 0; k < count; ++k) cloth->pin(indices[k]);
+        cloth->set_pinned(indices, count, true);
         return {};
     });
 }
@@ -635,7 +639,7 @@ CLOTH_API cloth_result cloth_unpin(cloth_id id, const uint32_t* indices, uint32_
         Status s = get_cloth(id, cloth, log_world);
         if (s.ok()) s = check_indices(indices, count, cloth->particle_count());
         if (!s.ok()) return s;
-        for (uint32_t k = 0; k < count; ++k) cloth->unpin(indices[k]);
+        cloth->set_pinned(indices, count, false);
         return {};
     });
 }

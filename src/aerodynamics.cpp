@@ -83,6 +83,18 @@ CLOTH_HOT_LOOP void grid_air_kernel(uint32_t begin, uint32_t end, AirConstants k
     }
 }
 
+// One incidence slot (entry of particle i at base + i): f_i += corner force.
+void gather_slot_kernel(uint32_t begin, uint32_t end, int64_t base, const uint32_t* __restrict triangle,
+                        const float* __restrict cx, const float* __restrict cy, const float* __restrict cz,
+                        float* __restrict fx, float* __restrict fy, float* __restrict fz) {
+    for (uint32_t i = begin; i < end; ++i) {
+        const uint32_t t = triangle[base + i];
+        fx[i] += cx[t];
+        fy[i] += cy[t];
+        fz[i] += cz[t];
+    }
+}
+
 bool is_grid(const Fabric& fabric) { return !fabric.grid_cell_mask.empty(); }
 
 }  // namespace
@@ -125,26 +137,14 @@ void gather_air(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begi
                 Vec3Soa& particle_force) {
     const size_t n = fabric.particle_count();
     if (!is_grid(fabric)) {
-        // Padded incidence slots, one particle lane group at a time.
-        const uint32_t width = fabric.padded_triangle_width;
-        for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t p) {
-            using L = decltype(lanes);
-            typename L::type fx{}, fy{}, fz{};
-            for (uint32_t k = 0; k < width; ++k) {
-                const uint32_t* slot = &fabric.padded_triangle[k * n + p];
-                float gx[L::width], gy[L::width], gz[L::width];
-                for (uint32_t lane = 0; lane < L::width; ++lane) {
-                    gx[lane] = corner_force.x[slot[lane]];
-                    gy[lane] = corner_force.y[slot[lane]];
-                    gz[lane] = corner_force.z[slot[lane]];
-                }
-                fx += L::load(gx);
-                fy += L::load(gy);
-                fz += L::load(gz);
-            }
-            L::store(&particle_force.x[p], fx);
-            L::store(&particle_force.y[p], fy);
-            L::store(&particle_force.z[p], fz);
+        for (HostVector<float>* a : {&particle_force.x, &particle_force.y, &particle_force.z}) {
+            std::fill(a->begin() + begin, a->begin() + end, 0.0f);
+        }
+        const PaddedSlots& slots = fabric.triangle_slots;
+        slots.for_each_slot(static_cast<uint32_t>(n), begin, end, [&](uint32_t lo, uint32_t hi, int64_t base, uint32_t) {
+            gather_slot_kernel(lo, hi, base, slots.item.data(), corner_force.x.data(), corner_force.y.data(),
+                               corner_force.z.data(), particle_force.x.data(), particle_force.y.data(),
+                               particle_force.z.data());
         });
         return;
     }

@@ -60,6 +60,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     pin_target_ = x_;
     mass_.resize(n);
     pinned_.assign(n, 0.0f);
+    pinned_list_.reserve(n);
     triangle_force_.resize(air_storage_size(f));
     diagonal_.resize(n);
     diagonal_inverse_.resize(n);
@@ -75,19 +76,16 @@ void ClothInstance::set_material(const Material& material) {
     springs_->set_material(material);
 }
 
-void ClothInstance::pin(uint32_t particle) {
-    if (!is_pinned(particle)) {
-        pinned_list_.insert(std::lower_bound(pinned_list_.begin(), pinned_list_.end(), particle), particle);
+void ClothInstance::set_pinned(const uint32_t* particles, uint32_t count, bool pinned) {
+    for (uint32_t k = 0; k < count; ++k) {
+        const uint32_t i = particles[k];
+        if (pinned) pin_target_.set(i, x_.get(i));
+        pinned_[i] = pinned ? 1.0f : 0.0f;
     }
-    pinned_[particle] = 1.0f;
-    pin_target_.set(particle, x_.get(particle));
-}
-
-void ClothInstance::unpin(uint32_t particle) {
-    if (is_pinned(particle)) {
-        pinned_list_.erase(std::lower_bound(pinned_list_.begin(), pinned_list_.end(), particle));
+    pinned_list_.clear();  // keeps its capacity of one entry per particle
+    for (uint32_t i = 0; i < particle_count(); ++i) {
+        if (pinned_[i] != 0.0f) pinned_list_.push_back(i);
     }
-    pinned_[particle] = 0.0f;
 }
 
 void ClothInstance::set_position(uint32_t particle, const Vec3& x) {
@@ -125,9 +123,18 @@ Status ClothInstance::step(float dt, const Vec3& gravity) {
     const uint32_t substeps = solver_.substeps;
     const float h = dt / static_cast<float>(substeps);
     bool converged = true;
-    for (uint32_t k = 0; k < substeps; ++k) {
-        substep(h, static_cast<float>(k + 1) / static_cast<float>(substeps), gravity);
-        converged = converged && last_solve_.converged;
+    try {
+        for (uint32_t k = 0; k < substeps; ++k) {
+            substep(h, static_cast<float>(k + 1) / static_cast<float>(substeps), gravity);
+            converged = converged && last_solve_.converged;
+        }
+    } catch (const std::bad_alloc&) {
+        // Only the CG reference solver allocates during a step.
+        x_ = backup_x_;
+        v_ = backup_v_;
+        last_step_result_ = CLOTH_ERROR_OUT_OF_MEMORY;
+        return Status::error(CLOTH_ERROR_OUT_OF_MEMORY,
+                             "the solver could not allocate; the cloth was restored to its state before the step");
     }
     if (!state_is_finite()) {
         x_ = backup_x_;

@@ -38,8 +38,11 @@ public:
     AeroParams& aero() { return aero_; }
     const AeroParams& aero() const { return aero_; }
 
-    void pin(uint32_t particle);
-    void unpin(uint32_t particle);
+    // Pin (kinematic, at their current positions) or release particles.
+    // Allocates nothing: the pinned list has room for every particle.
+    void set_pinned(const uint32_t* particles, uint32_t count, bool pinned);
+    void pin(uint32_t particle) { set_pinned(&particle, 1, true); }
+    void unpin(uint32_t particle) { set_pinned(&particle, 1, false); }
     bool is_pinned(uint32_t particle) const { return pinned_[particle] != 0.0f; }
     void set_pin_target(uint32_t particle, const Vec3& target) { pin_target_.set(particle, target); }
     // Teleport a particle: new position, zero velocity (and pin target).

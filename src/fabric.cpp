@@ -18,14 +18,10 @@ Fabric::Fabric(const HostMemory* memory)
       spring_kind(HostAllocator<uint8_t>(memory)),
       incidence_offset(HostAllocator<uint32_t>(memory)),
       incidence_spring(HostAllocator<uint32_t>(memory)),
-      incidence_other(HostAllocator<uint32_t>(memory)),
-      incidence_sign(HostAllocator<float>(memory)),
       triangle_incidence_offset(HostAllocator<uint32_t>(memory)),
       triangle_incidence(HostAllocator<uint32_t>(memory)),
-      padded_spring(HostAllocator<uint32_t>(memory)),
-      padded_other(HostAllocator<uint32_t>(memory)),
-      padded_sign(HostAllocator<float>(memory)),
-      padded_triangle(HostAllocator<uint32_t>(memory)),
+      spring_slots(memory),
+      triangle_slots(memory),
       grid_families(HostAllocator<SpringFamily>(memory)),
       grid_triangle_shapes(HostAllocator<uint32_t>(memory)),
       grid_cell_mask(HostAllocator<float>(memory)) {}
@@ -57,17 +53,34 @@ void build_incidence(uint32_t particle_count, uint32_t item_count, int ends_per_
     }
 }
 
-// Slot-major copy of CSR lists, padded with `dummy` up to the widest list.
-uint32_t pad_incidence(const HostVector<uint32_t>& offset, const HostVector<uint32_t>& items, uint32_t dummy,
-                       HostVector<uint32_t>& padded) {
+// Lays out CSR lists as padded slots (PaddedSlots) and calls
+// put(slot, p, e) for every slot of particle p: e is its CSR entry, or
+// UINT32_MAX for padding.
+template <class Put>
+void build_slots(const HostVector<uint32_t>& offset, bool with_other_and_sign, PaddedSlots& slots, Put put) {
     const uint32_t n = static_cast<uint32_t>(offset.size() - 1);
-    uint32_t width = 0;
-    for (uint32_t p = 0; p < n; ++p) width = std::max(width, offset[p + 1] - offset[p]);
-    padded.assign(static_cast<size_t>(width) * n, dummy);
-    for (uint32_t p = 0; p < n; ++p) {
-        for (uint32_t e = offset[p]; e < offset[p + 1]; ++e) padded[(e - offset[p]) * n + p] = items[e];
+    const uint32_t chunks = (n + PaddedSlots::kChunk - 1) / PaddedSlots::kChunk;
+    slots.begin.resize(chunks);
+    slots.width.resize(chunks);
+    size_t total = 0;
+    for (uint32_t c = 0; c < chunks; ++c) {
+        const uint32_t first = c * PaddedSlots::kChunk, last = std::min(n, first + PaddedSlots::kChunk);
+        uint32_t width = 0;
+        for (uint32_t p = first; p < last; ++p) width = std::max(width, offset[p + 1] - offset[p]);
+        slots.begin[c] = total;
+        slots.width[c] = width;
+        total += static_cast<size_t>(width) * (last - first);
     }
-    return width;
+    slots.item.resize(total);
+    if (with_other_and_sign) {
+        slots.other.resize(total);
+        slots.sign.resize(total);
+    }
+    slots.for_each_slot(n, 0, n, [&](uint32_t lo, uint32_t hi, int64_t base, uint32_t k) {
+        for (uint32_t p = lo; p < hi; ++p) {
+            put(static_cast<size_t>(base + p), p, offset[p] + k < offset[p + 1] ? offset[p] + k : UINT32_MAX);
+        }
+    });
 }
 
 // Shared tail of every builder: validates the geometry, computes rest
@@ -122,35 +135,23 @@ Status finish_fabric(const std::vector<SpringSpec>& springs, Fabric& f) {
             out[1] = f.spring_second[s];
         },
         f.incidence_offset, f.incidence_spring);
-    f.incidence_other.resize(f.incidence_spring.size());
-    f.incidence_sign.resize(f.incidence_spring.size());
-    for (uint32_t p = 0; p < n; ++p) {
-        for (uint32_t e = f.incidence_offset[p]; e < f.incidence_offset[p + 1]; ++e) {
-            const uint32_t s = f.incidence_spring[e];
-            const bool first = f.spring_first[s] == p;
-            f.incidence_other[e] = first ? f.spring_second[s] : f.spring_first[s];
-            f.incidence_sign[e] = first ? 1.0f : -1.0f;
-        }
-    }
-    f.padded_spring_width = pad_incidence(f.incidence_offset, f.incidence_spring, count, f.padded_spring);
-    f.padded_other.resize(f.padded_spring.size());
-    f.padded_sign.assign(f.padded_spring.size(), 0.0f);
-    for (uint32_t p = 0; p < n; ++p) {
-        for (uint32_t k = 0; k < f.padded_spring_width; ++k) f.padded_other[static_cast<size_t>(k) * n + p] = p;
-        for (uint32_t e = f.incidence_offset[p]; e < f.incidence_offset[p + 1]; ++e) {
-            const size_t slot = static_cast<size_t>(e - f.incidence_offset[p]) * n + p;
-            f.padded_other[slot] = f.incidence_other[e];
-            f.padded_sign[slot] = f.incidence_sign[e];
-        }
-    }
+    // Padding: the dummy spring `count`, the particle itself at the other end, sign 0.
+    build_slots(f.incidence_offset, true, f.spring_slots, [&](size_t slot, uint32_t p, uint32_t e) {
+        const uint32_t spring = e == UINT32_MAX ? count : f.incidence_spring[e];
+        const bool first = e != UINT32_MAX && f.spring_first[spring] == p;
+        f.spring_slots.item[slot] = spring;
+        f.spring_slots.other[slot] = e == UINT32_MAX ? p : first ? f.spring_second[spring] : f.spring_first[spring];
+        f.spring_slots.sign[slot] = e == UINT32_MAX ? 0.0f : first ? 1.0f : -1.0f;
+    });
     build_incidence(
         n, t_count, 3,
         [&](uint32_t t, uint32_t* out) {
             for (int k = 0; k < 3; ++k) out[k] = f.triangles[3 * t + k];
         },
         f.triangle_incidence_offset, f.triangle_incidence);
-    f.padded_triangle_width =
-        pad_incidence(f.triangle_incidence_offset, f.triangle_incidence, t_count, f.padded_triangle);
+    build_slots(f.triangle_incidence_offset, false, f.triangle_slots, [&](size_t slot, uint32_t, uint32_t e) {
+        f.triangle_slots.item[slot] = e == UINT32_MAX ? t_count : f.triangle_incidence[e];
+    });
     return {};
 }
 

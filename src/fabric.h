@@ -10,6 +10,7 @@
 
 #include <cloth/cloth.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -31,6 +32,49 @@ struct SpringFamily {
     SpringKind kind = kStructural;
     float rest_length = 0;
     HostVector<float> mask;
+};
+
+// Incidence lists laid out for vectorized gathers. Particles are taken in
+// chunks of kChunk; within a chunk every list is padded to the chunk's
+// widest one and stored slot-major, so slot k of consecutive particles is
+// contiguous. Entry k of particle p in chunk c is at
+// begin[c] + k * (particles in chunk c) + (p - c * kChunk). Padding points at
+// a dummy item (index = item count) whose per-instance data stays zero, with
+// sign 0. Within a particle the order is the CSR order, so sums are formed
+// identically however a particle range is split. Padding per chunk keeps a
+// single high-valence vertex (a fan, a pole) from padding the whole mesh.
+struct PaddedSlots {
+    static constexpr uint32_t kChunk = 256;
+
+    explicit PaddedSlots(const HostMemory* memory)
+        : begin(HostAllocator<size_t>(memory)),
+          width(HostAllocator<uint32_t>(memory)),
+          item(HostAllocator<uint32_t>(memory)),
+          other(HostAllocator<uint32_t>(memory)),
+          sign(HostAllocator<float>(memory)) {}
+
+    HostVector<size_t> begin;    // per chunk
+    HostVector<uint32_t> width;  // per chunk
+    HostVector<uint32_t> item;
+    HostVector<uint32_t> other;  // optional, same layout as item
+    HostVector<float> sign;      // optional, same layout as item
+
+    // Calls visit(lo, hi, base, k) for every slot k of every chunk piece of
+    // [first, last), chunk by chunk and k = 0, 1, ... within a chunk: slot k
+    // of particle p in [lo, hi) is at index base + p.
+    template <class Visit>
+    void for_each_slot(uint32_t particle_count, uint32_t first, uint32_t last, Visit visit) const {
+        for (uint32_t lo = first; lo < last;) {
+            const uint32_t c = lo / kChunk;
+            const uint32_t chunk_first = c * kChunk;
+            const uint32_t chunk_size = std::min(kChunk, particle_count - chunk_first);
+            const uint32_t hi = std::min(last, chunk_first + chunk_size);
+            for (uint32_t k = 0; k < width[c]; ++k) {
+                visit(lo, hi, static_cast<int64_t>(begin[c] + static_cast<size_t>(k) * chunk_size) - chunk_first, k);
+            }
+            lo = hi;
+        }
+    }
 };
 
 struct Fabric {
@@ -55,25 +99,15 @@ struct Fabric {
     // Per particle p, entries incidence_offset[p] .. incidence_offset[p+1].
     HostVector<uint32_t> incidence_offset;
     HostVector<uint32_t> incidence_spring;
-    HostVector<uint32_t> incidence_other;  // the particle at the other end
-    HostVector<float> incidence_sign;      // +1 if p is the spring's first particle, else -1
 
     // Triangles incident to each particle, for normals and wind forces.
     HostVector<uint32_t> triangle_incidence_offset;
     HostVector<uint32_t> triangle_incidence;
 
-    // The same incidence lists padded to a fixed width and stored slot-major
-    // (entry k of particle p at k * particle_count + p), so that the gathers
-    // run as vectorized loops over particles. Padding points at a dummy
-    // spring (index spring_count) or triangle (index triangle_count) whose
-    // per-instance data is kept zero; its sign is 0. The order within a
-    // particle is the CSR order, so sums are formed identically.
-    uint32_t padded_spring_width = 0;
-    HostVector<uint32_t> padded_spring;
-    HostVector<uint32_t> padded_other;
-    HostVector<float> padded_sign;
-    uint32_t padded_triangle_width = 0;
-    HostVector<uint32_t> padded_triangle;
+    // The same incidence lists in padded slots (see PaddedSlots), so that
+    // the gathers run as vectorized loops over particles.
+    PaddedSlots spring_slots;    // item: spring; other: particle at its other end; sign: +-1
+    PaddedSlots triangle_slots;  // item: triangle
 
     // Grid fabrics only (empty otherwise): the same springs as families,
     // and the triangles as two shapes per cell. Shape k of the cell whose

@@ -1,6 +1,11 @@
 // Small fixed-size math on top of Eigen: 3-vectors and symmetric 3x3 blocks.
 #pragma once
 
+// Determinism and the non-finite safeguard rely on IEEE semantics.
+#if defined(__FAST_MATH__) || (defined(__FINITE_MATH_ONLY__) && __FINITE_MATH_ONLY__)
+#error "cloth must be built without -ffast-math / -ffinite-math-only (it needs IEEE NaN and ordering)"
+#endif
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross products
 #include <cmath>
@@ -52,9 +57,5 @@ struct Sym3 {
                 (xx * yy - xy * xy) * inv};
     }
 };
-
-inline bool is_finite(const Vec3& v) {
-    return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
-}
 
 }  // namespace cloth

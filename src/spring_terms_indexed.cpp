@@ -1,14 +1,11 @@
 // IndexedSprings: springs of any mesh as (first, second) index pairs.
 // Stage 1 is a loop over springs; the particle gathers walk the fabric's
-// padded incidence slots, slot by slot over chunks of particles, so both
-// vectorize (indexed loads, contiguous stores and accumulators).
+// padded incidence slots (PaddedSlots), slot by slot over chunks of
+// particles, so both vectorize (indexed loads, contiguous accumulators).
 #include "spring_terms.h"
 
 namespace cloth {
 namespace {
-
-// Chunks of particles keep the gather accumulators in L1.
-constexpr uint32_t kChunk = 256;
 
 // The kernels take every array as a __restrict parameter: GCC trusts
 // restrict on parameters (not on locals) and only then vectorizes the
@@ -36,25 +33,27 @@ void evaluate_kernel(uint32_t begin, uint32_t end, float h, JacobianClamp clamp,
     }
 }
 
-// One incidence slot: f_i += sign * force_s (and w_i += A_s).
-void gather_kernel(uint32_t begin, uint32_t end, const uint32_t* __restrict spring, const float* __restrict sign,
-                   const float* __restrict sfx, const float* __restrict sfy, const float* __restrict sfz,
-                   float* __restrict fx, float* __restrict fy, float* __restrict fz) {
+// One incidence slot (entry of particle i at base + i): f_i += sign * force_s.
+void gather_kernel(uint32_t begin, uint32_t end, int64_t base, const uint32_t* __restrict spring,
+                   const float* __restrict sign, const float* __restrict sfx, const float* __restrict sfy,
+                   const float* __restrict sfz, float* __restrict fx, float* __restrict fy, float* __restrict fz) {
     for (uint32_t i = begin; i < end; ++i) {
-        const uint32_t s = spring[i];
-        fx[i] += sfx[s] * sign[i];
-        fy[i] += sfy[s] * sign[i];
-        fz[i] += sfz[s] * sign[i];
+        const uint32_t s = spring[base + i];
+        const float g = sign[base + i];
+        fx[i] += sfx[s] * g;
+        fy[i] += sfy[s] * g;
+        fz[i] += sfz[s] * g;
     }
 }
 
-void gather_block_kernel(uint32_t begin, uint32_t end, const uint32_t* __restrict spring,
+// One incidence slot: w_i += A_s.
+void gather_block_kernel(uint32_t begin, uint32_t end, int64_t base, const uint32_t* __restrict spring,
                          const float* __restrict sxx, const float* __restrict sxy, const float* __restrict sxz,
                          const float* __restrict syy, const float* __restrict syz, const float* __restrict szz,
                          float* __restrict wxx, float* __restrict wxy, float* __restrict wxz, float* __restrict wyy,
                          float* __restrict wyz, float* __restrict wzz) {
     for (uint32_t i = begin; i < end; ++i) {
-        const uint32_t s = spring[i];
+        const uint32_t s = spring[base + i];
         wxx[i] += sxx[s];
         wxy[i] += sxy[s];
         wxz[i] += sxz[s];
@@ -65,13 +64,14 @@ void gather_block_kernel(uint32_t begin, uint32_t end, const uint32_t* __restric
 }
 
 // One incidence slot: q_i += A_s x_other.
-void product_kernel(uint32_t begin, uint32_t end, const uint32_t* __restrict spring, const uint32_t* __restrict other,
+void product_kernel(uint32_t begin, uint32_t end, int64_t base, const uint32_t* __restrict spring,
+                    const uint32_t* __restrict other,
                     const float* __restrict sxx, const float* __restrict sxy, const float* __restrict sxz,
                     const float* __restrict syy, const float* __restrict syz, const float* __restrict szz,
                     const float* __restrict xx, const float* __restrict xy, const float* __restrict xz,
                     float* __restrict qx, float* __restrict qy, float* __restrict qz) {
     for (uint32_t i = begin; i < end; ++i) {
-        const uint32_t s = spring[i], o = other[i];
+        const uint32_t s = spring[base + i], o = other[base + i];
         const float ox = xx[o], oy = xy[o], oz = xz[o];
         qx[i] += sxx[s] * ox + sxy[s] * oy + sxz[s] * oz;
         qy[i] += sxy[s] * ox + syy[s] * oy + syz[s] * oz;
@@ -116,36 +116,26 @@ public:
     }
 
     void gather(uint32_t begin, uint32_t end, Vec3Soa& force, Sym3Soa* diagonal) const override {
-        const Fabric& f = *fabric_;
-        const size_t n = f.particle_count();
-        for (uint32_t chunk = begin; chunk < end; chunk += kChunk) {
-            const uint32_t chunk_end = std::min(end, chunk + kChunk);
-            for (uint32_t k = 0; k < f.padded_spring_width; ++k) {
-                const uint32_t* spring = f.padded_spring.data() + k * n;
-                gather_kernel(chunk, chunk_end, spring, f.padded_sign.data() + k * n, force_.x.data(),
-                              force_.y.data(), force_.z.data(), force.x.data(), force.y.data(), force.z.data());
-                if (!diagonal) continue;
-                gather_block_kernel(chunk, chunk_end, spring, block_.xx.data(), block_.xy.data(), block_.xz.data(),
-                                    block_.yy.data(), block_.yz.data(), block_.zz.data(), diagonal->xx.data(),
-                                    diagonal->xy.data(), diagonal->xz.data(), diagonal->yy.data(),
-                                    diagonal->yz.data(), diagonal->zz.data());
-            }
-        }
+        const PaddedSlots& slots = fabric_->spring_slots;
+        slots.for_each_slot(fabric_->particle_count(), begin, end, [&](uint32_t lo, uint32_t hi, int64_t base, uint32_t) {
+            gather_kernel(lo, hi, base, slots.item.data(), slots.sign.data(), force_.x.data(), force_.y.data(),
+                          force_.z.data(), force.x.data(), force.y.data(), force.z.data());
+            if (!diagonal) return;
+            gather_block_kernel(lo, hi, base, slots.item.data(), block_.xx.data(), block_.xy.data(), block_.xz.data(),
+                                block_.yy.data(), block_.yz.data(), block_.zz.data(), diagonal->xx.data(),
+                                diagonal->xy.data(), diagonal->xz.data(), diagonal->yy.data(), diagonal->yz.data(),
+                                diagonal->zz.data());
+        });
     }
 
     void neighbour_sums(const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& q) const override {
-        const Fabric& f = *fabric_;
-        const size_t n = f.particle_count();
+        const PaddedSlots& slots = fabric_->spring_slots;
         for (HostVector<float>* a : {&q.x, &q.y, &q.z}) std::fill(a->begin() + begin, a->begin() + end, 0.0f);
-        for (uint32_t chunk = begin; chunk < end; chunk += kChunk) {
-            const uint32_t chunk_end = std::min(end, chunk + kChunk);
-            for (uint32_t k = 0; k < f.padded_spring_width; ++k) {
-                product_kernel(chunk, chunk_end, f.padded_spring.data() + k * n, f.padded_other.data() + k * n,
-                               block_.xx.data(), block_.xy.data(), block_.xz.data(), block_.yy.data(),
-                               block_.yz.data(), block_.zz.data(), x.x.data(), x.y.data(), x.z.data(), q.x.data(),
-                               q.y.data(), q.z.data());
-            }
-        }
+        slots.for_each_slot(fabric_->particle_count(), begin, end, [&](uint32_t lo, uint32_t hi, int64_t base, uint32_t) {
+            product_kernel(lo, hi, base, slots.item.data(), slots.other.data(), block_.xx.data(), block_.xy.data(),
+                           block_.xz.data(), block_.yy.data(), block_.yz.data(), block_.zz.data(), x.x.data(),
+                           x.y.data(), x.z.data(), q.x.data(), q.y.data(), q.z.data());
+        });
     }
 
     void for_each_block(const std::function<void(uint32_t, uint32_t, const Sym3&)>& visit) const override {

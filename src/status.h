@@ -1,25 +1,32 @@
 // The result of a core operation that can fail: a public result code and a
-// message for the host. The C API hands both over unchanged.
+// message for the host. The message lives in a fixed buffer, so reporting
+// a failure never allocates (it may be reporting a failed allocation).
 #pragma once
 
 #include <cloth/cloth.h>
 
 #include <cstdio>
-#include <string>
 
 namespace cloth {
 
 struct Status {
     cloth_result code = CLOTH_OK;
-    std::string message;
+    char message[384] = "";
 
     bool ok() const { return code == CLOTH_OK; }
 
     template <class... Args>
     static Status error(cloth_result code, const char* format, Args... args) {
-        char buffer[512];
-        std::snprintf(buffer, sizeof buffer, format, args...);
-        return Status{code, buffer};
+        Status status;
+        status.code = code;
+        std::snprintf(status.message, sizeof status.message, format, args...);
+        return status;
+    }
+    static Status error(cloth_result code, const char* message) {
+        Status status;
+        status.code = code;
+        std::snprintf(status.message, sizeof status.message, "%s", message);
+        return status;
     }
 };
 

@@ -60,7 +60,7 @@ void release(Slot<T>& slot) {
 
 }  // namespace
 
-std::shared_ptr<Fabric> World::find_fabric(cloth_fabric_id id) const {
+std::shared_ptr<const Fabric> World::find_fabric(cloth_fabric_id id) const {
     if (!lookup(fabrics_, id)) return nullptr;
     return fabrics_[id.index1 - 1].object;
 }
@@ -101,24 +101,19 @@ Status World::destroy_cloth(cloth_id id) {
     return {};
 }
 
-size_t World::live_cloths() const {
-    size_t count = 0;
-    for (const auto& slot : cloths_) count += slot.object ? 1 : 0;
-    return count;
-}
-
 Status World::step(float dt) {
     Status first_failure;
     for (uint32_t s = 0; s < cloths_.size(); ++s) {
         ClothInstance* cloth = cloths_[s].object.get();
         if (!cloth) continue;
         Status status = cloth->step(dt, gravity);
-        if (!status.ok()) {
-            status.message = "cloth " + std::to_string(s + 1) + ": " + status.message;
-            // The first non-finite state outranks any solver warning.
-            const bool outranks = status.code == CLOTH_ERROR_NONFINITE_STATE &&
-                                  first_failure.code != CLOTH_ERROR_NONFINITE_STATE;
-            if (first_failure.ok() || outranks) first_failure = status;
+        if (status.ok()) continue;
+        // A cloth that had to be restored outranks a solver warning.
+        auto restored = [](cloth_result code) {
+            return code == CLOTH_ERROR_NONFINITE_STATE || code == CLOTH_ERROR_OUT_OF_MEMORY;
+        };
+        if (first_failure.ok() || (restored(status.code) && !restored(first_failure.code))) {
+            first_failure = Status::error(status.code, "cloth slot %u: %.360s", s + 1, status.message);
         }
     }
     return first_failure;

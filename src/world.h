@@ -35,7 +35,7 @@ public:
     // Fabrics. `build` fills a fresh Fabric and returns its status.
     template <class Build>
     Status create_fabric(Build build, cloth_fabric_id* out);
-    std::shared_ptr<Fabric> find_fabric(cloth_fabric_id id) const;
+    std::shared_ptr<const Fabric> find_fabric(cloth_fabric_id id) const;
     Status destroy_fabric(cloth_fabric_id id);
 
     Status create_cloth(std::shared_ptr<const Fabric> fabric, const Material& material, const SolverSettings& solver,
@@ -49,7 +49,6 @@ public:
 
     void log(cloth_log_level level, cloth_result code, const char* message) const;
 
-    size_t live_cloths() const;
 
 private:
     template <class T>

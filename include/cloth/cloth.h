@@ -25,8 +25,9 @@
  *
  * Descriptions. Every create call takes a description that must come from
  * its cloth_default_*() function (a hidden cookie catches an uninitialised
- * one) and carries struct_size, so a caller built against an older header
- * keeps working with a newer library. Fields are only ever appended to the
+ * one) and carries struct_size: this version accepts exactly its own sizes,
+ * and a later minor version will accept these sizes too, so a caller built
+ * against this header keeps working. Fields are only ever appended to the
  * outermost struct; a struct embedded by value in another
  * (cloth_spring_params, cloth_solver_settings, cloth_aero_params) is frozen
  * as it is, and later settings arrive as new fields of the outer struct or
@@ -360,7 +361,7 @@ CLOTH_API cloth_result cloth_set_wind(cloth_id cloth, const float wind[3]);
 typedef struct cloth_stats {
     uint32_t struct_size;      ///< set by the caller to sizeof(cloth_stats)
     double kinetic_energy;     ///< J, free particles only
-    double gravity_energy;     ///< J, m g . x relative to the origin, free particles only
+    double gravity_energy;     ///< J, -m g . x (height energy relative to the origin), free particles only
     double elastic_energy;     ///< J, sum of k (L - l0)^2 / 2 over springs
     float max_strain;          ///< max over structural springs of (L - l0) / l0
     float mean_strain;         ///< mean of |L - l0| / l0 over structural springs

@@ -1,6 +1,8 @@
 // Topology: spring counts per kind, lumped masses, meshes and OBJ files.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -35,23 +37,51 @@ TEST(Fabric, LumpedAreasSumToTheClothArea) {
     EXPECT_LT(fabric->rest_area[0], fabric->rest_area[9 * 6 + 4]);
 }
 
-TEST(Fabric, IncidenceListsEveryIncidentSpringOnceInIncreasingOrder) {
-    auto fabric = cloth::testing::make_grid(5, 4);
+TEST(Fabric, PaddedSlotsListEveryIncidentSpringOnceInIncreasingOrderWithSignAndOtherEnd) {
+    // 600 particles: three slot chunks, the last one partial.
+    auto fabric = cloth::testing::make_grid(30, 20);
+    const PaddedSlots& slots = fabric->spring_slots;
+    std::vector<std::vector<uint32_t>> seen(fabric->particle_count());
+    slots.for_each_slot(fabric->particle_count(), 0, fabric->particle_count(),
+                        [&](uint32_t lo, uint32_t hi, int64_t base, uint32_t) {
+                            for (uint32_t p = lo; p < hi; ++p) {
+                                const size_t slot = static_cast<size_t>(base + p);
+                                const uint32_t s = slots.item[slot];
+                                if (s == fabric->spring_count()) {  // padding
+                                    EXPECT_EQ(slots.sign[slot], 0.0f);
+                                    continue;
+                                }
+                                const bool first = fabric->spring_first[s] == p;
+                                ASSERT_TRUE(first || fabric->spring_second[s] == p);
+                                EXPECT_EQ(slots.other[slot], first ? fabric->spring_second[s] : fabric->spring_first[s]);
+                                EXPECT_EQ(slots.sign[slot], first ? 1.0f : -1.0f);
+                                seen[p].push_back(s);
+                            }
+                        });
+    size_t total = 0;
     for (uint32_t p = 0; p < fabric->particle_count(); ++p) {
-        uint32_t previous = 0;
-        for (uint32_t e = fabric->incidence_offset[p]; e < fabric->incidence_offset[p + 1]; ++e) {
-            const uint32_t s = fabric->incidence_spring[e];
-            if (e > fabric->incidence_offset[p]) {
-                EXPECT_GT(s, previous);
-            }
-            previous = s;
-            const bool first = fabric->spring_first[s] == p;
-            EXPECT_TRUE(first || fabric->spring_second[s] == p);
-            EXPECT_EQ(fabric->incidence_other[e], first ? fabric->spring_second[s] : fabric->spring_first[s]);
-            EXPECT_EQ(fabric->incidence_sign[e], first ? 1.0f : -1.0f);
-        }
+        EXPECT_TRUE(std::is_sorted(seen[p].begin(), seen[p].end())) << "particle " << p;
+        EXPECT_EQ(seen[p].size(), fabric->incidence_offset[p + 1] - fabric->incidence_offset[p]);
+        total += seen[p].size();
     }
-    EXPECT_EQ(fabric->incidence_spring.size(), 2 * fabric->spring_count());
+    EXPECT_EQ(total, 2 * fabric->spring_count()) << "every spring once at each end";
+}
+
+TEST(Fabric, OneHighValenceVertexPadsOnlyItsOwnChunk) {
+    // A fan: vertex 0 joined to a rim of 2000 vertices.
+    const uint32_t rim = 2000;
+    std::vector<float> positions = {0, 0, 0};
+    std::vector<uint32_t> indices;
+    for (uint32_t i = 0; i < rim; ++i) {
+        const float angle = 6.2831853f * static_cast<float>(i) / rim;
+        positions.insert(positions.end(), {std::cos(angle), std::sin(angle), 0.0f});
+        indices.insert(indices.end(), {0, 1 + i, 1 + (i + 1) % rim});
+    }
+    Fabric fan(cloth::testing::heap());
+    ASSERT_TRUE(build_mesh_fabric(positions.data(), rim + 1, indices.data(), rim, CLOTH_SPRING_STRUCTURAL, fan).ok());
+    // Unchunked padding would need (rim + 1) * rim slots (4M); per chunk it stays near the real count.
+    EXPECT_LT(fan.spring_slots.item.size(), 3 * PaddedSlots::kChunk * static_cast<size_t>(rim) / 2);
+    EXPECT_LT(fan.spring_slots.item.size(), static_cast<size_t>(rim + 1) * rim / 4);
 }
 
 // Two triangles sharing the edge (1, 2) of the unit square.
