@@ -480,29 +480,33 @@ CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id id, uint32_t*
 // ================================================================ cloth
 
 CLOTH_API cloth_solver_settings cloth_default_solver_settings(void) {
+    const SolverSettings core;
     cloth_solver_settings s{};
     s.struct_size = sizeof(cloth_solver_settings);
-    s.kind = CLOTH_SOLVER_JACOBI;
-    s.iterations = 1;
-    s.substeps = 1;
-    s.cg_tolerance = 1e-6f;
-    s.cg_max_iterations = 1000;
-    s.compression_safe_jacobian = true;
+    s.kind = core.kind;
+    s.iterations = core.iterations;
+    s.substeps = core.substeps;
+    s.cg_tolerance = core.cg_tolerance;
+    s.cg_max_iterations = core.cg_max_iterations;
+    s.compression_safe_jacobian = core.compression_safe_jacobian;
     return s;
 }
 
 CLOTH_API cloth_desc cloth_default_desc(void) {
+    const Material material;
+    const AeroParams aero;
     cloth_desc d{};
     d.struct_size = sizeof(cloth_desc);
-    d.area_density = 0.2f;
-    d.structural = {1000.0f, 0.5f};
-    d.shear = {200.0f, 0.2f};
-    d.bend = {20.0f, 0.05f};
+    d.area_density = material.area_density;
+    d.particle_mass = material.particle_mass;
+    d.structural = {material.springs[kStructural].stiffness, material.springs[kStructural].damping};
+    d.shear = {material.springs[kShear].stiffness, material.springs[kShear].damping};
+    d.bend = {material.springs[kBend].stiffness, material.springs[kBend].damping};
     d.solver = cloth_default_solver_settings();
-    d.aero.air_density = 1.2f;
-    d.aero.drag_coefficient = 1.0f;
-    d.aero.lift_coefficient = 0.5f;
-    d.aero.linear_drag = 0.02f;
+    d.aero.air_density = aero.air_density;
+    d.aero.drag_coefficient = aero.drag_coefficient;
+    d.aero.lift_coefficient = aero.lift_coefficient;
+    d.aero.linear_drag = aero.linear_drag;
     d.internal_cookie = kCookie;
     return d;
 }

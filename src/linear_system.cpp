@@ -31,11 +31,10 @@ void assemble_particles(const AssemblyPass& pass, uint32_t begin, uint32_t end, 
         using T = typename L::type;
         const T xx = L::load(&diagonal.xx[i]), xy = L::load(&diagonal.xy[i]), xz = L::load(&diagonal.xz[i]);
         const T yy = L::load(&diagonal.yy[i]), yz = L::load(&diagonal.yz[i]), zz = L::load(&diagonal.zz[i]);
-        const T c_xx = yy * zz - yz * yz, c_xy = xz * yz - xy * zz, c_xz = xy * yz - xz * yy;
-        const T det = xx * c_xx + xy * c_xy + xz * c_xz;
-        const T scale = (1.0f - L::load(&pass.pinned[i])) / det;
-        const T ixx = c_xx * scale, ixy = c_xy * scale, ixz = c_xz * scale;
-        const T iyy = (xx * zz - xz * xz) * scale, iyz = (xy * xz - xx * yz) * scale, izz = (xx * yy - xy * xy) * scale;
+        T inverse[6];
+        invert_symmetric(xx, xy, xz, yy, yz, zz, 1.0f - L::load(&pass.pinned[i]), inverse);
+        const T ixx = inverse[0], ixy = inverse[1], ixz = inverse[2], iyy = inverse[3], iyz = inverse[4],
+                izz = inverse[5];
         L::store(&diagonal_inverse.xx[i], ixx);
         L::store(&diagonal_inverse.xy[i], ixy);
         L::store(&diagonal_inverse.xz[i], ixz);

@@ -45,17 +45,30 @@ struct Sym3 {
         return m;
     }
 
-    // Inverse by cofactors. The matrices inverted here (W_ii) are symmetric
-    // positive definite, so the determinant is positive.
-    Sym3 inverse() const {
-        const float c_xx = yy * zz - yz * yz;
-        const float c_xy = xz * yz - xy * zz;
-        const float c_xz = xy * yz - xz * yy;
-        const float det = xx * c_xx + xy * c_xy + xz * c_xz;
-        const float inv = 1.0f / det;
-        return {c_xx * inv, c_xy * inv, c_xz * inv, (xx * zz - xz * xz) * inv, (xy * xz - xx * yz) * inv,
-                (xx * yy - xy * xy) * inv};
-    }
+    // Inverse by cofactors (see invert_symmetric). The matrices inverted
+    // here (W_ii) are symmetric positive definite, so det > 0.
+    Sym3 inverse() const;
 };
+
+// numerator * M^-1 for the symmetric M = (xx, xy, xz, yy, yz, zz), by
+// cofactors, written to out[6] in the same order. T is float, or a vector
+// of lanes (lanes.h), so one formula serves scalar and vector code.
+template <class T>
+inline void invert_symmetric(T xx, T xy, T xz, T yy, T yz, T zz, T numerator, T* out) {
+    const T c_xx = yy * zz - yz * yz, c_xy = xz * yz - xy * zz, c_xz = xy * yz - xz * yy;
+    const T scale = numerator / (xx * c_xx + xy * c_xy + xz * c_xz);
+    out[0] = c_xx * scale;
+    out[1] = c_xy * scale;
+    out[2] = c_xz * scale;
+    out[3] = (xx * zz - xz * xz) * scale;
+    out[4] = (xy * xz - xx * yz) * scale;
+    out[5] = (xx * yy - xy * xy) * scale;
+}
+
+inline Sym3 Sym3::inverse() const {
+    float out[6];
+    invert_symmetric(xx, xy, xz, yy, yz, zz, 1.0f, out);
+    return {out[0], out[1], out[2], out[3], out[4], out[5]};
+}
 
 }  // namespace cloth

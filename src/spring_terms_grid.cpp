@@ -3,10 +3,10 @@
 // stored by first particle, so every loop here has contiguous loads only:
 // particle p reads its family-f spring as first particle at p and as second
 // particle at p - offset_f. Entries past n - offset_f are never written and
-// stay zero. The per-spring loop is vectorized by the compiler; the
-// per-particle gathers sum all families in registers, four particles at a
-// time (lanes.h) for the force and diagonal gather; the products gather
-// family by family over L1-sized chunks, which vectorizes best.
+// stay zero. The per-spring loop is vectorized by the compiler; the force
+// and diagonal gather sums all families in registers, eight particles at a
+// time (lanes.h); the products gather goes family by family over L1-sized
+// chunks, which vectorizes best.
 #include "lanes.h"
 #include "spring_terms.h"
 
@@ -67,13 +67,13 @@ struct FamilyTerms {
 
 // force_p += sum over families of force[p] - force[p - offset] and, unless
 // diagonal is null, diagonal_p += A[p] + A[p - offset]: all families summed
-// in registers, eight particles at a time away from the grid's ends (where
-// no bounds check is needed), one at a time near them, in the same order.
+// in registers, eight particles at a time from max_offset on (where every
+// p - offset is valid; loads at p stay below n), one at a time before it,
+// in the same order.
 CLOTH_HOT_LOOP void gather_families(uint32_t begin, uint32_t end, uint32_t n, uint32_t max_offset,
                                     const uint32_t* offsets, const FamilyTerms* terms, uint32_t family_count,
                                     Vec3Soa& force, Sym3Soa* diagonal) {
-    const uint32_t safe_end = n > max_offset ? n - max_offset : 0;
-    for_each_lane_group(begin, end, max_offset, safe_end, [&](auto lanes, uint32_t p) {
+    for_each_lane_group(begin, end, max_offset, n, [&](auto lanes, uint32_t p) {
         using L = decltype(lanes);
         using T = typename L::type;
         T fx = L::load(&force.x[p]), fy = L::load(&force.y[p]), fz = L::load(&force.z[p]);
@@ -124,6 +124,7 @@ public:
         : fabric_(std::move(fabric)), terms_(HostAllocator<FamilyTerms>(memory)),
           offsets_(HostAllocator<uint32_t>(memory)) {
         const uint32_t n = fabric_->particle_count();
+        terms_.reserve(fabric_->grid_families.size());
         for (const SpringFamily& family : fabric_->grid_families) {
             FamilyTerms& t = terms_.emplace_back(memory);
             t.force.resize(n);
@@ -201,7 +202,7 @@ public:
 private:
     std::shared_ptr<const Fabric> fabric_;
     std::vector<FamilyTerms, HostAllocator<FamilyTerms>> terms_;
-    std::vector<uint32_t, HostAllocator<uint32_t>> offsets_;  // per family
+    HostVector<uint32_t> offsets_;  // per family
     uint32_t max_offset_ = 0;
 };
 

@@ -15,7 +15,7 @@ namespace cloth {
 //   f_i  = k (L - l0) u
 //   J_ij = k [ (1 - l0/L) I + (l0/L) u u^T ]          stretched (or compression_safe off)
 //   J_ij = k u u^T                                    compressed, compression_safe on (eq. 12)
-// The reference form, for tests; the step uses spring_term below.
+// Computed by the step's kernel, spring_term below (tests check it).
 struct SpringEval {
     Vec3 force;
     Sym3 jacobian;
@@ -40,7 +40,8 @@ struct JacobianClamp {
 //   block = A_s = h^2 J + h c u u^T                 (W_ij = -A_s)
 // from d = x_j - x_i and rv = v_j - v_i. Branch-free, so the loops that
 // call it vectorize. Coincident particles (L = 0) exert no force. With
-// h = 0 it is the plain spring + damping force (the explicit integrator).
+// h = 0 it is the plain spring + damping force (the explicit integrator),
+// and with h = 1, c = 0, rv = 0 the block is J itself.
 struct SpringTerm {
     float fx, fy, fz;
     float bxx, bxy, bxz, byy, byz, bzz;
@@ -48,7 +49,11 @@ struct SpringTerm {
 
 inline SpringTerm spring_term(float dx, float dy, float dz, float rvx, float rvy, float rvz, float rest, float k,
                               float c, float h, JacobianClamp clamp) {
-    const float length = std::max(std::sqrt(dx * dx + dy * dy + dz * dz), 1e-9f);
+    const float true_length = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const float length = std::max(true_length, 1e-9f);
+    // Coincident ends: no direction, so no force (k = c = 0 zeroes the term).
+    k = true_length > 1e-9f ? k : 0.0f;
+    c = true_length > 1e-9f ? c : 0.0f;
     const float inv = 1.0f / length;
     const float ux = dx * inv, uy = dy * inv, uz = dz * inv;
     const float ratio = rest * inv;

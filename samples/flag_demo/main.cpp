@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
     std::printf("%8s %10s %10s %10s %10s\n", "frame", "step_ms", "max_strain", "max_speed", "wind_m/s");
 
     std::vector<double> step_ms;
-    cloth_result last = CLOTH_OK;
+    int failed_frames = 0;
     for (int frame = 0; frame < o.frames; ++frame) {
         // Gusts: 10 m/s along the flag, varying speed and a slow swing across.
         const float t = static_cast<float>(frame) * dt;
@@ -117,9 +117,12 @@ int main(int argc, char** argv) {
         cloth_set_wind(flag, wind);
 
         const auto start = std::chrono::steady_clock::now();
-        last = cloth_step(world, dt);
+        const cloth_result result = cloth_step(world, dt);
         step_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-        if (last != CLOTH_OK) std::fprintf(stderr, "frame %d: %s\n", frame, cloth_get_last_error());
+        if (result != CLOTH_OK) {
+            ++failed_frames;
+            std::fprintf(stderr, "frame %d: %s\n", frame, cloth_get_last_error());
+        }
 
         if (frame % 30 == 0 || frame == o.frames - 1) {
             cloth_stats stats{};
@@ -132,7 +135,8 @@ int main(int argc, char** argv) {
     std::printf("step time over %d frames: p50 %.3f ms, p95 %.3f ms, max %.3f ms\n", o.frames,
                 percentile(step_ms, 0.5), percentile(step_ms, 0.95), percentile(step_ms, 1.0));
 
-    int status = last == CLOTH_OK ? 0 : 1;
+    if (failed_frames) std::printf("%d of %d frames reported an error\n", failed_frames, o.frames);
+    int status = failed_frames == 0 ? 0 : 1;
     if (!o.png.empty()) {
         std::vector<float> positions(3 * particles), normals(3 * particles);
         uint32_t triangles = 0;

@@ -51,6 +51,14 @@ TEST(Aerodynamics, WindStraightAtAFaceGivesPureDragOfHalfRhoCdAU2) {
     EXPECT_NEAR(f.y(), 0.0f, 1e-4f);
 }
 
+TEST(Aerodynamics, WindOnTheOtherFaceGivesTheMirroredDrag) {
+    OneTriangle t;
+    const Vec3 f = t.total(wind(Vec3(0, 0, 10)));
+    EXPECT_NEAR(f.z(), 30.0f, 1e-3f);
+    EXPECT_NEAR(f.x(), 0.0f, 1e-4f);
+    EXPECT_NEAR(f.y(), 0.0f, 1e-4f);
+}
+
 TEST(Aerodynamics, WindAlongTheFaceGivesNoForce) {
     OneTriangle t;
     EXPECT_LT(t.total(wind(Vec3(7, 3, 0))).norm(), 1e-5f);

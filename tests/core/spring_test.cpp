@@ -59,6 +59,29 @@ INSTANTIATE_TEST_SUITE_P(StretchedAndCompressed, SpringJacobian,
                                            Case{"compressed", 0.7f}, Case{"strongly_compressed", 0.3f}),
                          [](const auto& info) { return std::string(info.param.name); });
 
+// The step's kernel: its f~ is the spring force plus the damping force plus
+// h J rv, with J the finite-difference derivative of the force.
+TEST(SpringJacobian, ViscousRightHandSideIsForcePlusDampingPlusHJTimesRelativeVelocity) {
+    const float rest = 0.4f, k = 300.0f, c = 0.7f, h = 1.0f / 60.0f;
+    const Vec3 xi(0.0f, 0.1f, 0.0f), xj(0.3f, 0.5f, -0.2f);  // stretched
+    const Vec3 rv(0.4f, -1.1f, 0.6f);
+    const Vec3 d = xj - xi, u = d.normalized();
+    const Mat3 jacobian = numeric_dfi_dxj(xi, xj, rest, k, true);
+    const Vec3 expected = u * (k * (d.norm() - rest)) + u * (c * u.dot(rv)) + h * jacobian * rv;
+    const SpringTerm t =
+        spring_term(d.x(), d.y(), d.z(), rv.x(), rv.y(), rv.z(), rest, k, c, h, JacobianClamp::make(true));
+    EXPECT_LT((Vec3(t.fx, t.fy, t.fz) - expected).norm(), 2e-3f * expected.norm());
+    // A_s = h^2 J + h c u u^T.
+    const Mat3 block = Sym3{t.bxx, t.bxy, t.bxz, t.byy, t.byz, t.bzz}.to_matrix();
+    const Mat3 expected_block = h * h * jacobian + h * c * u * u.transpose();
+    EXPECT_LT((block - expected_block).norm(), 2e-3f * expected_block.norm());
+}
+
+TEST(SpringJacobian, CoincidentEndsExertNoForceEvenWithTheExactJacobian) {
+    const SpringTerm t = spring_term(0, 0, 0, 1.0f, 2.0f, 3.0f, 0.5f, 1000.0f, 1.0f, 0.1f, JacobianClamp::make(false));
+    for (float value : {t.fx, t.fy, t.fz, t.bxx, t.bxy, t.bxz, t.byy, t.byz, t.bzz}) EXPECT_EQ(value, 0.0f);
+}
+
 float min_eigenvalue(const Mat3& m) {
     Eigen::SelfAdjointEigenSolver<Mat3> solver(m);
     return solver.eigenvalues().minCoeff();

@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "cloth_instance.h"
@@ -25,6 +26,19 @@ inline std::shared_ptr<Fabric> make_grid(uint32_t columns, uint32_t rows, uint32
     const Status status = build_grid_fabric(desc, *fabric);
     if (!status.ok()) throw std::runtime_error(status.message);
     return fabric;
+}
+
+// The same grid's particles and triangles as a general mesh (index-pair
+// springs: structural and bend, no shear).
+inline std::shared_ptr<Fabric> make_mesh_from_grid(uint32_t columns, uint32_t rows) {
+    auto grid = make_grid(columns, rows);
+    std::vector<float> positions;
+    for (const Vec3& p : grid->rest_positions) positions.insert(positions.end(), {p.x(), p.y(), p.z()});
+    auto mesh = std::make_shared<Fabric>(heap());
+    const Status status = build_mesh_fabric(positions.data(), grid->particle_count(), grid->triangles.data(),
+                                            grid->triangle_count(), CLOTH_SPRING_ALL, *mesh);
+    if (!status.ok()) throw std::runtime_error(status.message);
+    return mesh;
 }
 
 inline Material uniform_material(float stiffness, float damping, float area_density) {
