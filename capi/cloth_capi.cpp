@@ -92,7 +92,8 @@ Status null_error(const char* what) { return Status::error(CLOTH_ERROR_NULL_POIN
 
 Status get_world(cloth_world_id id, World*& world, const World*& log_world) {
     world = find_world(id);
-    if (!world) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "world handle is null, destroyed or unknown");
+    if (!world)
+        return Status::error(CLOTH_ERROR_INVALID_HANDLE, "world handle is null, destroyed or unknown");
     log_world = world;
     return {};
 }
@@ -100,7 +101,8 @@ Status get_world(cloth_world_id id, World*& world, const World*& log_world) {
 Status get_cloth(cloth_id id, ClothInstance*& cloth, const World*& log_world) {
     World* world = find_owning_world(id);
     cloth = world ? world->find_cloth(id) : nullptr;
-    if (!cloth) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "cloth handle is null, destroyed or unknown");
+    if (!cloth)
+        return Status::error(CLOTH_ERROR_INVALID_HANDLE, "cloth handle is null, destroyed or unknown");
     log_world = world;
     return {};
 }
@@ -109,7 +111,8 @@ Status get_fabric(cloth_fabric_id id, std::shared_ptr<const Fabric>& fabric, Wor
                   const World*& log_world) {
     world = find_owning_world(id);
     fabric = world ? world->find_fabric(id) : nullptr;
-    if (!fabric) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is null, destroyed or unknown");
+    if (!fabric)
+        return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is null, destroyed or unknown");
     log_world = world;
     return {};
 }
@@ -120,12 +123,12 @@ bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1])
 
 Status check_desc(uint32_t struct_size, size_t expected, uint32_t cookie, const char* what) {
     if (cookie != kCookie) {
-        return Status::error(CLOTH_ERROR_INVALID_DESC, "%s was not initialised by its cloth_default_*() function",
-                             what);
+        return Status::error(CLOTH_ERROR_INVALID_DESC,
+                             "%s was not initialised by its cloth_default_*() function", what);
     }
     if (struct_size != expected) {
-        return Status::error(CLOTH_ERROR_INVALID_DESC, "%s.struct_size is %u, expected %zu", what, struct_size,
-                             expected);
+        return Status::error(CLOTH_ERROR_INVALID_DESC, "%s.struct_size is %u, expected %zu", what,
+                             struct_size, expected);
     }
     return {};
 }
@@ -133,7 +136,8 @@ Status check_desc(uint32_t struct_size, size_t expected, uint32_t cookie, const 
 // A non-negative finite parameter.
 Status check_non_negative(float value, const char* what) {
     if (!std::isfinite(value)) return Status::error(CLOTH_ERROR_NOT_FINITE, "%s is not finite", what);
-    if (value < 0) return Status::error(CLOTH_ERROR_INVALID_VALUE, "%s is negative (%g)", what, double(value));
+    if (value < 0)
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "%s is negative (%g)", what, double(value));
     return {};
 }
 
@@ -148,8 +152,9 @@ Status check_spring_params(const cloth_spring_params& p, const char* what) {
 
 Status check_solver(const cloth_solver_settings& s) {
     if (s.struct_size != sizeof(cloth_solver_settings)) {
-        return Status::error(CLOTH_ERROR_INVALID_DESC, "cloth_solver_settings.struct_size is %u, expected %zu",
-                             s.struct_size, sizeof(cloth_solver_settings));
+        return Status::error(CLOTH_ERROR_INVALID_DESC,
+                             "cloth_solver_settings.struct_size is %u, expected %zu", s.struct_size,
+                             sizeof(cloth_solver_settings));
     }
     if (s.kind != CLOTH_SOLVER_DEFAULT && s.kind != CLOTH_SOLVER_JACOBI && s.kind != CLOTH_SOLVER_CG &&
         s.kind != CLOTH_SOLVER_EXPLICIT) {
@@ -161,9 +166,11 @@ Status check_solver(const cloth_solver_settings& s) {
     if (s.substeps < 1 || s.substeps > 64) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "substeps %u is not in 1..64", s.substeps);
     }
-    if (!std::isfinite(s.cg_tolerance)) return Status::error(CLOTH_ERROR_NOT_FINITE, "cg_tolerance is not finite");
+    if (!std::isfinite(s.cg_tolerance))
+        return Status::error(CLOTH_ERROR_NOT_FINITE, "cg_tolerance is not finite");
     if (!(s.cg_tolerance > 0 && s.cg_tolerance < 1)) {
-        return Status::error(CLOTH_ERROR_INVALID_VALUE, "cg_tolerance %g is not in (0, 1)", double(s.cg_tolerance));
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "cg_tolerance %g is not in (0, 1)",
+                             double(s.cg_tolerance));
     }
     if (s.cg_max_iterations < 1 || s.cg_max_iterations > 100000) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "cg_max_iterations %u is not in 1..100000",
@@ -188,8 +195,9 @@ Status check_indices(const uint32_t* indices, uint32_t count, uint32_t particle_
     }
     for (uint32_t k = 0; k < count; ++k) {
         if (indices[k] >= particle_count) {
-            return Status::error(CLOTH_ERROR_INDEX_OUT_OF_RANGE, "indices[%u] = %u, but the cloth has %u particles",
-                                 k, indices[k], particle_count);
+            return Status::error(CLOTH_ERROR_INDEX_OUT_OF_RANGE,
+                                 "indices[%u] = %u, but the cloth has %u particles", k, indices[k],
+                                 particle_count);
         }
     }
     return {};
@@ -198,7 +206,8 @@ Status check_indices(const uint32_t* indices, uint32_t count, uint32_t particle_
 Status check_points(const float* xyz, uint32_t count, const char* what) {
     if (!xyz) return null_error(what);
     for (uint32_t k = 0; k < count; ++k) {
-        if (!finite3(xyz + 3 * k)) return Status::error(CLOTH_ERROR_NOT_FINITE, "%s[%u] is not finite", what, k);
+        if (!finite3(xyz + 3 * k))
+            return Status::error(CLOTH_ERROR_NOT_FINITE, "%s[%u] is not finite", what, k);
     }
     return {};
 }
@@ -206,8 +215,8 @@ Status check_points(const float* xyz, uint32_t count, const char* what) {
 Status check_capacity(const void* out, uint32_t capacity, size_t needed) {
     if (!out) return null_error("output buffer");
     if (capacity < needed) {
-        return Status::error(CLOTH_ERROR_INVALID_COUNT, "capacity %u is less than the %zu values needed", capacity,
-                             needed);
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "capacity %u is less than the %zu values needed",
+                             capacity, needed);
     }
     return {};
 }
@@ -267,13 +276,15 @@ CLOTH_API cloth_result cloth_world_create(const cloth_world_desc* desc, cloth_wo
     return api_call(__func__, [&](const World*&) -> Status {
         if (!desc) return null_error("desc");
         if (!out_world) return null_error("out_world");
-        Status s = check_desc(desc->struct_size, sizeof(cloth_world_desc), desc->internal_cookie, "cloth_world_desc");
+        Status s = check_desc(desc->struct_size, sizeof(cloth_world_desc), desc->internal_cookie,
+                              "cloth_world_desc");
         if (!s.ok()) return s;
         if (!finite3(desc->gravity)) return Status::error(CLOTH_ERROR_NOT_FINITE, "gravity is not finite");
         if ((desc->alloc == nullptr) != (desc->free == nullptr)) {
             return Status::error(CLOTH_ERROR_INVALID_VALUE, "set both alloc and free, or neither");
         }
-        if (desc->max_cloths < 1 || desc->max_cloths > 65535 || desc->max_fabrics < 1 || desc->max_fabrics > 65535) {
+        if (desc->max_cloths < 1 || desc->max_cloths > 65535 || desc->max_fabrics < 1 ||
+            desc->max_fabrics > 65535) {
             return Status::error(CLOTH_ERROR_INVALID_COUNT, "max_cloths and max_fabrics must be in 1..65535");
         }
 
@@ -281,7 +292,8 @@ CLOTH_API cloth_result cloth_world_create(const cloth_world_desc* desc, cloth_wo
         std::lock_guard<std::mutex> lock(table.mutex);
         uint16_t index = 0;
         while (index < kMaxWorlds && table.worlds[index]) ++index;
-        if (index == kMaxWorlds) return Status::error(CLOTH_ERROR_CAPACITY, "%u worlds exist already", kMaxWorlds);
+        if (index == kMaxWorlds)
+            return Status::error(CLOTH_ERROR_CAPACITY, "%u worlds exist already", kMaxWorlds);
         if (table.generations[index] == 0) table.generations[index] = 1;
         const uint16_t generation = table.generations[index];
 
@@ -308,7 +320,8 @@ CLOTH_API cloth_result cloth_world_destroy(cloth_world_id id) {
             std::lock_guard<std::mutex> lock(table.mutex);
             if (id.index1 == 0 || id.index1 > kMaxWorlds || !table.worlds[id.index1 - 1] ||
                 table.generations[id.index1 - 1] != id.generation) {
-                return Status::error(CLOTH_ERROR_INVALID_HANDLE, "world handle is null, destroyed or unknown");
+                return Status::error(CLOTH_ERROR_INVALID_HANDLE,
+                                     "world handle is null, destroyed or unknown");
             }
             world = table.worlds[id.index1 - 1];
             table.worlds[id.index1 - 1] = nullptr;
@@ -340,7 +353,8 @@ CLOTH_API cloth_result cloth_step(cloth_world_id id, float dt) {
         Status s = get_world(id, world, log_world);
         if (!s.ok()) return s;
         if (!std::isfinite(dt)) return Status::error(CLOTH_ERROR_NOT_FINITE, "dt is not finite");
-        if (!(dt > 0 && dt <= 1)) return Status::error(CLOTH_ERROR_INVALID_VALUE, "dt %g is not in (0, 1]", double(dt));
+        if (!(dt > 0 && dt <= 1))
+            return Status::error(CLOTH_ERROR_INVALID_VALUE, "dt %g is not in (0, 1]", double(dt));
         return world->step(dt);
     });
 }
@@ -393,8 +407,8 @@ CLOTH_API cloth_result cloth_fabric_create_mesh(cloth_world_id id, const cloth_m
         if (!s.ok()) return s;
         return world->create_fabric(
             [&](Fabric& f) {
-                return build_mesh_fabric(desc->positions, desc->vertex_count, desc->indices, desc->triangle_count,
-                                         desc->spring_kinds, f);
+                return build_mesh_fabric(desc->positions, desc->vertex_count, desc->indices,
+                                         desc->triangle_count, desc->spring_kinds, f);
             },
             out_fabric);
     });
@@ -408,14 +422,16 @@ CLOTH_API cloth_result cloth_fabric_create_obj(cloth_world_id id, const char* pa
         if (!s.ok()) return s;
         if (!path) return null_error("path");
         if (!out_fabric) return null_error("out_fabric");
-        return world->create_fabric([&](Fabric& f) { return build_obj_fabric(path, spring_kinds, f); }, out_fabric);
+        return world->create_fabric([&](Fabric& f) { return build_obj_fabric(path, spring_kinds, f); },
+                                    out_fabric);
     });
 }
 
 CLOTH_API cloth_result cloth_fabric_destroy(cloth_fabric_id id) {
     return api_call(__func__, [&](const World*& log_world) -> Status {
         World* world = find_owning_world(id);
-        if (!world) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is null, destroyed or unknown");
+        if (!world)
+            return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is null, destroyed or unknown");
         log_world = world;
         return world->destroy_fabric(id);
     });
@@ -445,7 +461,8 @@ CLOTH_API cloth_result cloth_fabric_get_triangle_count(cloth_fabric_id id, uint3
     });
 }
 
-CLOTH_API cloth_result cloth_fabric_get_spring_count(cloth_fabric_id id, uint32_t kinds, uint32_t* out_count) {
+CLOTH_API cloth_result cloth_fabric_get_spring_count(cloth_fabric_id id, uint32_t kinds,
+                                                     uint32_t* out_count) {
     return api_call(__func__, [&](const World*& log_world) -> Status {
         std::shared_ptr<const Fabric> fabric;
         World* world;
@@ -464,7 +481,8 @@ CLOTH_API cloth_result cloth_fabric_get_spring_count(cloth_fabric_id id, uint32_
     });
 }
 
-CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id id, uint32_t* out_indices, uint32_t capacity) {
+CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id id, uint32_t* out_indices,
+                                                   uint32_t capacity) {
     return api_call(__func__, [&](const World*& log_world) -> Status {
         std::shared_ptr<const Fabric> fabric;
         World* world;
@@ -524,10 +542,13 @@ CLOTH_API cloth_result cloth_create(cloth_world_id id, const cloth_desc* desc, c
             return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle belongs to another world");
         }
         std::shared_ptr<const Fabric> fabric = world->find_fabric(desc->fabric);
-        if (!fabric) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is null, destroyed or unknown");
-        if (!std::isfinite(desc->area_density)) return Status::error(CLOTH_ERROR_NOT_FINITE, "area_density is not finite");
+        if (!fabric)
+            return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is null, destroyed or unknown");
+        if (!std::isfinite(desc->area_density))
+            return Status::error(CLOTH_ERROR_NOT_FINITE, "area_density is not finite");
         if (!(desc->area_density > 0)) {
-            return Status::error(CLOTH_ERROR_INVALID_VALUE, "area_density %g must be > 0", double(desc->area_density));
+            return Status::error(CLOTH_ERROR_INVALID_VALUE, "area_density %g must be > 0",
+                                 double(desc->area_density));
         }
         s = check_non_negative(desc->particle_mass, "particle_mass");
         if (s.ok()) s = check_spring_params(desc->structural, "structural");
@@ -554,7 +575,8 @@ CLOTH_API cloth_result cloth_create(cloth_world_id id, const cloth_desc* desc, c
 CLOTH_API cloth_result cloth_destroy(cloth_id id) {
     return api_call(__func__, [&](const World*& log_world) -> Status {
         World* world = find_owning_world(id);
-        if (!world) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "cloth handle is null, destroyed or unknown");
+        if (!world)
+            return Status::error(CLOTH_ERROR_INVALID_HANDLE, "cloth handle is null, destroyed or unknown");
         log_world = world;
         return world->destroy_cloth(id);
     });
@@ -593,21 +615,18 @@ cloth_result read_vectors(const char* function, cloth_id id, float* out, uint32_
 extern "C" {
 
 CLOTH_API cloth_result cloth_read_positions(cloth_id id, float* out_xyz, uint32_t capacity) {
-    return read_vectors(__func__, id, out_xyz, capacity, [](const ClothInstance& c) -> const Vec3Soa& {
-        return c.positions();
-    });
+    return read_vectors(__func__, id, out_xyz, capacity,
+                        [](const ClothInstance& c) -> const Vec3Soa& { return c.positions(); });
 }
 
 CLOTH_API cloth_result cloth_read_velocities(cloth_id id, float* out_xyz, uint32_t capacity) {
-    return read_vectors(__func__, id, out_xyz, capacity, [](const ClothInstance& c) -> const Vec3Soa& {
-        return c.velocities();
-    });
+    return read_vectors(__func__, id, out_xyz, capacity,
+                        [](const ClothInstance& c) -> const Vec3Soa& { return c.velocities(); });
 }
 
 CLOTH_API cloth_result cloth_read_normals(cloth_id id, float* out_xyz, uint32_t capacity) {
-    return read_vectors(__func__, id, out_xyz, capacity, [](const ClothInstance& c) -> const Vec3Soa& {
-        return c.normals();
-    });
+    return read_vectors(__func__, id, out_xyz, capacity,
+                        [](const ClothInstance& c) -> const Vec3Soa& { return c.normals(); });
 }
 
 CLOTH_API cloth_result cloth_set_positions(cloth_id id, const uint32_t* indices, const float* positions_xyz,
@@ -676,8 +695,8 @@ CLOTH_API cloth_result cloth_is_pinned(cloth_id id, uint32_t index, bool* out_pi
         if (!s.ok()) return s;
         if (!out_pinned) return null_error("out_pinned");
         if (index >= cloth->particle_count()) {
-            return Status::error(CLOTH_ERROR_INDEX_OUT_OF_RANGE, "index %u, but the cloth has %u particles", index,
-                                 cloth->particle_count());
+            return Status::error(CLOTH_ERROR_INDEX_OUT_OF_RANGE, "index %u, but the cloth has %u particles",
+                                 index, cloth->particle_count());
         }
         *out_pinned = cloth->is_pinned(index);
         return {};
@@ -721,8 +740,8 @@ CLOTH_API cloth_result cloth_set_spring_params(cloth_id id, uint32_t kinds, clot
         Status s = get_cloth(id, cloth, log_world);
         if (!s.ok()) return s;
         if (kinds == 0 || (kinds & ~static_cast<uint32_t>(CLOTH_SPRING_ALL))) {
-            return Status::error(CLOTH_ERROR_INVALID_VALUE, "spring kinds 0x%x is not a non-empty set of kinds",
-                                 kinds);
+            return Status::error(CLOTH_ERROR_INVALID_VALUE,
+                                 "spring kinds 0x%x is not a non-empty set of kinds", kinds);
         }
         s = check_spring_params(params, "spring");
         if (!s.ok()) return s;

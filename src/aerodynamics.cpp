@@ -26,8 +26,8 @@ struct AirConstants {
 // The force on each corner of a triangle with edges e1, e2 whose corner
 // velocities sum to (svx, svy, svz). Branch-free so the loops vectorize;
 // still air or a collapsed triangle gives zero.
-inline void corner_force(const AirConstants& k, float e1x, float e1y, float e1z, float e2x, float e2y, float e2z,
-                         float svx, float svy, float svz, float& fx, float& fy, float& fz) {
+inline void corner_force(const AirConstants& k, float e1x, float e1y, float e1z, float e2x, float e2y,
+                         float e2z, float svx, float svy, float svz, float& fx, float& fy, float& fz) {
     const float third = 1.0f / 3.0f;
     const float nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
     const float twice_area = std::sqrt(nx * nx + ny * ny + nz * nz);
@@ -55,12 +55,13 @@ CLOTH_HOT_LOOP void triangle_air_kernel(uint32_t begin, uint32_t end, AirConstan
                                         const uint32_t* __restrict tri, const float* __restrict px,
                                         const float* __restrict py, const float* __restrict pz,
                                         const float* __restrict vx, const float* __restrict vy,
-                                        const float* __restrict vz, float* __restrict fx, float* __restrict fy,
-                                        float* __restrict fz) {
+                                        const float* __restrict vz, float* __restrict fx,
+                                        float* __restrict fy, float* __restrict fz) {
     for (uint32_t t = begin; t < end; ++t) {
         const uint32_t a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
-        corner_force(k, px[b] - px[a], py[b] - py[a], pz[b] - pz[a], px[c] - px[a], py[c] - py[a], pz[c] - pz[a],
-                     vx[a] + vx[b] + vx[c], vy[a] + vy[b] + vy[c], vz[a] + vz[b] + vz[c], fx[t], fy[t], fz[t]);
+        corner_force(k, px[b] - px[a], py[b] - py[a], pz[b] - pz[a], px[c] - px[a], py[c] - py[a],
+                     pz[c] - pz[a], vx[a] + vx[b] + vx[c], vy[a] + vy[b] + vy[c], vz[a] + vz[b] + vz[c],
+                     fx[t], fy[t], fz[t]);
     }
 }
 
@@ -75,8 +76,9 @@ CLOTH_HOT_LOOP void grid_air_kernel(uint32_t begin, uint32_t end, AirConstants k
     for (uint32_t p = begin; p < end; ++p) {
         const uint32_t a = p + o0, b = p + o1, c = p + o2;
         float x, y, z;
-        corner_force(k, px[b] - px[a], py[b] - py[a], pz[b] - pz[a], px[c] - px[a], py[c] - py[a], pz[c] - pz[a],
-                     vx[a] + vx[b] + vx[c], vy[a] + vy[b] + vy[c], vz[a] + vz[b] + vz[c], x, y, z);
+        corner_force(k, px[b] - px[a], py[b] - py[a], pz[b] - pz[a], px[c] - px[a], py[c] - py[a],
+                     pz[c] - pz[a], vx[a] + vx[b] + vx[c], vy[a] + vy[b] + vy[c], vz[a] + vz[b] + vz[c], x, y,
+                     z);
         fx[p] = x * mask[p];
         fy[p] = y * mask[p];
         fz[p] = z * mask[p];
@@ -110,12 +112,12 @@ size_t air_storage_size(const Fabric& fabric) {
                            : fabric.triangle_count() + 1;
 }
 
-void evaluate_air(const Fabric& fabric, const AeroParams& air, const Vec3Soa& x, const Vec3Soa& v, uint32_t begin,
-                  uint32_t end, Vec3Soa& corner_force) {
+void evaluate_air(const Fabric& fabric, const AeroParams& air, const Vec3Soa& x, const Vec3Soa& v,
+                  uint32_t begin, uint32_t end, Vec3Soa& corner_force) {
     const AirConstants k(air);
     if (!is_grid(fabric)) {
-        triangle_air_kernel(begin, end, k, fabric.triangles.data(), x.x.data(), x.y.data(), x.z.data(), v.x.data(),
-                            v.y.data(), v.z.data(), corner_force.x.data(), corner_force.y.data(),
+        triangle_air_kernel(begin, end, k, fabric.triangles.data(), x.x.data(), x.y.data(), x.z.data(),
+                            v.x.data(), v.y.data(), v.z.data(), corner_force.x.data(), corner_force.y.data(),
                             corner_force.z.data());
         return;
     }
@@ -127,8 +129,8 @@ void evaluate_air(const Fabric& fabric, const AeroParams& air, const Vec3Soa& x,
         const uint32_t reach = std::max({shape[0], shape[1], shape[2]});
         const size_t base = s * n;
         grid_air_kernel(begin, std::min(end, n - reach), k, shape[0], shape[1], shape[2],
-                        fabric.grid_cell_mask.data(), x.x.data(), x.y.data(), x.z.data(), v.x.data(), v.y.data(),
-                        v.z.data(), corner_force.x.data() + base, corner_force.y.data() + base,
+                        fabric.grid_cell_mask.data(), x.x.data(), x.y.data(), x.z.data(), v.x.data(),
+                        v.y.data(), v.z.data(), corner_force.x.data() + base, corner_force.y.data() + base,
                         corner_force.z.data() + base);
     }
 }
@@ -141,11 +143,12 @@ void gather_air(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begi
             std::fill(a->begin() + begin, a->begin() + end, 0.0f);
         }
         const PaddedSlots& slots = fabric.triangle_slots;
-        slots.for_each_slot(static_cast<uint32_t>(n), begin, end, [&](uint32_t lo, uint32_t hi, int64_t base, uint32_t) {
-            gather_slot_kernel(lo, hi, base, slots.item.data(), corner_force.x.data(), corner_force.y.data(),
-                               corner_force.z.data(), particle_force.x.data(), particle_force.y.data(),
-                               particle_force.z.data());
-        });
+        slots.for_each_slot(
+            static_cast<uint32_t>(n), begin, end, [&](uint32_t lo, uint32_t hi, int64_t base, uint32_t) {
+                gather_slot_kernel(lo, hi, base, slots.item.data(), corner_force.x.data(),
+                                   corner_force.y.data(), corner_force.z.data(), particle_force.x.data(),
+                                   particle_force.y.data(), particle_force.z.data());
+            });
         return;
     }
     // Grid: particle p is corner i of shape s of the cell at p - offset_i.
@@ -171,12 +174,15 @@ void gather_air(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begi
     });
 }
 
-void compute_vertex_normals(const Fabric& fabric, const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& normal) {
+void compute_vertex_normals(const Fabric& fabric, const Vec3Soa& x, uint32_t begin, uint32_t end,
+                            Vec3Soa& normal) {
     for (uint32_t p = begin; p < end; ++p) {
         Vec3 sum = Vec3::Zero();
-        for (uint32_t e = fabric.triangle_incidence_offset[p]; e < fabric.triangle_incidence_offset[p + 1]; ++e) {
+        for (uint32_t e = fabric.triangle_incidence_offset[p]; e < fabric.triangle_incidence_offset[p + 1];
+             ++e) {
             const uint32_t t = fabric.triangle_incidence[e];
-            const uint32_t a = fabric.triangles[3 * t], b = fabric.triangles[3 * t + 1], c = fabric.triangles[3 * t + 2];
+            const uint32_t a = fabric.triangles[3 * t], b = fabric.triangles[3 * t + 1],
+                           c = fabric.triangles[3 * t + 2];
             sum += (x.get(b) - x.get(a)).cross(x.get(c) - x.get(a));
         }
         const float length = sum.norm();

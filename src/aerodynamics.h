@@ -26,8 +26,8 @@ uint32_t air_item_count(const Fabric& fabric);
 size_t air_storage_size(const Fabric& fabric);
 
 // Per-triangle pass for items [begin, end): each triangle's corner force.
-void evaluate_air(const Fabric& fabric, const AeroParams& air, const Vec3Soa& x, const Vec3Soa& v, uint32_t begin,
-                  uint32_t end, Vec3Soa& corner_force);
+void evaluate_air(const Fabric& fabric, const AeroParams& air, const Vec3Soa& x, const Vec3Soa& v,
+                  uint32_t begin, uint32_t end, Vec3Soa& corner_force);
 
 // Per-particle pass for [begin, end): sum of the corner forces of the
 // particle's triangles, written to particle_force.
@@ -35,6 +35,7 @@ void gather_air(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begi
                 Vec3Soa& particle_force);
 
 // Unit area-weighted vertex normals for particles [begin, end).
-void compute_vertex_normals(const Fabric& fabric, const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& normal);
+void compute_vertex_normals(const Fabric& fabric, const Vec3Soa& x, uint32_t begin, uint32_t end,
+                            Vec3Soa& normal);
 
 }  // namespace cloth

@@ -14,15 +14,15 @@
 // step parallel without atomics and bit-identical for any split of ranges.
 #include "cloth_instance.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "aerodynamics.h"
-#include "lanes.h"
 #include "integrator_explicit.h"
+#include "lanes.h"
 #include "solvers.h"
 #include "spring_terms.h"
 #include "springs.h"
-
-#include <algorithm>
-#include <cmath>
 
 namespace cloth {
 
@@ -52,8 +52,8 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       backup_v_(memory) {
     const Fabric& f = *fabric_;
     const uint32_t n = f.particle_count();
-    for (Vec3Soa* a : {&x_, &v_, &pin_target_, &pin_start_, &external_force_, &rhs_, &dv_, &dv_scratch_, &normals_,
-                       &backup_x_, &backup_v_}) {
+    for (Vec3Soa* a : {&x_, &v_, &pin_target_, &pin_start_, &external_force_, &rhs_, &dv_, &dv_scratch_,
+                       &normals_, &backup_x_, &backup_v_}) {
         a->resize(n);
     }
     for (uint32_t i = 0; i < n; ++i) x_.set(i, f.rest_positions[i]);
@@ -71,7 +71,8 @@ void ClothInstance::set_material(const Material& material) {
     material_ = material;
     const Fabric& f = *fabric_;
     for (uint32_t i = 0; i < f.particle_count(); ++i) {
-        mass_[i] = material.particle_mass > 0 ? material.particle_mass : material.area_density * f.rest_area[i];
+        mass_[i] =
+            material.particle_mass > 0 ? material.particle_mass : material.area_density * f.rest_area[i];
     }
     springs_->set_material(material);
 }
@@ -133,16 +134,18 @@ Status ClothInstance::step(float dt, const Vec3& gravity) {
         x_ = backup_x_;
         v_ = backup_v_;
         last_step_result_ = CLOTH_ERROR_OUT_OF_MEMORY;
-        return Status::error(CLOTH_ERROR_OUT_OF_MEMORY,
-                             "the solver could not allocate; the cloth was restored to its state before the step");
+        return Status::error(
+            CLOTH_ERROR_OUT_OF_MEMORY,
+            "the solver could not allocate; the cloth was restored to its state before the step");
     }
     if (!state_is_finite()) {
         x_ = backup_x_;
         v_ = backup_v_;
         last_step_result_ = CLOTH_ERROR_NONFINITE_STATE;
-        return Status::error(CLOTH_ERROR_NONFINITE_STATE,
-                             "the step produced a non-finite state; the cloth was restored to its state before "
-                             "the step (lower dt, raise substeps or iterations, or use a sturdier solver)");
+        return Status::error(
+            CLOTH_ERROR_NONFINITE_STATE,
+            "the step produced a non-finite state; the cloth was restored to its state before "
+            "the step (lower dt, raise substeps or iterations, or use a sturdier solver)");
     }
     last_step_result_ = converged ? CLOTH_OK : CLOTH_ERROR_SOLVER_FAILED;
     if (!converged) {
@@ -176,9 +179,12 @@ void ClothInstance::substep(float h, float frame_fraction_end, const Vec3& gravi
     for_each_lane_group(0, n, 0, n, [&](auto lanes, uint32_t i) {
         using L = decltype(lanes);
         const typename L::type m = L::load(&mass_[i]), drag = m * linear_drag;
-        L::store(&external_force_.x[i], L::load(&external_force_.x[i]) + m * gravity.x() - L::load(&v_.x[i]) * drag);
-        L::store(&external_force_.y[i], L::load(&external_force_.y[i]) + m * gravity.y() - L::load(&v_.y[i]) * drag);
-        L::store(&external_force_.z[i], L::load(&external_force_.z[i]) + m * gravity.z() - L::load(&v_.z[i]) * drag);
+        L::store(&external_force_.x[i],
+                 L::load(&external_force_.x[i]) + m * gravity.x() - L::load(&v_.x[i]) * drag);
+        L::store(&external_force_.y[i],
+                 L::load(&external_force_.y[i]) + m * gravity.y() - L::load(&v_.y[i]) * drag);
+        L::store(&external_force_.z[i],
+                 L::load(&external_force_.z[i]) + m * gravity.z() - L::load(&v_.z[i]) * drag);
     });
 
     const JacobianClamp clamp = JacobianClamp::make(solver_.compression_safe_jacobian);
@@ -191,7 +197,7 @@ void ClothInstance::substep(float h, float frame_fraction_end, const Vec3& gravi
     } else {
         // 2. Springs.  3. Particle assembly (dv_ = p on exit).
         springs_->evaluate(x_, v_, h, clamp, 0, springs_->item_count());
-        const AssemblyPass assembly{springs_.get(), &external_force_, mass_.data(), pinned_.data(), h,
+        const AssemblyPass assembly{springs_.get(),   &external_force_, mass_.data(), pinned_.data(), h,
                                     aero_.linear_drag};
         assemble_particles(assembly, 0, n, diagonal_, diagonal_inverse_, rhs_, dv_);
         // 4. Solve.

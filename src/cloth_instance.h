@@ -19,7 +19,7 @@ namespace cloth {
 class SpringTerms;
 
 class ClothInstance {
-public:
+  public:
     ClothInstance(const HostMemory* memory, std::shared_ptr<const Fabric> fabric, const Material& material,
                   const SolverSettings& solver, const AeroParams& aero);
 
@@ -57,7 +57,7 @@ public:
     const SolveReport& last_solve() const { return last_solve_; }
     cloth_result last_step_result() const { return last_step_result_; }
 
-private:
+  private:
     void substep(float h, float frame_fraction_end, const Vec3& gravity);
     bool state_is_finite() const;
     // Where pinned particle i is at `frame_fraction` of the current frame.
@@ -73,18 +73,18 @@ private:
     HostVector<float> mass_;
     HostVector<float> pinned_;          // 1 pinned, 0 free (a factor in branch-free loops)
     HostVector<uint32_t> pinned_list_;  // the pinned particles, ascending
-    Vec3Soa pin_target_;  // where a pinned particle is at the end of the next frame
-    Vec3Soa pin_start_;   // where it was at the start of this frame
+    Vec3Soa pin_target_;                // where a pinned particle is at the end of the next frame
+    Vec3Soa pin_start_;                 // where it was at the start of this frame
 
     // Scratch, sized once at creation (no allocation per step).
-    Vec3Soa external_force_;     // per particle
-    Vec3Soa triangle_force_;     // per triangle, share of each corner
+    Vec3Soa external_force_;                // per particle
+    Vec3Soa triangle_force_;                // per triangle, share of each corner
     std::shared_ptr<SpringTerms> springs_;  // per-spring f~ and A_s, in the layout that suits the fabric
-    Sym3Soa diagonal_;           // per particle: W_ii
-    Sym3Soa diagonal_inverse_;   // per particle: W_ii^-1 (zero if pinned)
-    Vec3Soa rhs_;                // per particle: b_i = h f~_i
-    Vec3Soa dv_, dv_scratch_;    // per particle
-    mutable Vec3Soa normals_;    // per particle, filled by normals()
+    Sym3Soa diagonal_;                      // per particle: W_ii
+    Sym3Soa diagonal_inverse_;              // per particle: W_ii^-1 (zero if pinned)
+    Vec3Soa rhs_;                           // per particle: b_i = h f~_i
+    Vec3Soa dv_, dv_scratch_;               // per particle
+    mutable Vec3Soa normals_;               // per particle, filled by normals()
     Vec3Soa backup_x_, backup_v_;
 
     SolveReport last_solve_;

@@ -97,8 +97,8 @@ Status finish_fabric(const std::vector<SpringSpec>& springs, Fabric& f) {
         const float area = 0.5f * e1.cross(e2).norm();
         const float longest = std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()});
         if (!(area > 1e-6f * longest)) {
-            return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY,
-                                 "triangle %u (%u, %u, %u) has zero area", t, a, b, c);
+            return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY, "triangle %u (%u, %u, %u) has zero area", t,
+                                 a, b, c);
         }
         for (uint32_t v : {a, b, c}) f.rest_area[v] += area / 3.0f;
     }
@@ -140,7 +140,9 @@ Status finish_fabric(const std::vector<SpringSpec>& springs, Fabric& f) {
         const uint32_t spring = e == UINT32_MAX ? count : f.incidence_spring[e];
         const bool first = e != UINT32_MAX && f.spring_first[spring] == p;
         f.spring_slots.item[slot] = spring;
-        f.spring_slots.other[slot] = e == UINT32_MAX ? p : first ? f.spring_second[spring] : f.spring_first[spring];
+        f.spring_slots.other[slot] = e == UINT32_MAX ? p
+                                     : first         ? f.spring_second[spring]
+                                                     : f.spring_first[spring];
         f.spring_slots.sign[slot] = e == UINT32_MAX ? 0.0f : first ? 1.0f : -1.0f;
     });
     build_incidence(
@@ -162,8 +164,8 @@ bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1])
 Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
     const uint32_t cols = desc.columns, rows = desc.rows;
     if (cols < 2 || rows < 2) {
-        return Status::error(CLOTH_ERROR_INVALID_COUNT, "grid needs at least 2 columns and 2 rows (got %u x %u)",
-                             cols, rows);
+        return Status::error(CLOTH_ERROR_INVALID_COUNT,
+                             "grid needs at least 2 columns and 2 rows (got %u x %u)", cols, rows);
     }
     if (static_cast<uint64_t>(cols) * rows > kMaxParticles) {
         return Status::error(CLOTH_ERROR_INVALID_COUNT, "grid of %u x %u exceeds %u particles", cols, rows,
@@ -186,7 +188,8 @@ Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
     f.rest_positions.resize(static_cast<size_t>(cols) * rows);
     for (uint32_t r = 0; r < rows; ++r) {
         for (uint32_t c = 0; c < cols; ++c) {
-            f.rest_positions[index(c, r)] = origin + u * (static_cast<float>(c) / static_cast<float>(cols - 1)) +
+            f.rest_positions[index(c, r)] = origin +
+                                            u * (static_cast<float>(c) / static_cast<float>(cols - 1)) +
                                             v * (static_cast<float>(r) / static_cast<float>(rows - 1));
         }
     }
@@ -213,9 +216,12 @@ Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
         SpringKind kind;
         uint32_t bit;
     };
-    const Direction directions[] = {{1, 0, kStructural, CLOTH_SPRING_STRUCTURAL}, {0, 1, kStructural, CLOTH_SPRING_STRUCTURAL},
-                                    {1, 1, kShear, CLOTH_SPRING_SHEAR},           {-1, 1, kShear, CLOTH_SPRING_SHEAR},
-                                    {2, 0, kBend, CLOTH_SPRING_BEND},             {0, 2, kBend, CLOTH_SPRING_BEND}};
+    const Direction directions[] = {{1, 0, kStructural, CLOTH_SPRING_STRUCTURAL},
+                                    {0, 1, kStructural, CLOTH_SPRING_STRUCTURAL},
+                                    {1, 1, kShear, CLOTH_SPRING_SHEAR},
+                                    {-1, 1, kShear, CLOTH_SPRING_SHEAR},
+                                    {2, 0, kBend, CLOTH_SPRING_BEND},
+                                    {0, 2, kBend, CLOTH_SPRING_BEND}};
     for (const Direction& d : directions) {
         if (!(desc.spring_kinds & d.bit)) continue;
         SpringFamily& family = f.grid_families.emplace_back(f.memory);
@@ -257,32 +263,34 @@ Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
 
 Status build_mesh_fabric(const float* positions, uint32_t vertex_count, const uint32_t* indices,
                          uint32_t triangle_count, uint32_t spring_kinds, Fabric& f) {
-    if (!positions || !indices) return Status::error(CLOTH_ERROR_NULL_POINTER, "mesh positions or indices is NULL");
+    if (!positions || !indices)
+        return Status::error(CLOTH_ERROR_NULL_POINTER, "mesh positions or indices is NULL");
     if (vertex_count < 3 || vertex_count > kMaxParticles) {
         return Status::error(CLOTH_ERROR_INVALID_COUNT, "mesh vertex_count %u is not in 3..%u", vertex_count,
                              kMaxParticles);
     }
     if (triangle_count == 0 || triangle_count > 4 * kMaxParticles) {
-        return Status::error(CLOTH_ERROR_INVALID_COUNT, "mesh triangle_count %u is not in 1..%u", triangle_count,
-                             4 * kMaxParticles);
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "mesh triangle_count %u is not in 1..%u",
+                             triangle_count, 4 * kMaxParticles);
     }
     if (spring_kinds & ~static_cast<uint32_t>(CLOTH_SPRING_ALL)) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown spring kind bits 0x%x", spring_kinds);
     }
     for (uint32_t p = 0; p < vertex_count; ++p) {
-        if (!finite3(positions + 3 * p)) return Status::error(CLOTH_ERROR_NOT_FINITE, "vertex %u is not finite", p);
+        if (!finite3(positions + 3 * p))
+            return Status::error(CLOTH_ERROR_NOT_FINITE, "vertex %u is not finite", p);
     }
     for (uint32_t t = 0; t < triangle_count; ++t) {
         const uint32_t* tri = indices + 3 * t;
         for (int k = 0; k < 3; ++k) {
             if (tri[k] >= vertex_count) {
-                return Status::error(CLOTH_ERROR_INDEX_OUT_OF_RANGE, "triangle %u uses vertex %u of %u", t, tri[k],
-                                     vertex_count);
+                return Status::error(CLOTH_ERROR_INDEX_OUT_OF_RANGE, "triangle %u uses vertex %u of %u", t,
+                                     tri[k], vertex_count);
             }
         }
         if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
-            return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY, "triangle %u repeats a vertex (%u, %u, %u)", t,
-                                 tri[0], tri[1], tri[2]);
+            return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY, "triangle %u repeats a vertex (%u, %u, %u)",
+                                 t, tri[0], tri[1], tri[2]);
         }
     }
 
@@ -315,9 +323,11 @@ Status build_mesh_fabric(const float* positions, uint32_t vertex_count, const ui
     for (size_t begin = 0; begin < uses.size();) {
         size_t end = begin + 1;
         while (end < uses.size() && uses[end].lo == uses[begin].lo && uses[end].hi == uses[begin].hi) ++end;
-        if (spring_kinds & CLOTH_SPRING_STRUCTURAL) springs.push_back({uses[begin].lo, uses[begin].hi, kStructural});
+        if (spring_kinds & CLOTH_SPRING_STRUCTURAL)
+            springs.push_back({uses[begin].lo, uses[begin].hi, kStructural});
         // An edge shared by exactly two triangles: bend spring across it.
-        if ((spring_kinds & CLOTH_SPRING_BEND) && end - begin == 2 && uses[begin].opposite != uses[begin + 1].opposite) {
+        if ((spring_kinds & CLOTH_SPRING_BEND) && end - begin == 2 &&
+            uses[begin].opposite != uses[begin + 1].opposite) {
             springs.push_back({uses[begin].opposite, uses[begin + 1].opposite, kBend});
         }
         begin = end;

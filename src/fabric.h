@@ -70,7 +70,8 @@ struct PaddedSlots {
             const uint32_t chunk_size = std::min(kChunk, particle_count - chunk_first);
             const uint32_t hi = std::min(last, chunk_first + chunk_size);
             for (uint32_t k = 0; k < width[c]; ++k) {
-                visit(lo, hi, static_cast<int64_t>(begin[c] + static_cast<size_t>(k) * chunk_size) - chunk_first, k);
+                visit(lo, hi,
+                      static_cast<int64_t>(begin[c] + static_cast<size_t>(k) * chunk_size) - chunk_first, k);
             }
             lo = hi;
         }
@@ -87,11 +88,11 @@ struct Fabric {
     uint32_t spring_count() const { return static_cast<uint32_t>(spring_first.size()); }
 
     HostVector<Vec3> rest_positions;
-    HostVector<float> rest_area;      // lumped: a third of each incident triangle's area
-    HostVector<uint32_t> triangles;   // 3 indices per triangle
+    HostVector<float> rest_area;     // lumped: a third of each incident triangle's area
+    HostVector<uint32_t> triangles;  // 3 indices per triangle
 
-    HostVector<uint32_t> spring_first;  // particle i of spring s
-    HostVector<uint32_t> spring_second; // particle j of spring s
+    HostVector<uint32_t> spring_first;   // particle i of spring s
+    HostVector<uint32_t> spring_second;  // particle j of spring s
     HostVector<float> spring_rest_length;
     HostVector<uint8_t> spring_kind;
     uint32_t springs_of_kind[kSpringKindCount] = {0, 0, 0};

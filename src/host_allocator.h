@@ -22,7 +22,7 @@ struct HostMemory {
 
 template <class T>
 class HostAllocator {
-public:
+  public:
     using value_type = T;
 
     explicit HostAllocator(const HostMemory* memory) noexcept : memory_(memory) {}
@@ -38,11 +38,15 @@ public:
     const HostMemory* memory() const noexcept { return memory_; }
 
     template <class U>
-    bool operator==(const HostAllocator<U>& o) const noexcept { return memory_ == o.memory(); }
+    bool operator==(const HostAllocator<U>& o) const noexcept {
+        return memory_ == o.memory();
+    }
     template <class U>
-    bool operator!=(const HostAllocator<U>& o) const noexcept { return memory_ != o.memory(); }
+    bool operator!=(const HostAllocator<U>& o) const noexcept {
+        return memory_ != o.memory();
+    }
 
-private:
+  private:
     const HostMemory* memory_;
 };
 

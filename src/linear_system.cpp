@@ -41,7 +41,8 @@ void assemble_particles(const AssemblyPass& pass, uint32_t begin, uint32_t end, 
         L::store(&diagonal_inverse.yy[i], iyy);
         L::store(&diagonal_inverse.yz[i], iyz);
         L::store(&diagonal_inverse.zz[i], izz);
-        const T bx = L::load(&rhs.x[i]) * pass.h, by = L::load(&rhs.y[i]) * pass.h, bz = L::load(&rhs.z[i]) * pass.h;
+        const T bx = L::load(&rhs.x[i]) * pass.h, by = L::load(&rhs.y[i]) * pass.h,
+                bz = L::load(&rhs.z[i]) * pass.h;
         L::store(&rhs.x[i], bx);
         L::store(&rhs.y[i], by);
         L::store(&rhs.z[i], bz);
@@ -51,7 +52,8 @@ void assemble_particles(const AssemblyPass& pass, uint32_t begin, uint32_t end, 
     });
 }
 
-void jacobi_sweep(const LinearSystem& system, const Vec3Soa& current, uint32_t begin, uint32_t end, Vec3Soa& next) {
+void jacobi_sweep(const LinearSystem& system, const Vec3Soa& current, uint32_t begin, uint32_t end,
+                  Vec3Soa& next) {
     system.springs->neighbour_sums(current, begin, end, next);
     const Sym3Soa& w = *system.diagonal_inverse;
     const Vec3Soa& b = *system.rhs;

@@ -20,12 +20,12 @@
 namespace cloth {
 
 struct LinearSystem {
-    const SpringTerms* springs;       // A_s
+    const SpringTerms* springs;  // A_s
     uint32_t particle_count;
     const Sym3Soa* diagonal;          // W_ii, per particle
     const Sym3Soa* diagonal_inverse;  // W_ii^-1, zero for pinned particles
     const Vec3Soa* rhs;               // b_i = h f~_i
-    const float* pinned;         // 1 for pinned particles, 0 for free ones
+    const float* pinned;              // 1 for pinned particles, 0 for free ones
 };
 
 // Inputs of the per-particle assembly stage.
@@ -33,7 +33,7 @@ struct AssemblyPass {
     const SpringTerms* springs;     // evaluated for this substep
     const Vec3Soa* external_force;  // per particle
     const float* mass;
-    const float* pinned;         // 1 for pinned particles, 0 for free ones
+    const float* pinned;  // 1 for pinned particles, 0 for free ones
     float h;
     float linear_drag;  // c: force -c m v, implicit on the diagonal
 };
@@ -46,7 +46,8 @@ void assemble_particles(const AssemblyPass& pass, uint32_t begin, uint32_t end, 
 
 // One Jacobi sweep for particles [begin, end) (paper eqs. 9-10 with h^2
 // folded into A_s):  next_i = W_ii^-1 (b_i + sum_s A_s current_other).
-void jacobi_sweep(const LinearSystem& system, const Vec3Soa& current, uint32_t begin, uint32_t end, Vec3Soa& next);
+void jacobi_sweep(const LinearSystem& system, const Vec3Soa& current, uint32_t begin, uint32_t end,
+                  Vec3Soa& next);
 
 // y_i = (W x)_i = W_ii x_i - sum A_s x_other for particles [begin, end);
 // pinned rows give y_i = 0 (they are not unknowns). x must be zero on

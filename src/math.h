@@ -33,10 +33,19 @@ struct Sym3 {
                 xz * v.x() + yz * v.y() + zz * v.z()};
     }
     Sym3& operator+=(const Sym3& o) {
-        xx += o.xx; xy += o.xy; xz += o.xz; yy += o.yy; yz += o.yz; zz += o.zz;
+        xx += o.xx;
+        xy += o.xy;
+        xz += o.xz;
+        yy += o.yy;
+        yz += o.yz;
+        zz += o.zz;
         return *this;
     }
-    Sym3 operator+(const Sym3& o) const { Sym3 r = *this; r += o; return r; }
+    Sym3 operator+(const Sym3& o) const {
+        Sym3 r = *this;
+        r += o;
+        return r;
+    }
     Sym3 operator*(float s) const { return {xx * s, xy * s, xz * s, yy * s, yz * s, zz * s}; }
 
     Mat3 to_matrix() const {

@@ -2,9 +2,9 @@
 // the previous iterate only, so particles are independent within a sweep
 // (the barrier is between sweeps); the sums run in the fabric's fixed
 // incidence order, so the result does not depend on who runs which range.
-#include "solvers.h"
-
 #include <utility>
+
+#include "solvers.h"
 
 namespace cloth {
 

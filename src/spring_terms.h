@@ -28,7 +28,7 @@
 namespace cloth {
 
 class SpringTerms {
-public:
+  public:
     virtual ~SpringTerms() = default;
 
     // New stiffness and damping per kind.
@@ -52,7 +52,8 @@ public:
 std::shared_ptr<SpringTerms> make_spring_terms(const HostMemory* memory, std::shared_ptr<const Fabric> fabric,
                                                const Material& material);
 // The general layout, for any fabric (tests compare it with the grid one).
-std::shared_ptr<SpringTerms> make_indexed_springs(const HostMemory* memory, std::shared_ptr<const Fabric> fabric,
+std::shared_ptr<SpringTerms> make_indexed_springs(const HostMemory* memory,
+                                                  std::shared_ptr<const Fabric> fabric,
                                                   const Material& material);
 
 }  // namespace cloth

@@ -14,19 +14,20 @@ namespace cloth {
 namespace {
 
 // Every array is a __restrict parameter so GCC vectorizes the loops.
-CLOTH_HOT_LOOP void evaluate_family_kernel(uint32_t begin, uint32_t end, uint32_t offset, float rest, float k, float c, float h,
-                            JacobianClamp clamp, const float* __restrict mask, const float* __restrict px,
-                            const float* __restrict py, const float* __restrict pz, const float* __restrict vx,
-                            const float* __restrict vy, const float* __restrict vz, float* __restrict fx,
-                            float* __restrict fy, float* __restrict fz, float* __restrict bxx, float* __restrict bxy,
-                            float* __restrict bxz, float* __restrict byy, float* __restrict byz,
-                            float* __restrict bzz) {
+CLOTH_HOT_LOOP void evaluate_family_kernel(
+    uint32_t begin, uint32_t end, uint32_t offset, float rest, float k, float c, float h, JacobianClamp clamp,
+    const float* __restrict mask, const float* __restrict px, const float* __restrict py,
+    const float* __restrict pz, const float* __restrict vx, const float* __restrict vy,
+    const float* __restrict vz, float* __restrict fx, float* __restrict fy, float* __restrict fz,
+    float* __restrict bxx, float* __restrict bxy, float* __restrict bxz, float* __restrict byy,
+    float* __restrict byz, float* __restrict bzz) {
     for (uint32_t p = begin; p < end; ++p) {
         const uint32_t j = p + offset;
         // Where the family has no spring (grid edge) the mask zeroes k and c,
         // which zeroes the whole term.
-        const SpringTerm t = spring_term(px[j] - px[p], py[j] - py[p], pz[j] - pz[p], vx[j] - vx[p], vy[j] - vy[p],
-                                         vz[j] - vz[p], rest, k * mask[p], c * mask[p], h, clamp);
+        const SpringTerm t =
+            spring_term(px[j] - px[p], py[j] - py[p], pz[j] - pz[p], vx[j] - vx[p], vy[j] - vy[p],
+                        vz[j] - vz[p], rest, k * mask[p], c * mask[p], h, clamp);
         fx[p] = t.fx;
         fy[p] = t.fy;
         fz[p] = t.fz;
@@ -41,11 +42,13 @@ CLOTH_HOT_LOOP void evaluate_family_kernel(uint32_t begin, uint32_t end, uint32_
 
 // q_p += A[p + block_shift] x[p + x_shift]; every array a __restrict
 // parameter so GCC vectorizes the loop.
-CLOTH_HOT_LOOP void product_kernel(uint32_t begin, uint32_t end, int64_t block_shift, int64_t x_shift, const float* __restrict sxx,
-                    const float* __restrict sxy, const float* __restrict sxz, const float* __restrict syy,
-                    const float* __restrict syz, const float* __restrict szz, const float* __restrict xx,
-                    const float* __restrict xy, const float* __restrict xz, float* __restrict qx,
-                    float* __restrict qy, float* __restrict qz) {
+CLOTH_HOT_LOOP void product_kernel(uint32_t begin, uint32_t end, int64_t block_shift, int64_t x_shift,
+                                   const float* __restrict sxx, const float* __restrict sxy,
+                                   const float* __restrict sxz, const float* __restrict syy,
+                                   const float* __restrict syz, const float* __restrict szz,
+                                   const float* __restrict xx, const float* __restrict xy,
+                                   const float* __restrict xz, float* __restrict qx, float* __restrict qy,
+                                   float* __restrict qz) {
     for (uint32_t p = begin; p < end; ++p) {
         const int64_t s = p + block_shift, o = p + x_shift;
         const float ox = xx[o], oy = xy[o], oz = xz[o];
@@ -119,9 +122,10 @@ CLOTH_HOT_LOOP void gather_families(uint32_t begin, uint32_t end, uint32_t n, ui
 }
 
 class GridSprings final : public SpringTerms {
-public:
+  public:
     GridSprings(const HostMemory* memory, std::shared_ptr<const Fabric> fabric, const Material& material)
-        : fabric_(std::move(fabric)), terms_(HostAllocator<FamilyTerms>(memory)),
+        : fabric_(std::move(fabric)),
+          terms_(HostAllocator<FamilyTerms>(memory)),
           offsets_(HostAllocator<uint32_t>(memory)) {
         const uint32_t n = fabric_->particle_count();
         terms_.reserve(fabric_->grid_families.size());
@@ -151,10 +155,11 @@ public:
             const SpringFamily& family = fabric_->grid_families[f];
             FamilyTerms& t = terms_[f];
             evaluate_family_kernel(begin, std::min(end, n - family.offset), family.offset, family.rest_length,
-                                   t.stiffness, t.damping, h, clamp, family.mask.data(), x.x.data(), x.y.data(),
-                                   x.z.data(), v.x.data(), v.y.data(), v.z.data(), t.force.x.data(),
-                                   t.force.y.data(), t.force.z.data(), t.block.xx.data(), t.block.xy.data(),
-                                   t.block.xz.data(), t.block.yy.data(), t.block.yz.data(), t.block.zz.data());
+                                   t.stiffness, t.damping, h, clamp, family.mask.data(), x.x.data(),
+                                   x.y.data(), x.z.data(), v.x.data(), v.y.data(), v.z.data(),
+                                   t.force.x.data(), t.force.y.data(), t.force.z.data(), t.block.xx.data(),
+                                   t.block.xy.data(), t.block.xz.data(), t.block.yy.data(), t.block.yz.data(),
+                                   t.block.zz.data());
         }
     }
 
@@ -174,9 +179,9 @@ public:
                 // As first particle: A[p] x[p + offset]; as second: A[p - offset] x[p - offset].
                 const uint32_t first_end = std::min(chunk_end, n - offset);
                 if (chunk < first_end) {
-                    product_kernel(chunk, first_end, 0, offset, b.xx.data(), b.xy.data(), b.xz.data(), b.yy.data(),
-                                   b.yz.data(), b.zz.data(), x.x.data(), x.y.data(), x.z.data(), q.x.data(),
-                                   q.y.data(), q.z.data());
+                    product_kernel(chunk, first_end, 0, offset, b.xx.data(), b.xy.data(), b.xz.data(),
+                                   b.yy.data(), b.yz.data(), b.zz.data(), x.x.data(), x.y.data(), x.z.data(),
+                                   q.x.data(), q.y.data(), q.z.data());
                 }
                 const uint32_t second_begin = std::max(chunk, offset);
                 if (second_begin < chunk_end) {
@@ -199,7 +204,7 @@ public:
         }
     }
 
-private:
+  private:
     std::shared_ptr<const Fabric> fabric_;
     std::vector<FamilyTerms, HostAllocator<FamilyTerms>> terms_;
     HostVector<uint32_t> offsets_;  // per family

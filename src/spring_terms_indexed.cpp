@@ -10,17 +10,20 @@ namespace {
 // The kernels take every array as a __restrict parameter: GCC trusts
 // restrict on parameters (not on locals) and only then vectorizes the
 // indexed loads.
-void evaluate_kernel(uint32_t begin, uint32_t end, float h, JacobianClamp clamp, const uint32_t* __restrict first,
-                     const uint32_t* __restrict second, const float* __restrict rest,
-                     const float* __restrict stiffness, const float* __restrict damping, const float* __restrict px,
-                     const float* __restrict py, const float* __restrict pz, const float* __restrict vx,
-                     const float* __restrict vy, const float* __restrict vz, float* __restrict fx,
-                     float* __restrict fy, float* __restrict fz, float* __restrict bxx, float* __restrict bxy,
-                     float* __restrict bxz, float* __restrict byy, float* __restrict byz, float* __restrict bzz) {
+void evaluate_kernel(uint32_t begin, uint32_t end, float h, JacobianClamp clamp,
+                     const uint32_t* __restrict first, const uint32_t* __restrict second,
+                     const float* __restrict rest, const float* __restrict stiffness,
+                     const float* __restrict damping, const float* __restrict px, const float* __restrict py,
+                     const float* __restrict pz, const float* __restrict vx, const float* __restrict vy,
+                     const float* __restrict vz, float* __restrict fx, float* __restrict fy,
+                     float* __restrict fz, float* __restrict bxx, float* __restrict bxy,
+                     float* __restrict bxz, float* __restrict byy, float* __restrict byz,
+                     float* __restrict bzz) {
     for (uint32_t s = begin; s < end; ++s) {
         const uint32_t i = first[s], j = second[s];
-        const SpringTerm t = spring_term(px[j] - px[i], py[j] - py[i], pz[j] - pz[i], vx[j] - vx[i], vy[j] - vy[i],
-                                         vz[j] - vz[i], rest[s], stiffness[s], damping[s], h, clamp);
+        const SpringTerm t =
+            spring_term(px[j] - px[i], py[j] - py[i], pz[j] - pz[i], vx[j] - vx[i], vy[j] - vy[i],
+                        vz[j] - vz[i], rest[s], stiffness[s], damping[s], h, clamp);
         fx[s] = t.fx;
         fy[s] = t.fy;
         fz[s] = t.fz;
@@ -36,7 +39,8 @@ void evaluate_kernel(uint32_t begin, uint32_t end, float h, JacobianClamp clamp,
 // One incidence slot (entry of particle i at base + i): f_i += sign * force_s.
 void gather_kernel(uint32_t begin, uint32_t end, int64_t base, const uint32_t* __restrict spring,
                    const float* __restrict sign, const float* __restrict sfx, const float* __restrict sfy,
-                   const float* __restrict sfz, float* __restrict fx, float* __restrict fy, float* __restrict fz) {
+                   const float* __restrict sfz, float* __restrict fx, float* __restrict fy,
+                   float* __restrict fz) {
     for (uint32_t i = begin; i < end; ++i) {
         const uint32_t s = spring[base + i];
         const float g = sign[base + i];
@@ -48,9 +52,10 @@ void gather_kernel(uint32_t begin, uint32_t end, int64_t base, const uint32_t* _
 
 // One incidence slot: w_i += A_s.
 void gather_block_kernel(uint32_t begin, uint32_t end, int64_t base, const uint32_t* __restrict spring,
-                         const float* __restrict sxx, const float* __restrict sxy, const float* __restrict sxz,
-                         const float* __restrict syy, const float* __restrict syz, const float* __restrict szz,
-                         float* __restrict wxx, float* __restrict wxy, float* __restrict wxz, float* __restrict wyy,
+                         const float* __restrict sxx, const float* __restrict sxy,
+                         const float* __restrict sxz, const float* __restrict syy,
+                         const float* __restrict syz, const float* __restrict szz, float* __restrict wxx,
+                         float* __restrict wxy, float* __restrict wxz, float* __restrict wyy,
                          float* __restrict wyz, float* __restrict wzz) {
     for (uint32_t i = begin; i < end; ++i) {
         const uint32_t s = spring[base + i];
@@ -65,11 +70,11 @@ void gather_block_kernel(uint32_t begin, uint32_t end, int64_t base, const uint3
 
 // One incidence slot: q_i += A_s x_other.
 void product_kernel(uint32_t begin, uint32_t end, int64_t base, const uint32_t* __restrict spring,
-                    const uint32_t* __restrict other,
-                    const float* __restrict sxx, const float* __restrict sxy, const float* __restrict sxz,
-                    const float* __restrict syy, const float* __restrict syz, const float* __restrict szz,
-                    const float* __restrict xx, const float* __restrict xy, const float* __restrict xz,
-                    float* __restrict qx, float* __restrict qy, float* __restrict qz) {
+                    const uint32_t* __restrict other, const float* __restrict sxx,
+                    const float* __restrict sxy, const float* __restrict sxz, const float* __restrict syy,
+                    const float* __restrict syz, const float* __restrict szz, const float* __restrict xx,
+                    const float* __restrict xy, const float* __restrict xz, float* __restrict qx,
+                    float* __restrict qy, float* __restrict qz) {
     for (uint32_t i = begin; i < end; ++i) {
         const uint32_t s = spring[base + i], o = other[base + i];
         const float ox = xx[o], oy = xy[o], oz = xz[o];
@@ -80,7 +85,7 @@ void product_kernel(uint32_t begin, uint32_t end, int64_t base, const uint32_t* 
 }
 
 class IndexedSprings final : public SpringTerms {
-public:
+  public:
     IndexedSprings(const HostMemory* memory, std::shared_ptr<const Fabric> fabric, const Material& material)
         : fabric_(std::move(fabric)),
           stiffness_(HostAllocator<float>(memory)),
@@ -109,33 +114,37 @@ public:
                   uint32_t end) override {
         const Fabric& f = *fabric_;
         evaluate_kernel(begin, end, h, clamp, f.spring_first.data(), f.spring_second.data(),
-                        f.spring_rest_length.data(), stiffness_.data(), damping_.data(), x.x.data(), x.y.data(),
-                        x.z.data(), v.x.data(), v.y.data(), v.z.data(), force_.x.data(), force_.y.data(),
-                        force_.z.data(), block_.xx.data(), block_.xy.data(), block_.xz.data(), block_.yy.data(),
-                        block_.yz.data(), block_.zz.data());
+                        f.spring_rest_length.data(), stiffness_.data(), damping_.data(), x.x.data(),
+                        x.y.data(), x.z.data(), v.x.data(), v.y.data(), v.z.data(), force_.x.data(),
+                        force_.y.data(), force_.z.data(), block_.xx.data(), block_.xy.data(),
+                        block_.xz.data(), block_.yy.data(), block_.yz.data(), block_.zz.data());
     }
 
     void gather(uint32_t begin, uint32_t end, Vec3Soa& force, Sym3Soa* diagonal) const override {
         const PaddedSlots& slots = fabric_->spring_slots;
-        slots.for_each_slot(fabric_->particle_count(), begin, end, [&](uint32_t lo, uint32_t hi, int64_t base, uint32_t) {
-            gather_kernel(lo, hi, base, slots.item.data(), slots.sign.data(), force_.x.data(), force_.y.data(),
-                          force_.z.data(), force.x.data(), force.y.data(), force.z.data());
-            if (!diagonal) return;
-            gather_block_kernel(lo, hi, base, slots.item.data(), block_.xx.data(), block_.xy.data(), block_.xz.data(),
-                                block_.yy.data(), block_.yz.data(), block_.zz.data(), diagonal->xx.data(),
-                                diagonal->xy.data(), diagonal->xz.data(), diagonal->yy.data(), diagonal->yz.data(),
-                                diagonal->zz.data());
-        });
+        slots.for_each_slot(
+            fabric_->particle_count(), begin, end, [&](uint32_t lo, uint32_t hi, int64_t base, uint32_t) {
+                gather_kernel(lo, hi, base, slots.item.data(), slots.sign.data(), force_.x.data(),
+                              force_.y.data(), force_.z.data(), force.x.data(), force.y.data(),
+                              force.z.data());
+                if (!diagonal) return;
+                gather_block_kernel(lo, hi, base, slots.item.data(), block_.xx.data(), block_.xy.data(),
+                                    block_.xz.data(), block_.yy.data(), block_.yz.data(), block_.zz.data(),
+                                    diagonal->xx.data(), diagonal->xy.data(), diagonal->xz.data(),
+                                    diagonal->yy.data(), diagonal->yz.data(), diagonal->zz.data());
+            });
     }
 
     void neighbour_sums(const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& q) const override {
         const PaddedSlots& slots = fabric_->spring_slots;
         for (HostVector<float>* a : {&q.x, &q.y, &q.z}) std::fill(a->begin() + begin, a->begin() + end, 0.0f);
-        slots.for_each_slot(fabric_->particle_count(), begin, end, [&](uint32_t lo, uint32_t hi, int64_t base, uint32_t) {
-            product_kernel(lo, hi, base, slots.item.data(), slots.other.data(), block_.xx.data(), block_.xy.data(),
-                           block_.xz.data(), block_.yy.data(), block_.yz.data(), block_.zz.data(), x.x.data(),
-                           x.y.data(), x.z.data(), q.x.data(), q.y.data(), q.z.data());
-        });
+        slots.for_each_slot(
+            fabric_->particle_count(), begin, end, [&](uint32_t lo, uint32_t hi, int64_t base, uint32_t) {
+                product_kernel(lo, hi, base, slots.item.data(), slots.other.data(), block_.xx.data(),
+                               block_.xy.data(), block_.xz.data(), block_.yy.data(), block_.yz.data(),
+                               block_.zz.data(), x.x.data(), x.y.data(), x.z.data(), q.x.data(), q.y.data(),
+                               q.z.data());
+            });
     }
 
     void for_each_block(const std::function<void(uint32_t, uint32_t, const Sym3&)>& visit) const override {
@@ -144,7 +153,7 @@ public:
         }
     }
 
-private:
+  private:
     std::shared_ptr<const Fabric> fabric_;
     HostVector<float> stiffness_, damping_;  // per spring, from the material
     Vec3Soa force_;                          // per spring: f~ contribution on its first particle
@@ -153,10 +162,11 @@ private:
 
 }  // namespace
 
-std::shared_ptr<SpringTerms> make_indexed_springs(const HostMemory* memory, std::shared_ptr<const Fabric> fabric,
+std::shared_ptr<SpringTerms> make_indexed_springs(const HostMemory* memory,
+                                                  std::shared_ptr<const Fabric> fabric,
                                                   const Material& material) {
-    return std::allocate_shared<IndexedSprings>(HostAllocator<IndexedSprings>(memory), memory, std::move(fabric),
-                                                material);
+    return std::allocate_shared<IndexedSprings>(HostAllocator<IndexedSprings>(memory), memory,
+                                                std::move(fabric), material);
 }
 
 }  // namespace cloth

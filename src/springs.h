@@ -47,8 +47,8 @@ struct SpringTerm {
     float bxx, bxy, bxz, byy, byz, bzz;
 };
 
-inline SpringTerm spring_term(float dx, float dy, float dz, float rvx, float rvy, float rvz, float rest, float k,
-                              float c, float h, JacobianClamp clamp) {
+inline SpringTerm spring_term(float dx, float dy, float dz, float rvx, float rvy, float rvz, float rest,
+                              float k, float c, float h, JacobianClamp clamp) {
     const float true_length = std::sqrt(dx * dx + dy * dy + dz * dz);
     const float length = std::max(true_length, 1e-9f);
     // Coincident ends: no direction, so no force (k = c = 0 zeroes the term).

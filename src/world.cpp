@@ -72,8 +72,8 @@ Status World::destroy_fabric(cloth_fabric_id id) {
 }
 
 Status World::create_cloth(std::shared_ptr<const Fabric> fabric, const Material& material,
-                           const SolverSettings& solver, const AeroParams& aero, const float* initial_positions,
-                           cloth_id* out) {
+                           const SolverSettings& solver, const AeroParams& aero,
+                           const float* initial_positions, cloth_id* out) {
     const uint32_t slot = find_free_slot(cloths_);
     if (slot == UINT32_MAX) {
         return Status::error(CLOTH_ERROR_CAPACITY, "world has no free cloth slot (max_cloths = %zu)",
@@ -88,8 +88,8 @@ Status World::create_cloth(std::shared_ptr<const Fabric> fabric, const Material&
         }
     }
     cloths_[slot].object = std::move(cloth);
-    *out = cloth_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1), cloths_[slot].generation,
-                    generation_};
+    *out = cloth_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1),
+                    cloths_[slot].generation, generation_};
     return {};
 }
 

@@ -24,7 +24,7 @@ struct Slot {
 };
 
 class World {
-public:
+  public:
     World(const cloth_world_desc& desc, uint16_t index, uint16_t generation);
 
     const HostMemory* memory() const { return &memory_; }
@@ -38,8 +38,9 @@ public:
     std::shared_ptr<const Fabric> find_fabric(cloth_fabric_id id) const;
     Status destroy_fabric(cloth_fabric_id id);
 
-    Status create_cloth(std::shared_ptr<const Fabric> fabric, const Material& material, const SolverSettings& solver,
-                        const AeroParams& aero, const float* initial_positions, cloth_id* out);
+    Status create_cloth(std::shared_ptr<const Fabric> fabric, const Material& material,
+                        const SolverSettings& solver, const AeroParams& aero, const float* initial_positions,
+                        cloth_id* out);
     ClothInstance* find_cloth(cloth_id id) const;
     Status destroy_cloth(cloth_id id);
 
@@ -49,8 +50,7 @@ public:
 
     void log(cloth_log_level level, cloth_result code, const char* message) const;
 
-
-private:
+  private:
     template <class T>
     static uint32_t find_free_slot(const HostVector<Slot<T>>& slots);
 
@@ -81,8 +81,8 @@ Status World::create_fabric(Build build, cloth_fabric_id* out) {
     Status status = build(*fabric);
     if (!status.ok()) return status;
     fabrics_[slot].object = std::move(fabric);
-    *out = cloth_fabric_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1), fabrics_[slot].generation,
-                           generation_};
+    *out = cloth_fabric_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1),
+                           fabrics_[slot].generation, generation_};
     return {};
 }
 

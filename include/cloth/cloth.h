@@ -58,15 +58,15 @@
 #include <stdint.h>
 
 #if defined(_WIN32)
-#  if defined(CLOTH_BUILDING_SHARED)
-#    define CLOTH_API __declspec(dllexport)
-#  elif defined(CLOTH_USING_SHARED)
-#    define CLOTH_API __declspec(dllimport)
-#  else
-#    define CLOTH_API
-#  endif
+#if defined(CLOTH_BUILDING_SHARED)
+#define CLOTH_API __declspec(dllexport)
+#elif defined(CLOTH_USING_SHARED)
+#define CLOTH_API __declspec(dllimport)
 #else
-#  define CLOTH_API __attribute__((visibility("default")))
+#define CLOTH_API
+#endif
+#else
+#define CLOTH_API __attribute__((visibility("default")))
 #endif
 
 #ifdef __cplusplus
@@ -98,20 +98,22 @@ CLOTH_API cloth_version cloth_get_version(void);
 
 typedef enum cloth_result {
     CLOTH_OK = 0,
-    CLOTH_ERROR_NULL_POINTER = 1,      ///< a required pointer argument was NULL
-    CLOTH_ERROR_INVALID_HANDLE = 2,    ///< null, destroyed or foreign handle
-    CLOTH_ERROR_INVALID_DESC = 3,      ///< description not from cloth_default_*() or wrong struct_size
-    CLOTH_ERROR_INVALID_COUNT = 4,     ///< a count is zero, negative or too large
-    CLOTH_ERROR_INDEX_OUT_OF_RANGE = 5,///< a particle or vertex index is out of range
-    CLOTH_ERROR_NOT_FINITE = 6,        ///< a position or parameter is NaN or infinite
-    CLOTH_ERROR_INVALID_VALUE = 7,     ///< a value is out of its documented range (negative stiffness, dt <= 0, ...)
-    CLOTH_ERROR_DEGENERATE_GEOMETRY = 8,///< zero-area triangle, repeated vertex, zero-length edge
-    CLOTH_ERROR_OUT_OF_MEMORY = 9,     ///< the allocator returned NULL
-    CLOTH_ERROR_CAPACITY = 10,         ///< too many worlds, fabrics or cloths
-    CLOTH_ERROR_IO = 11,               ///< a file could not be read or parsed
-    CLOTH_ERROR_NONFINITE_STATE = 12,  ///< a step produced NaN/Inf; the cloth was restored to its last finite state
-    CLOTH_ERROR_SOLVER_FAILED = 13,    ///< a solve did not converge (state still advanced, finite)
-    CLOTH_ERROR_INTERNAL = 14,         ///< an unexpected internal error; the world is unchanged
+    CLOTH_ERROR_NULL_POINTER = 1,        ///< a required pointer argument was NULL
+    CLOTH_ERROR_INVALID_HANDLE = 2,      ///< null, destroyed or foreign handle
+    CLOTH_ERROR_INVALID_DESC = 3,        ///< description not from cloth_default_*() or wrong struct_size
+    CLOTH_ERROR_INVALID_COUNT = 4,       ///< a count is zero, negative or too large
+    CLOTH_ERROR_INDEX_OUT_OF_RANGE = 5,  ///< a particle or vertex index is out of range
+    CLOTH_ERROR_NOT_FINITE = 6,          ///< a position or parameter is NaN or infinite
+    CLOTH_ERROR_INVALID_VALUE =
+        7,  ///< a value is out of its documented range (negative stiffness, dt <= 0, ...)
+    CLOTH_ERROR_DEGENERATE_GEOMETRY = 8,  ///< zero-area triangle, repeated vertex, zero-length edge
+    CLOTH_ERROR_OUT_OF_MEMORY = 9,        ///< the allocator returned NULL
+    CLOTH_ERROR_CAPACITY = 10,            ///< too many worlds, fabrics or cloths
+    CLOTH_ERROR_IO = 11,                  ///< a file could not be read or parsed
+    CLOTH_ERROR_NONFINITE_STATE =
+        12,  ///< a step produced NaN/Inf; the cloth was restored to its last finite state
+    CLOTH_ERROR_SOLVER_FAILED = 13,  ///< a solve did not converge (state still advanced, finite)
+    CLOTH_ERROR_INTERNAL = 14,       ///< an unexpected internal error; the world is unchanged
     CLOTH_RESULT_FORCE_U32 = 0x7FFFFFFF
 } cloth_result;
 
@@ -128,27 +130,27 @@ CLOTH_API const char* cloth_get_last_error(void);
 
 /// A world. All-zero is the null handle.
 typedef struct cloth_world_id {
-    uint16_t index1;     ///< slot index + 1; 0 means null
-    uint16_t generation; ///< reuse counter of the slot
+    uint16_t index1;      ///< slot index + 1; 0 means null
+    uint16_t generation;  ///< reuse counter of the slot
 } cloth_world_id;
 
 /// A fabric (shared topology) inside a world. All-zero is null. It names
 /// its world's slot and generation too, so an id outlives neither its own
 /// slot's reuse nor its world's.
 typedef struct cloth_fabric_id {
-    uint16_t index1;           ///< slot index + 1; 0 means null
-    uint16_t world1;           ///< owning world index + 1
-    uint16_t generation;       ///< reuse counter of the slot
-    uint16_t world_generation; ///< generation of the owning world
+    uint16_t index1;            ///< slot index + 1; 0 means null
+    uint16_t world1;            ///< owning world index + 1
+    uint16_t generation;        ///< reuse counter of the slot
+    uint16_t world_generation;  ///< generation of the owning world
 } cloth_fabric_id;
 
 /// A cloth instance inside a world. All-zero is null. Same layout and
 /// rules as cloth_fabric_id.
 typedef struct cloth_id {
-    uint16_t index1;           ///< slot index + 1; 0 means null
-    uint16_t world1;           ///< owning world index + 1
-    uint16_t generation;       ///< reuse counter of the slot
-    uint16_t world_generation; ///< generation of the owning world
+    uint16_t index1;            ///< slot index + 1; 0 means null
+    uint16_t world1;            ///< owning world index + 1
+    uint16_t generation;        ///< reuse counter of the slot
+    uint16_t world_generation;  ///< generation of the owning world
 } cloth_id;
 
 /* ------------------------------------------------------------------ */
@@ -173,15 +175,16 @@ typedef enum cloth_log_level {
 typedef void cloth_log_fn(cloth_log_level level, cloth_result code, const char* message, void* user);
 
 typedef struct cloth_world_desc {
-    uint32_t struct_size;   ///< sizeof(cloth_world_desc); set by cloth_default_world_desc()
-    float gravity[3];       ///< m/s^2; default (0, -9.81, 0)
-    cloth_alloc_fn* alloc;  ///< optional; both alloc and free, or neither (CLOTH_ERROR_INVALID_VALUE); default: C heap
-    cloth_free_fn* free;    ///< optional
-    cloth_log_fn* log;      ///< optional
-    void* user;             ///< passed to alloc, free and log
-    uint32_t max_cloths;    ///< capacity of the cloth table; default 1024, at most 65535
-    uint32_t max_fabrics;   ///< capacity of the fabric table; default 256, at most 65535
-    uint32_t internal_cookie; ///< set by cloth_default_world_desc(); do not change
+    uint32_t struct_size;  ///< sizeof(cloth_world_desc); set by cloth_default_world_desc()
+    float gravity[3];      ///< m/s^2; default (0, -9.81, 0)
+    cloth_alloc_fn*
+        alloc;  ///< optional; both alloc and free, or neither (CLOTH_ERROR_INVALID_VALUE); default: C heap
+    cloth_free_fn* free;       ///< optional
+    cloth_log_fn* log;         ///< optional
+    void* user;                ///< passed to alloc, free and log
+    uint32_t max_cloths;       ///< capacity of the cloth table; default 1024, at most 65535
+    uint32_t max_fabrics;      ///< capacity of the fabric table; default 256, at most 65535
+    uint32_t internal_cookie;  ///< set by cloth_default_world_desc(); do not change
 } cloth_world_desc;
 
 CLOTH_API cloth_world_desc cloth_default_world_desc(void);
@@ -206,9 +209,9 @@ CLOTH_API cloth_result cloth_step(cloth_world_id world, float dt);
 
 /// Spring kinds, as bits of cloth_fabric_desc.spring_kinds.
 typedef enum cloth_spring_kind {
-    CLOTH_SPRING_STRUCTURAL = 1, ///< mesh edges (grid rows and columns)
-    CLOTH_SPRING_SHEAR = 2,      ///< grid cell diagonals (grids only)
-    CLOTH_SPRING_BEND = 4,       ///< skip-one on grids; across shared triangle edges on meshes
+    CLOTH_SPRING_STRUCTURAL = 1,  ///< mesh edges (grid rows and columns)
+    CLOTH_SPRING_SHEAR = 2,       ///< grid cell diagonals (grids only)
+    CLOTH_SPRING_BEND = 4,        ///< skip-one on grids; across shared triangle edges on meshes
     CLOTH_SPRING_ALL = 7,
     CLOTH_SPRING_KIND_FORCE_U32 = 0x7FFFFFFF
 } cloth_spring_kind;
@@ -216,13 +219,13 @@ typedef enum cloth_spring_kind {
 /// A rectangular grid of `columns` x `rows` particles. Particle (c, r) has
 /// index r * columns + c and sits at origin + c/(columns-1) * u + r/(rows-1) * v.
 typedef struct cloth_grid_desc {
-    uint32_t struct_size; ///< sizeof(cloth_grid_desc)
-    uint32_t columns;     ///< >= 2; default 32
-    uint32_t rows;        ///< >= 2; default 32
-    float origin[3];      ///< position of particle (0, 0); default (0, 0, 0)
-    float u[3];           ///< edge along columns; default (1, 0, 0)
-    float v[3];           ///< edge along rows; default (0, -1, 0) (hangs down)
-    uint32_t spring_kinds;///< bit set of cloth_spring_kind; default CLOTH_SPRING_ALL
+    uint32_t struct_size;   ///< sizeof(cloth_grid_desc)
+    uint32_t columns;       ///< >= 2; default 32
+    uint32_t rows;          ///< >= 2; default 32
+    float origin[3];        ///< position of particle (0, 0); default (0, 0, 0)
+    float u[3];             ///< edge along columns; default (1, 0, 0)
+    float v[3];             ///< edge along rows; default (0, -1, 0) (hangs down)
+    uint32_t spring_kinds;  ///< bit set of cloth_spring_kind; default CLOTH_SPRING_ALL
     uint32_t internal_cookie;
 } cloth_grid_desc;
 
@@ -233,21 +236,24 @@ CLOTH_API cloth_grid_desc cloth_default_grid_desc(void);
 /// Every vertex must belong to a triangle (it gets its mass from them), and
 /// no triangle may have zero area: else CLOTH_ERROR_DEGENERATE_GEOMETRY.
 typedef struct cloth_mesh_desc {
-    uint32_t struct_size;      ///< sizeof(cloth_mesh_desc)
-    const float* positions;    ///< vertex_count * 3 floats
-    uint32_t vertex_count;     ///< >= 3
-    const uint32_t* indices;   ///< triangle_count * 3 vertex indices
-    uint32_t triangle_count;   ///< >= 1
-    uint32_t spring_kinds;     ///< default CLOTH_SPRING_ALL (shear is ignored)
+    uint32_t struct_size;     ///< sizeof(cloth_mesh_desc)
+    const float* positions;   ///< vertex_count * 3 floats
+    uint32_t vertex_count;    ///< >= 3
+    const uint32_t* indices;  ///< triangle_count * 3 vertex indices
+    uint32_t triangle_count;  ///< >= 1
+    uint32_t spring_kinds;    ///< default CLOTH_SPRING_ALL (shear is ignored)
     uint32_t internal_cookie;
 } cloth_mesh_desc;
 
 CLOTH_API cloth_mesh_desc cloth_default_mesh_desc(void);
 
-CLOTH_API cloth_result cloth_fabric_create_grid(cloth_world_id world, const cloth_grid_desc* desc, cloth_fabric_id* out_fabric);
-CLOTH_API cloth_result cloth_fabric_create_mesh(cloth_world_id world, const cloth_mesh_desc* desc, cloth_fabric_id* out_fabric);
+CLOTH_API cloth_result cloth_fabric_create_grid(cloth_world_id world, const cloth_grid_desc* desc,
+                                                cloth_fabric_id* out_fabric);
+CLOTH_API cloth_result cloth_fabric_create_mesh(cloth_world_id world, const cloth_mesh_desc* desc,
+                                                cloth_fabric_id* out_fabric);
 /// Load a triangle mesh from a Wavefront OBJ file (faces are triangulated).
-CLOTH_API cloth_result cloth_fabric_create_obj(cloth_world_id world, const char* path, uint32_t spring_kinds, cloth_fabric_id* out_fabric);
+CLOTH_API cloth_result cloth_fabric_create_obj(cloth_world_id world, const char* path, uint32_t spring_kinds,
+                                               cloth_fabric_id* out_fabric);
 /// Release the handle. Cloths made from the fabric keep working; the
 /// memory is freed when the last of them is destroyed.
 CLOTH_API cloth_result cloth_fabric_destroy(cloth_fabric_id fabric);
@@ -255,10 +261,12 @@ CLOTH_API cloth_result cloth_fabric_destroy(cloth_fabric_id fabric);
 CLOTH_API cloth_result cloth_fabric_get_particle_count(cloth_fabric_id fabric, uint32_t* out_count);
 CLOTH_API cloth_result cloth_fabric_get_triangle_count(cloth_fabric_id fabric, uint32_t* out_count);
 /// Number of springs of the given kinds (a bit set of cloth_spring_kind).
-CLOTH_API cloth_result cloth_fabric_get_spring_count(cloth_fabric_id fabric, uint32_t kinds, uint32_t* out_count);
+CLOTH_API cloth_result cloth_fabric_get_spring_count(cloth_fabric_id fabric, uint32_t kinds,
+                                                     uint32_t* out_count);
 /// Copy the triangle indices (3 per triangle) into `out_indices`, which
 /// holds `capacity` uint32 values (at least 3 * triangle count).
-CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id fabric, uint32_t* out_indices, uint32_t capacity);
+CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id fabric, uint32_t* out_indices,
+                                                   uint32_t capacity);
 
 /* ------------------------------------------------------------------ */
 /* Cloth                                                                */
@@ -266,27 +274,28 @@ CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id fabric, uint3
 
 typedef enum cloth_solver_kind {
     CLOTH_SOLVER_DEFAULT = 0,  ///< the library's choice (currently JACOBI)
-    CLOTH_SOLVER_JACOBI = 1,   ///< linearized backward Euler, `iterations` Jacobi sweeps (1 = the paper's method)
-    CLOTH_SOLVER_CG = 2,       ///< the same system solved with conjugate gradient to `cg_tolerance` (reference)
-    CLOTH_SOLVER_EXPLICIT = 3, ///< symplectic Euler (baseline; needs tiny steps for stiff cloth)
+    CLOTH_SOLVER_JACOBI =
+        1,                ///< linearized backward Euler, `iterations` Jacobi sweeps (1 = the paper's method)
+    CLOTH_SOLVER_CG = 2,  ///< the same system solved with conjugate gradient to `cg_tolerance` (reference)
+    CLOTH_SOLVER_EXPLICIT = 3,  ///< symplectic Euler (baseline; needs tiny steps for stiff cloth)
     CLOTH_SOLVER_KIND_FORCE_U32 = 0x7FFFFFFF
 } cloth_solver_kind;
 
 /// Stiffness and damping of one spring kind.
 typedef struct cloth_spring_params {
-    float stiffness; ///< N/m, >= 0
-    float damping;   ///< N s/m along the spring, >= 0
+    float stiffness;  ///< N/m, >= 0
+    float damping;    ///< N s/m along the spring, >= 0
 } cloth_spring_params;
 
 /// How a cloth advances.
 typedef struct cloth_solver_settings {
-    uint32_t struct_size;          ///< sizeof(cloth_solver_settings)
-    cloth_solver_kind kind;        ///< default CLOTH_SOLVER_JACOBI
-    uint32_t iterations;           ///< Jacobi sweeps, 1..256; default 1
-    uint32_t substeps;             ///< steps per cloth_step call, 1..64; default 1
-    float cg_tolerance;            ///< CG relative residual, (0, 1); default 1e-6
-    uint32_t cg_max_iterations;    ///< 1..100000; default 1000
-    bool compression_safe_jacobian;///< paper eq. 12 for compressed springs; default true
+    uint32_t struct_size;            ///< sizeof(cloth_solver_settings)
+    cloth_solver_kind kind;          ///< default CLOTH_SOLVER_JACOBI
+    uint32_t iterations;             ///< Jacobi sweeps, 1..256; default 1
+    uint32_t substeps;               ///< steps per cloth_step call, 1..64; default 1
+    float cg_tolerance;              ///< CG relative residual, (0, 1); default 1e-6
+    uint32_t cg_max_iterations;      ///< 1..100000; default 1000
+    bool compression_safe_jacobian;  ///< paper eq. 12 for compressed springs; default true
 } cloth_solver_settings;
 
 CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
@@ -294,24 +303,24 @@ CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
 /// Aerodynamics: wind, drag and lift per triangle against the relative air
 /// velocity, plus linear air drag per particle.
 typedef struct cloth_aero_params {
-    float wind[3];          ///< air velocity, m/s; default (0, 0, 0)
-    float air_density;      ///< kg/m^3, >= 0; default 1.2
-    float drag_coefficient; ///< >= 0; default 1.0
-    float lift_coefficient; ///< >= 0; default 0.5
-    float linear_drag;      ///< 1/s, >= 0: force -linear_drag * m * v per particle; default 0.02
+    float wind[3];           ///< air velocity, m/s; default (0, 0, 0)
+    float air_density;       ///< kg/m^3, >= 0; default 1.2
+    float drag_coefficient;  ///< >= 0; default 1.0
+    float lift_coefficient;  ///< >= 0; default 0.5
+    float linear_drag;       ///< 1/s, >= 0: force -linear_drag * m * v per particle; default 0.02
 } cloth_aero_params;
 
 typedef struct cloth_desc {
-    uint32_t struct_size;          ///< sizeof(cloth_desc)
-    cloth_fabric_id fabric;        ///< required
-    float area_density;            ///< kg/m^2, > 0; default 0.2
-    float particle_mass;           ///< kg, >= 0; if > 0, every particle gets this mass instead
-    const float* initial_positions;///< optional particle_count * 3 floats; default: fabric rest positions
-    cloth_spring_params structural;///< default {1000, 0.5}
-    cloth_spring_params shear;     ///< default {200, 0.2}
-    cloth_spring_params bend;      ///< default {20, 0.05}
-    cloth_solver_settings solver;  ///< default cloth_default_solver_settings()
-    cloth_aero_params aero;        ///< see cloth_aero_params
+    uint32_t struct_size;            ///< sizeof(cloth_desc)
+    cloth_fabric_id fabric;          ///< required
+    float area_density;              ///< kg/m^2, > 0; default 0.2
+    float particle_mass;             ///< kg, >= 0; if > 0, every particle gets this mass instead
+    const float* initial_positions;  ///< optional particle_count * 3 floats; default: fabric rest positions
+    cloth_spring_params structural;  ///< default {1000, 0.5}
+    cloth_spring_params shear;       ///< default {200, 0.2}
+    cloth_spring_params bend;        ///< default {20, 0.05}
+    cloth_solver_settings solver;    ///< default cloth_default_solver_settings()
+    cloth_aero_params aero;          ///< see cloth_aero_params
     uint32_t internal_cookie;
 } cloth_desc;
 
@@ -335,7 +344,8 @@ CLOTH_API cloth_result cloth_read_normals(cloth_id cloth, float* out_xyz, uint32
 /// CLOTH_ERROR_INDEX_OUT_OF_RANGE); they change nothing unless all are valid.
 
 /// Teleport particles: set positions (and zero their velocities).
-CLOTH_API cloth_result cloth_set_positions(cloth_id cloth, const uint32_t* indices, const float* positions_xyz, uint32_t count);
+CLOTH_API cloth_result cloth_set_positions(cloth_id cloth, const uint32_t* indices,
+                                           const float* positions_xyz, uint32_t count);
 
 /// Pin particles where they are: they become kinematic (infinite mass).
 CLOTH_API cloth_result cloth_pin(cloth_id cloth, const uint32_t* indices, uint32_t count);
@@ -344,7 +354,8 @@ CLOTH_API cloth_result cloth_unpin(cloth_id cloth, const uint32_t* indices, uint
 /// Move pinned particles: each reaches its target at the end of the next
 /// cloth_step, moving linearly across substeps, and carries the matching
 /// velocity. Every index must be pinned.
-CLOTH_API cloth_result cloth_set_pin_targets(cloth_id cloth, const uint32_t* indices, const float* targets_xyz, uint32_t count);
+CLOTH_API cloth_result cloth_set_pin_targets(cloth_id cloth, const uint32_t* indices,
+                                             const float* targets_xyz, uint32_t count);
 /// Whether particle `index` is pinned.
 CLOTH_API cloth_result cloth_is_pinned(cloth_id cloth, uint32_t index, bool* out_pinned);
 
@@ -359,16 +370,17 @@ CLOTH_API cloth_result cloth_set_wind(cloth_id cloth, const float wind[3]);
 
 /// Measurements of a cloth's current state.
 typedef struct cloth_stats {
-    uint32_t struct_size;      ///< set by the caller to sizeof(cloth_stats)
-    double kinetic_energy;     ///< J, free particles only
-    double gravity_energy;     ///< J, -m g . x (height energy relative to the origin), free particles only
-    double elastic_energy;     ///< J, sum of k (L - l0)^2 / 2 over springs
-    float max_strain;          ///< max over structural springs of (L - l0) / l0
-    float mean_strain;         ///< mean of |L - l0| / l0 over structural springs
-    float max_speed;           ///< m/s
-    uint32_t last_solver_iterations; ///< iterations of the last solve (CG: last substep), also of a step that was undone
-    float last_solver_residual;      ///< relative residual of the last solve (CG only; else 0)
-    cloth_result last_step_result;   ///< CLOTH_OK, or what the last cloth_step reported for this cloth
+    uint32_t struct_size;   ///< set by the caller to sizeof(cloth_stats)
+    double kinetic_energy;  ///< J, free particles only
+    double gravity_energy;  ///< J, -m g . x (height energy relative to the origin), free particles only
+    double elastic_energy;  ///< J, sum of k (L - l0)^2 / 2 over springs
+    float max_strain;       ///< max over structural springs of (L - l0) / l0
+    float mean_strain;      ///< mean of |L - l0| / l0 over structural springs
+    float max_speed;        ///< m/s
+    uint32_t last_solver_iterations;  ///< iterations of the last solve (CG: last substep), also of a step
+                                      ///< that was undone
+    float last_solver_residual;       ///< relative residual of the last solve (CG only; else 0)
+    cloth_result last_step_result;    ///< CLOTH_OK, or what the last cloth_step reported for this cloth
 } cloth_stats;
 
 CLOTH_API cloth_result cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);

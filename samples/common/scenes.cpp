@@ -4,9 +4,12 @@ namespace cloth_samples {
 
 const char* scene_name(SceneKind kind) {
     switch (kind) {
-        case SceneKind::kHanging: return "hanging";
-        case SceneKind::kFallingFlat: return "falling_flat";
-        case SceneKind::kFlagInWind: return "flag_in_wind";
+        case SceneKind::kHanging:
+            return "hanging";
+        case SceneKind::kFallingFlat:
+            return "falling_flat";
+        case SceneKind::kFlagInWind:
+            return "flag_in_wind";
     }
     return "unknown";
 }

@@ -26,7 +26,7 @@ const char* scene_name(SceneKind kind);
 struct SceneConfig {
     SceneKind kind = SceneKind::kHanging;
     uint32_t resolution = 32;
-    float total_mass = 1.0f;  // kg
+    float total_mass = 1.0f;    // kg
     float stiffness = 1000.0f;  // N/m, every spring kind
     float damping = 0.0f;       // N s/m, every spring kind
     float wind_speed = 10.0f;   // m/s, flag only
@@ -36,7 +36,7 @@ struct SceneConfig {
 
 // Owns a world with one fabric and one cloth; destroys them on scope exit.
 class Scene {
-public:
+  public:
     explicit Scene(const SceneConfig& config);
     ~Scene();
     Scene(const Scene&) = delete;
@@ -54,7 +54,7 @@ public:
     cloth_stats stats() const;
     std::vector<float> positions() const;
 
-private:
+  private:
     cloth_world_id world_{};
     cloth_fabric_id fabric_{};
     cloth_id cloth_{};

@@ -43,7 +43,8 @@ void make_pole(float x, float z, float height, float half_width, std::vector<flo
         positions.push_back((corner & 2) ? height : 0.0f);
         positions.push_back(z + ((corner & 4) ? half_width : -half_width));
     }
-    const uint32_t faces[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+    const uint32_t faces[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
+                                  {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
     for (const auto& f : faces) indices.insert(indices.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
 }
 
@@ -89,8 +90,9 @@ int main(int argc, char** argv) {
     desc.structural.stiffness = o.stiffness;
     desc.shear.stiffness = 0.2f * o.stiffness;
     desc.bend.stiffness = 0.02f * o.stiffness;
-    desc.solver.kind = o.solver == "cg" ? CLOTH_SOLVER_CG : o.solver == "explicit" ? CLOTH_SOLVER_EXPLICIT
-                                                                                   : CLOTH_SOLVER_JACOBI;
+    desc.solver.kind = o.solver == "cg"         ? CLOTH_SOLVER_CG
+                       : o.solver == "explicit" ? CLOTH_SOLVER_EXPLICIT
+                                                : CLOTH_SOLVER_JACOBI;
     desc.solver.iterations = o.iterations;
     desc.solver.substeps = o.substeps;
     cloth_id flag;
@@ -98,13 +100,15 @@ int main(int argc, char** argv) {
 
     std::vector<uint32_t> pole_side;
     for (uint32_t r = 0; r < o.rows; ++r) pole_side.push_back(r * o.columns);
-    if (!check(cloth_pin(flag, pole_side.data(), static_cast<uint32_t>(pole_side.size())), "cloth_pin")) return 1;
+    if (!check(cloth_pin(flag, pole_side.data(), static_cast<uint32_t>(pole_side.size())), "cloth_pin"))
+        return 1;
 
     uint32_t particles = 0, springs = 0;
     cloth_get_particle_count(flag, &particles);
     cloth_fabric_get_spring_count(fabric, CLOTH_SPRING_ALL, &springs);
     std::printf("flag %ux%u: %u particles, %u springs, solver %s, iterations %u, substeps %u, k %.0f N/m\n",
-                o.columns, o.rows, particles, springs, o.solver.c_str(), o.iterations, o.substeps, o.stiffness);
+                o.columns, o.rows, particles, springs, o.solver.c_str(), o.iterations, o.substeps,
+                o.stiffness);
     std::printf("%8s %10s %10s %10s %10s\n", "frame", "step_ms", "max_strain", "max_speed", "wind_m/s");
 
     std::vector<double> step_ms;
@@ -118,7 +122,8 @@ int main(int argc, char** argv) {
 
         const auto start = std::chrono::steady_clock::now();
         const cloth_result result = cloth_step(world, dt);
-        step_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        step_ms.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         if (result != CLOTH_OK) {
             ++failed_frames;
             std::fprintf(stderr, "frame %d: %s\n", frame, cloth_get_last_error());
@@ -128,8 +133,8 @@ int main(int argc, char** argv) {
             cloth_stats stats{};
             stats.struct_size = sizeof stats;
             cloth_get_stats(flag, &stats);
-            std::printf("%8d %10.3f %10.3f %10.2f %10.1f\n", frame, step_ms.back(), stats.max_strain, stats.max_speed,
-                        speed);
+            std::printf("%8d %10.3f %10.3f %10.2f %10.1f\n", frame, step_ms.back(), stats.max_strain,
+                        stats.max_speed, speed);
         }
     }
     std::printf("step time over %d frames: p50 %.3f ms, p95 %.3f ms, max %.3f ms\n", o.frames,
@@ -152,7 +157,11 @@ int main(int argc, char** argv) {
 
         const cloth_samples::RenderMesh meshes[] = {
             {positions.data(), normals.data(), particles, indices.data(), triangles, {200, 40, 45}},
-            {pole_positions.data(), nullptr, 8, pole_indices.data(), static_cast<uint32_t>(pole_indices.size() / 3),
+            {pole_positions.data(),
+             nullptr,
+             8,
+             pole_indices.data(),
+             static_cast<uint32_t>(pole_indices.size() / 3),
              {120, 120, 128}},
         };
         const cloth_samples::Camera camera{{2.6f, 2.2f, 3.6f}, {0.8f, 2.3f, 0.0f}, {0.0f, 1.0f, 0.0f}, 45.0f};

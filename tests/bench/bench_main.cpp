@@ -43,12 +43,13 @@ void BM_Step(benchmark::State& state, cloth_solver_kind kind, uint32_t iteration
     }
     // Steps that went non-finite and were undone: the time of such a step is
     // the cost of computing and discarding it (EXPLICIT at 60 Hz, mostly).
-    state.counters["failed_steps"] = benchmark::Counter(static_cast<double>(failed), benchmark::Counter::kAvgIterations);
+    state.counters["failed_steps"] =
+        benchmark::Counter(static_cast<double>(failed), benchmark::Counter::kAvgIterations);
     state.counters["particles"] = scene.particle_count();
     // Wall time per particle per step (printed with its SI prefix, e.g. "90ns").
-    state.counters["per_particle"] = benchmark::Counter(
-        static_cast<double>(scene.particle_count()),
-        benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["per_particle"] =
+        benchmark::Counter(static_cast<double>(scene.particle_count()),
+                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
     state.counters["max_strain"] = scene.stats().max_strain;
 }
 
@@ -58,18 +59,22 @@ void register_step_benchmarks() {
         cloth_solver_kind kind;
         uint32_t iterations;
     };
-    const Variant variants[] = {{"EXPLICIT", CLOTH_SOLVER_EXPLICIT, 1}, {"JACOBI_k1", CLOTH_SOLVER_JACOBI, 1},
-                                {"JACOBI_k2", CLOTH_SOLVER_JACOBI, 2},  {"JACOBI_k4", CLOTH_SOLVER_JACOBI, 4},
+    const Variant variants[] = {{"EXPLICIT", CLOTH_SOLVER_EXPLICIT, 1},
+                                {"JACOBI_k1", CLOTH_SOLVER_JACOBI, 1},
+                                {"JACOBI_k2", CLOTH_SOLVER_JACOBI, 2},
+                                {"JACOBI_k4", CLOTH_SOLVER_JACOBI, 4},
                                 {"CG", CLOTH_SOLVER_CG, 1}};
     for (const Variant& v : variants) {
-        auto* b = benchmark::RegisterBenchmark((std::string("Step/") + v.name).c_str(), BM_Step, v.kind, v.iterations);
+        auto* b = benchmark::RegisterBenchmark((std::string("Step/") + v.name).c_str(), BM_Step, v.kind,
+                                               v.iterations);
         b->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond);
     }
 }
 
 // Max strain over the run and the largest energy gain above the start, for
 // a cloth falling flat from horizontal, pinned at two corners.
-void accuracy_row(uint32_t resolution, const char* label, cloth_solver_kind kind, bool compression_safe, int steps) {
+void accuracy_row(uint32_t resolution, const char* label, cloth_solver_kind kind, bool compression_safe,
+                  int steps) {
     SceneConfig config;
     config.kind = SceneKind::kFallingFlat;
     config.resolution = resolution;
@@ -93,8 +98,8 @@ void accuracy_row(uint32_t resolution, const char* label, cloth_solver_kind kind
         max_strain = std::max(max_strain, s.max_strain);
     }
     const cloth_stats end = scene.stats();
-    std::printf("%4ux%-4u %-26s %8.3f %14.3f %14.3f %8d\n", resolution, resolution, label, max_strain, max_gain,
-                energy(end) - e0, failures);
+    std::printf("%4ux%-4u %-26s %8.3f %14.3f %14.3f %8d\n", resolution, resolution, label, max_strain,
+                max_gain, energy(end) - e0, failures);
 }
 
 void print_accuracy(bool quick) {

@@ -299,7 +299,8 @@ int main(void) {
             if (c == 1) {
                 CHECK(dy < -0.05, "%s: the free particles did not fall (mean y moved by %g m)", names[c], dy);
             } else {
-                CHECK(fabs(dy) < 2.0, "%s: the free particles left a 2 m band (mean y moved by %g m)", names[c], dy);
+                CHECK(fabs(dy) < 2.0, "%s: the free particles left a 2 m band (mean y moved by %g m)",
+                      names[c], dy);
             }
             for (i = 0; i < COLUMNS; ++i) {
                 float e = (float)fabs((double)positions[3 * i] - (double)pin_target[3 * i]);

@@ -1,10 +1,11 @@
 // Air forces: the drag and lift formulas on single triangles, and the grid
 // cell path agreeing with the general triangle path on the same cloth.
+#include "aerodynamics.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "aerodynamics.h"
 #include "settings.h"
 #include "test_support.h"
 
@@ -70,7 +71,7 @@ TEST(Aerodynamics, WindAt45DegreesGivesDragAlongTheNormalAndLiftAcrossTheWind) {
     const Vec3 f = t.total(wind(u));
     // pressure 1/2 rho A |u|^2 = 30 N; cos = 1/sqrt(2).
     const float cosine = std::sqrt(0.5f);
-    const Vec3 n(0, 0, -1);                                // downwind side
+    const Vec3 n(0, 0, -1);                                  // downwind side
     const Vec3 drag = n * (30.0f * 1.0f * cosine * cosine);  // 15 N
     const Vec3 lift = (n - u.normalized() * cosine) * (30.0f * 0.5f * cosine);
     EXPECT_LT((f - (drag + lift)).norm(), 1e-3f);

@@ -24,12 +24,14 @@ TEST(ApiBehaviour, PinnedParticlesLandExactlyOnTheirMovingTargets) {
     const uint32_t pins[] = {0, 11};
     for (int frame = 1; frame <= 120; ++frame) {
         const float t = static_cast<float>(frame) / 60.0f;
-        const float targets[] = {0.3f * std::sin(t), 1.5f, 0.2f * t, 1.0f + 0.3f * std::sin(t), 1.5f, 0.2f * t};
+        const float targets[] = {0.3f * std::sin(t),        1.5f, 0.2f * t,
+                                 1.0f + 0.3f * std::sin(t), 1.5f, 0.2f * t};
         ASSERT_EQ(cloth_set_pin_targets(scene.cloth(), pins, targets, 2), CLOTH_OK);
         ASSERT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
         const std::vector<float> x = scene.positions();
         for (int k = 0; k < 2; ++k) {
-            for (int c = 0; c < 3; ++c) ASSERT_EQ(x[3 * pins[k] + c], targets[3 * k + c]) << "frame " << frame;
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(x[3 * pins[k] + c], targets[3 * k + c]) << "frame " << frame;
         }
     }
 }
@@ -76,7 +78,8 @@ TEST(ApiBehaviour, TwoClothsShareOneFabricAndDestroyingTheFabricHandleKeepsThemA
     // CG gets it; one Jacobi sweep lets stiff cloth fall in slow motion.
     EXPECT_NEAR(xb[1], -0.1499f, 0.002f) << "the CG cloth falls freely";
     EXPECT_LT(xa[1], 0.0f) << "the JACOBI cloth falls too";
-    EXPECT_NE(std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(float)), 0) << "different solvers, own state";
+    EXPECT_NE(std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(float)), 0)
+        << "different solvers, own state";
     ASSERT_EQ(cloth_world_destroy(world), CLOTH_OK);
 }
 
@@ -95,9 +98,11 @@ TEST(ApiBehaviour, RunTimeChangesOfSolverStiffnessAndWindTakeEffect) {
 
     for (int i = 0; i < 120; ++i) scene.step(1.0f / 60.0f);
     const float stiff_strain = scene.stats().max_strain;
-    ASSERT_EQ(cloth_set_spring_params(scene.cloth(), CLOTH_SPRING_ALL, cloth_spring_params{50.0f, 0.5f}), CLOTH_OK);
+    ASSERT_EQ(cloth_set_spring_params(scene.cloth(), CLOTH_SPRING_ALL, cloth_spring_params{50.0f, 0.5f}),
+              CLOTH_OK);
     for (int i = 0; i < 240; ++i) scene.step(1.0f / 60.0f);
-    EXPECT_GT(scene.stats().max_strain, 2 * stiff_strain) << "softer springs stretch more under the same weight";
+    EXPECT_GT(scene.stats().max_strain, 2 * stiff_strain)
+        << "softer springs stretch more under the same weight";
 
     const float before = scene.positions()[3 * 55 + 2];
     const float wind[] = {0.0f, 0.0f, 8.0f};
@@ -137,8 +142,9 @@ TEST(ApiBehaviour, NormalsAreUnitLength) {
     std::vector<float> n(3 * 81);
     ASSERT_EQ(cloth_read_normals(scene.cloth(), n.data(), 3 * 81), CLOTH_OK);
     for (int i = 0; i < 81; ++i) {
-        EXPECT_NEAR(std::sqrt(n[3 * i] * n[3 * i] + n[3 * i + 1] * n[3 * i + 1] + n[3 * i + 2] * n[3 * i + 2]), 1.0f,
-                    1e-5f);
+        EXPECT_NEAR(
+            std::sqrt(n[3 * i] * n[3 * i] + n[3 * i + 1] * n[3 * i + 1] + n[3 * i + 2] * n[3 * i + 2]), 1.0f,
+            1e-5f);
     }
 }
 

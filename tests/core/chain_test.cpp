@@ -32,8 +32,10 @@ TEST(Chain, HangingChainReachesTheAnalyticStaticStretch) {
         for (uint32_t r = 0; r + 1 < rows; ++r) {
             const float expected = rest + static_cast<float>(rows - 1 - r) * m * g / k;
             for (uint32_t c = 0; c < 2; ++c) {
-                const float length = (chain.positions().get((r + 1) * 2 + c) - chain.positions().get(r * 2 + c)).norm();
-                EXPECT_NEAR(length, expected, 1e-4f * expected) << "spring below row " << r << ", column " << c;
+                const float length =
+                    (chain.positions().get((r + 1) * 2 + c) - chain.positions().get(r * 2 + c)).norm();
+                EXPECT_NEAR(length, expected, 1e-4f * expected)
+                    << "spring below row " << r << ", column " << c;
             }
         }
         EXPECT_LT(chain.velocities().get(2 * rows - 1).norm(), 1e-4f) << "at rest";

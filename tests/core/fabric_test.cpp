@@ -53,7 +53,8 @@ TEST(Fabric, PaddedSlotsListEveryIncidentSpringOnceInIncreasingOrderWithSignAndO
                                 }
                                 const bool first = fabric->spring_first[s] == p;
                                 ASSERT_TRUE(first || fabric->spring_second[s] == p);
-                                EXPECT_EQ(slots.other[slot], first ? fabric->spring_second[s] : fabric->spring_first[s]);
+                                EXPECT_EQ(slots.other[slot],
+                                          first ? fabric->spring_second[s] : fabric->spring_first[s]);
                                 EXPECT_EQ(slots.sign[slot], first ? 1.0f : -1.0f);
                                 seen[p].push_back(s);
                             }
@@ -78,7 +79,8 @@ TEST(Fabric, OneHighValenceVertexPadsOnlyItsOwnChunk) {
         indices.insert(indices.end(), {0, 1 + i, 1 + (i + 1) % rim});
     }
     Fabric fan(cloth::testing::heap());
-    ASSERT_TRUE(build_mesh_fabric(positions.data(), rim + 1, indices.data(), rim, CLOTH_SPRING_STRUCTURAL, fan).ok());
+    ASSERT_TRUE(
+        build_mesh_fabric(positions.data(), rim + 1, indices.data(), rim, CLOTH_SPRING_STRUCTURAL, fan).ok());
     // Unchunked padding would need (rim + 1) * rim slots (4M); per chunk it stays near the real count.
     EXPECT_LT(fan.spring_slots.item.size(), 3 * PaddedSlots::kChunk * static_cast<size_t>(rim) / 2);
     EXPECT_LT(fan.spring_slots.item.size(), static_cast<size_t>(rim + 1) * rim / 4);
@@ -155,7 +157,8 @@ TEST(Fabric, GridFamiliesHoldExactlyTheGridSprings) {
             EXPECT_NEAR(family.rest_length, rest, 1e-6f);
         }
     }
-    for (int k = 0; k < kSpringKindCount; ++k) EXPECT_EQ(per_kind[k], fabric->springs_of_kind[k]) << "kind " << k;
+    for (int k = 0; k < kSpringKindCount; ++k)
+        EXPECT_EQ(per_kind[k], fabric->springs_of_kind[k]) << "kind " << k;
 }
 
 }  // namespace

@@ -13,8 +13,8 @@ namespace cloth {
 namespace {
 
 using cloth::testing::make_grid;
-using cloth::testing::positions_of;
 using cloth::testing::perturb;
+using cloth::testing::positions_of;
 using cloth::testing::still_air;
 using cloth::testing::uniform_material;
 
@@ -28,7 +28,8 @@ std::vector<Vec3> one_step(cloth_solver_kind kind, uint32_t iterations) {
     solver.iterations = iterations;
     solver.cg_tolerance = 1e-7f;
     solver.cg_max_iterations = 10000;
-    ClothInstance cloth(cloth::testing::heap(), fabric, uniform_material(200.0f, 0.1f, 1.0f), solver, still_air());
+    ClothInstance cloth(cloth::testing::heap(), fabric, uniform_material(200.0f, 0.1f, 1.0f), solver,
+                        still_air());
     cloth.pin(0);
     cloth.pin(9);
     perturb(cloth, 0.02f);
@@ -46,8 +47,8 @@ TEST(Solvers, JacobiConvergesToTheConjugateGradientAnswerAsIterationsGrow) {
     const std::vector<Vec3> reference = one_step(CLOTH_SOLVER_CG, 1);
     const std::vector<Vec3> start = [] {
         auto fabric = make_grid(10, 10);
-        ClothInstance cloth(cloth::testing::heap(), fabric, uniform_material(200.0f, 0.1f, 1.0f), SolverSettings{},
-                            still_air());
+        ClothInstance cloth(cloth::testing::heap(), fabric, uniform_material(200.0f, 0.1f, 1.0f),
+                            SolverSettings{}, still_air());
         cloth.pin(0);
         cloth.pin(9);
         perturb(cloth, 0.02f);
@@ -79,7 +80,8 @@ TEST(Solvers, ConjugateGradientAnswerSatisfiesTheSystemThroughTheMatrixFreeProdu
     const float h = 1.0f / 60.0f;
 
     auto springs = make_spring_terms(cloth::testing::heap(), fabric, material);
-    springs->evaluate(cloth.positions(), cloth.velocities(), h, JacobianClamp::make(true), 0, springs->item_count());
+    springs->evaluate(cloth.positions(), cloth.velocities(), h, JacobianClamp::make(true), 0,
+                      springs->item_count());
     Vec3Soa external(cloth::testing::heap()), rhs(cloth::testing::heap()), dv(cloth::testing::heap()),
         product(cloth::testing::heap());
     Sym3Soa diagonal(cloth::testing::heap()), inverse(cloth::testing::heap());
@@ -106,7 +108,7 @@ TEST(Solvers, ConjugateGradientAnswerSatisfiesTheSystemThroughTheMatrixFreeProdu
 }
 
 struct HangRun {
-    double max_energy_gain = 0;  // max over steps of E(t) - E(0)
+    double max_energy_gain = 0;     // max over steps of E(t) - E(0)
     double drop_from_1s_to_5s = 0;  // E at 1 s minus E at 5 s
     bool finite = true;
     float final_max_strain = 0;

@@ -1,11 +1,12 @@
 // The two spring layouts are the same physics: a grid cloth stepped with
 // the grid families matches the same cloth stepped through index pairs,
 // and splitting particle ranges does not change a bit.
+#include "spring_terms.h"
+
 #include <gtest/gtest.h>
 
 #include "aerodynamics.h"
 #include "linear_system.h"
-#include "spring_terms.h"
 #include "test_support.h"
 
 namespace cloth {
@@ -18,7 +19,8 @@ struct Gathered {
     Vec3Soa products{cloth::testing::heap()};
 };
 
-Gathered gather_with(const std::shared_ptr<SpringTerms>& terms, const Vec3Soa& x, const Vec3Soa& v, uint32_t split) {
+Gathered gather_with(const std::shared_ptr<SpringTerms>& terms, const Vec3Soa& x, const Vec3Soa& v,
+                     uint32_t split) {
     const uint32_t n = static_cast<uint32_t>(x.size());
     Gathered out;
     out.force.resize(n);
@@ -36,7 +38,8 @@ Gathered gather_with(const std::shared_ptr<SpringTerms>& terms, const Vec3Soa& x
 TEST(SpringTerms, GridFamiliesAndIndexPairsGiveTheSameForcesBlocksAndProducts) {
     auto fabric = cloth::testing::make_grid(9, 7);
     const Material material = cloth::testing::uniform_material(500.0f, 0.3f, 1.0f);
-    ClothInstance cloth(cloth::testing::heap(), fabric, material, SolverSettings{}, cloth::testing::still_air());
+    ClothInstance cloth(cloth::testing::heap(), fabric, material, SolverSettings{},
+                        cloth::testing::still_air());
     cloth::testing::perturb(cloth, 0.03f);
     Vec3Soa v(cloth::testing::heap());
     v.resize(cloth.particle_count());
@@ -62,7 +65,8 @@ TEST(SpringTerms, GridFamiliesAndIndexPairsGiveTheSameForcesBlocksAndProducts) {
 TEST(SpringTerms, SplittingTheParticleRangeChangesNoBit) {
     auto fabric = cloth::testing::make_grid(11, 8);
     const Material material = cloth::testing::uniform_material(800.0f, 0.2f, 1.0f);
-    ClothInstance cloth(cloth::testing::heap(), fabric, material, SolverSettings{}, cloth::testing::still_air());
+    ClothInstance cloth(cloth::testing::heap(), fabric, material, SolverSettings{},
+                        cloth::testing::still_air());
     cloth::testing::perturb(cloth, 0.05f);
     for (auto make : {make_spring_terms, make_indexed_springs}) {
         const auto terms = make(cloth::testing::heap(), fabric, material);
@@ -84,7 +88,8 @@ TEST(SpringTerms, AssemblySweepAndAirChangeNoBitWhenTheRangeIsSplit) {
     for (auto fabric : {cloth::testing::make_grid(23, 17), cloth::testing::make_mesh_from_grid(23, 17)}) {
         const uint32_t n = fabric->particle_count();
         const Material material = cloth::testing::uniform_material(900.0f, 0.4f, 1.0f);
-        ClothInstance cloth(cloth::testing::heap(), fabric, material, SolverSettings{}, cloth::testing::still_air());
+        ClothInstance cloth(cloth::testing::heap(), fabric, material, SolverSettings{},
+                            cloth::testing::still_air());
         cloth.pin(0);
         cloth::testing::perturb(cloth, 0.04f);
         std::vector<float> pinned(n, 0.0f);
@@ -96,8 +101,8 @@ TEST(SpringTerms, AssemblySweepAndAirChangeNoBitWhenTheRangeIsSplit) {
                           springs->item_count());
 
         struct Outputs {
-            Vec3Soa corner{cloth::testing::heap()}, external{cloth::testing::heap()}, rhs{cloth::testing::heap()},
-                p{cloth::testing::heap()}, next{cloth::testing::heap()};
+            Vec3Soa corner{cloth::testing::heap()}, external{cloth::testing::heap()},
+                rhs{cloth::testing::heap()}, p{cloth::testing::heap()}, next{cloth::testing::heap()};
             Sym3Soa diagonal{cloth::testing::heap()}, inverse{cloth::testing::heap()};
         };
         auto run = [&](std::vector<uint32_t> cuts) {
@@ -111,14 +116,16 @@ TEST(SpringTerms, AssemblySweepAndAirChangeNoBitWhenTheRangeIsSplit) {
             const uint32_t items = air_item_count(*fabric);
             evaluate_air(*fabric, air, cloth.positions(), cloth.positions(), 0, items / 3, o.corner);
             evaluate_air(*fabric, air, cloth.positions(), cloth.positions(), items / 3, items, o.corner);
-            for (size_t r = 0; r + 1 < cuts.size(); ++r) gather_air(*fabric, o.corner, cuts[r], cuts[r + 1], o.external);
-            const AssemblyPass pass{springs.get(), &o.external, cloth.masses().data(), pinned.data(), 1.0f / 60.0f,
-                                    0.1f};
+            for (size_t r = 0; r + 1 < cuts.size(); ++r)
+                gather_air(*fabric, o.corner, cuts[r], cuts[r + 1], o.external);
+            const AssemblyPass pass{springs.get(), &o.external,  cloth.masses().data(),
+                                    pinned.data(), 1.0f / 60.0f, 0.1f};
             for (size_t r = 0; r + 1 < cuts.size(); ++r) {
                 assemble_particles(pass, cuts[r], cuts[r + 1], o.diagonal, o.inverse, o.rhs, o.p);
             }
             const LinearSystem system{springs.get(), n, &o.diagonal, &o.inverse, &o.rhs, pinned.data()};
-            for (size_t r = 0; r + 1 < cuts.size(); ++r) jacobi_sweep(system, o.p, cuts[r], cuts[r + 1], o.next);
+            for (size_t r = 0; r + 1 < cuts.size(); ++r)
+                jacobi_sweep(system, o.p, cuts[r], cuts[r + 1], o.next);
             return o;
         };
         const Outputs whole = run({});

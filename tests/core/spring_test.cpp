@@ -78,7 +78,8 @@ TEST(SpringJacobian, ViscousRightHandSideIsForcePlusDampingPlusHJTimesRelativeVe
 }
 
 TEST(SpringJacobian, CoincidentEndsExertNoForceEvenWithTheExactJacobian) {
-    const SpringTerm t = spring_term(0, 0, 0, 1.0f, 2.0f, 3.0f, 0.5f, 1000.0f, 1.0f, 0.1f, JacobianClamp::make(false));
+    const SpringTerm t =
+        spring_term(0, 0, 0, 1.0f, 2.0f, 3.0f, 0.5f, 1000.0f, 1.0f, 0.1f, JacobianClamp::make(false));
     for (float value : {t.fx, t.fy, t.fz, t.bxx, t.bxy, t.bxz, t.byy, t.byz, t.bzz}) EXPECT_EQ(value, 0.0f);
 }
 
@@ -115,7 +116,8 @@ TEST(SpringJacobian, DiagonalBlockOfWIsPositiveDefiniteAndAtLeastTheMass) {
     Sym3 w = Sym3::identity(m);
     const Vec3 xi = Vec3::Zero();
     const Vec3 neighbours[] = {{0.9f, 0, 0}, {0, 1.2f, 0}, {0.5f, 0.5f, 0.1f}, {-0.3f, 0, 0.2f}};
-    for (const Vec3& xj : neighbours) w += spring_force_and_jacobian(xi, xj, 1.0f, 1000.0f, true).jacobian * (h * h);
+    for (const Vec3& xj : neighbours)
+        w += spring_force_and_jacobian(xi, xj, 1.0f, 1000.0f, true).jacobian * (h * h);
     EXPECT_GE(min_eigenvalue(w.to_matrix()), m * (1 - 1e-4f));
     const Mat3 product = w.to_matrix() * w.inverse().to_matrix();
     EXPECT_LT((product - Mat3::Identity()).norm(), 1e-4f);

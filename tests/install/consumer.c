@@ -15,6 +15,7 @@ int main(void) {
     if (cloth_create(world, &desc, &cloth) != CLOTH_OK) return 1;
     if (cloth_step(world, 1.0f / 60.0f) != CLOTH_OK) return 1;
     if (cloth_world_destroy(world) != CLOTH_OK) return 1;
-    printf("cloth %u.%u.%u ok\n", cloth_get_version().major, cloth_get_version().minor, cloth_get_version().patch);
+    printf("cloth %u.%u.%u ok\n", cloth_get_version().major, cloth_get_version().minor,
+           cloth_get_version().patch);
     return 0;
 }
