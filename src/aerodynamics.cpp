@@ -135,7 +135,7 @@ void evaluate_air(const Fabric& fabric, const AeroParams& air, const Vec3Soa& x,
     }
 }
 
-void gather_air(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begin, uint32_t end,
+CLOTH_HOT_LOOP void gather_air(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begin, uint32_t end,
                 Vec3Soa& particle_force) {
     const size_t n = fabric.particle_count();
     if (!is_grid(fabric)) {

@@ -100,7 +100,7 @@ const Vec3Soa& ClothInstance::normals() const {
     return normals_;
 }
 
-bool ClothInstance::state_is_finite() const {
+CLOTH_HOT_LOOP bool ClothInstance::state_is_finite() const {
     // x * 0 is 0 for finite x and NaN otherwise; NaN survives any sum.
     const uint32_t n = particle_count();
     float sum[VectorLanes::width] = {};
@@ -160,7 +160,7 @@ Vec3 ClothInstance::pin_position(uint32_t i, float frame_fraction) const {
     return pin_start_.get(i) + (pin_target_.get(i) - pin_start_.get(i)) * frame_fraction;
 }
 
-void ClothInstance::substep(float h, float frame_fraction_end, const Vec3& gravity) {
+CLOTH_HOT_LOOP void ClothInstance::substep(float h, float frame_fraction_end, const Vec3& gravity) {
     const Fabric& f = *fabric_;
     const uint32_t n = f.particle_count();
 

@@ -4,7 +4,7 @@
 
 namespace cloth {
 
-void assemble_particles(const AssemblyPass& pass, uint32_t begin, uint32_t end, Sym3Soa& diagonal,
+CLOTH_HOT_LOOP void assemble_particles(const AssemblyPass& pass, uint32_t begin, uint32_t end, Sym3Soa& diagonal,
                         Sym3Soa& diagonal_inverse, Vec3Soa& rhs, Vec3Soa& p) {
     const Vec3Soa& external = *pass.external_force;
     const float mass_factor = 1.0f + pass.h * pass.linear_drag;
@@ -52,7 +52,7 @@ void assemble_particles(const AssemblyPass& pass, uint32_t begin, uint32_t end, 
     });
 }
 
-void jacobi_sweep(const LinearSystem& system, const Vec3Soa& current, uint32_t begin, uint32_t end,
+CLOTH_HOT_LOOP void jacobi_sweep(const LinearSystem& system, const Vec3Soa& current, uint32_t begin, uint32_t end,
                   Vec3Soa& next) {
     system.springs->neighbour_sums(current, begin, end, next);
     const Sym3Soa& w = *system.diagonal_inverse;
