@@ -7,6 +7,8 @@
 // and diagonal gather sums all families in registers, eight particles at a
 // time (lanes.h); the products gather goes family by family over L1-sized
 // chunks, which vectorizes best.
+#include <type_traits>
+
 #include "lanes.h"
 #include "spring_terms.h"
 
@@ -73,9 +75,10 @@ struct FamilyTerms {
 // in registers, eight particles at a time from max_offset on (where every
 // p - offset is valid; loads at p stay below n), one at a time before it,
 // in the same order.
-CLOTH_HOT_LOOP void gather_families(uint32_t begin, uint32_t end, uint32_t n, uint32_t max_offset,
-                                    const uint32_t* offsets, const FamilyTerms* terms, uint32_t family_count,
-                                    Vec3Soa& force, Sym3Soa* diagonal) {
+template <class Count>
+inline void gather_families_impl(uint32_t begin, uint32_t end, uint32_t n, uint32_t max_offset,
+                                 const uint32_t* offsets, const FamilyTerms* terms, Count family_count,
+                                 Vec3Soa& force, Sym3Soa* diagonal) {
     for_each_lane_group(begin, end, max_offset, n, [&](auto lanes, uint32_t p) {
         using L = decltype(lanes);
         using T = typename L::type;
@@ -119,6 +122,19 @@ CLOTH_HOT_LOOP void gather_families(uint32_t begin, uint32_t end, uint32_t n, ui
         L::store(&w.yz[p], yz);
         L::store(&w.zz[p], zz);
     });
+}
+
+// The usual grid has all six families: a compile-time count lets the
+// compiler unroll the family loops.
+CLOTH_HOT_LOOP void gather_families(uint32_t begin, uint32_t end, uint32_t n, uint32_t max_offset,
+                                    const uint32_t* offsets, const FamilyTerms* terms, uint32_t family_count,
+                                    Vec3Soa& force, Sym3Soa* diagonal) {
+    if (family_count == 6) {
+        gather_families_impl(begin, end, n, max_offset, offsets, terms, std::integral_constant<uint32_t, 6>{}, force,
+                             diagonal);
+    } else {
+        gather_families_impl(begin, end, n, max_offset, offsets, terms, family_count, force, diagonal);
+    }
 }
 
 class GridSprings final : public SpringTerms {
