@@ -4,10 +4,6 @@
 // same order: results do not depend on which particles went through which.
 #pragma once
 
-// Eight-float vectors pass by value between inlined internal functions; the
-// ABI note GCC gives for that (-Wpsabi) concerns calls across libraries.
-#pragma GCC diagnostic ignored "-Wpsabi"
-
 #include <cstdint>
 #include <cstring>
 
