@@ -135,8 +135,8 @@ void evaluate_air(const Fabric& fabric, const AeroParams& air, const Vec3Soa& x,
     }
 }
 
-CLOTH_HOT_LOOP void gather_air(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begin, uint32_t end,
-                Vec3Soa& particle_force) {
+CLOTH_HOT_LOOP void gather_air(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begin,
+                               uint32_t end, Vec3Soa& particle_force) {
     const size_t n = fabric.particle_count();
     if (!is_grid(fabric)) {
         for (HostVector<float>* a : {&particle_force.x, &particle_force.y, &particle_force.z}) {

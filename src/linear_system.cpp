@@ -4,8 +4,9 @@
 
 namespace cloth {
 
-CLOTH_HOT_LOOP void assemble_particles(const AssemblyPass& pass, uint32_t begin, uint32_t end, Sym3Soa& diagonal,
-                        Sym3Soa& diagonal_inverse, Vec3Soa& rhs, Vec3Soa& p) {
+CLOTH_HOT_LOOP void assemble_particles(const AssemblyPass& pass, uint32_t begin, uint32_t end,
+                                       Sym3Soa& diagonal, Sym3Soa& diagonal_inverse, Vec3Soa& rhs,
+                                       Vec3Soa& p) {
     const Vec3Soa& external = *pass.external_force;
     const float mass_factor = 1.0f + pass.h * pass.linear_drag;
     // rhs starts as the external force, diagonal as m (1 + h c) I; the
@@ -52,8 +53,8 @@ CLOTH_HOT_LOOP void assemble_particles(const AssemblyPass& pass, uint32_t begin,
     });
 }
 
-CLOTH_HOT_LOOP void jacobi_sweep(const LinearSystem& system, const Vec3Soa& current, uint32_t begin, uint32_t end,
-                  Vec3Soa& next) {
+CLOTH_HOT_LOOP void jacobi_sweep(const LinearSystem& system, const Vec3Soa& current, uint32_t begin,
+                                 uint32_t end, Vec3Soa& next) {
     system.springs->neighbour_sums(current, begin, end, next);
     const Sym3Soa& w = *system.diagonal_inverse;
     const Vec3Soa& b = *system.rhs;

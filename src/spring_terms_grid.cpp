@@ -130,8 +130,8 @@ CLOTH_HOT_LOOP void gather_families(uint32_t begin, uint32_t end, uint32_t n, ui
                                     const uint32_t* offsets, const FamilyTerms* terms, uint32_t family_count,
                                     Vec3Soa& force, Sym3Soa* diagonal) {
     if (family_count == 6) {
-        gather_families_impl(begin, end, n, max_offset, offsets, terms, std::integral_constant<uint32_t, 6>{}, force,
-                             diagonal);
+        gather_families_impl(begin, end, n, max_offset, offsets, terms, std::integral_constant<uint32_t, 6>{},
+                             force, diagonal);
     } else {
         gather_families_impl(begin, end, n, max_offset, offsets, terms, family_count, force, diagonal);
     }

@@ -101,15 +101,16 @@ void accuracy_row(uint32_t resolution, const char* label, cloth_solver_kind kind
     // gamma of an interior particle: mass = 1 kg/m^2 times one cell, (1/(N-1))^2 m^2.
     const double cell = 1.0 / (resolution - 1);
     const double gamma = double(kDt) * kDt * config.stiffness / (cell * cell);
-    std::printf("%4ux%-4u %7.0f %-26s %10.4g %14.4g %14.4g %8d\n", resolution, resolution, gamma, label, max_strain,
-                max_gain, energy(end) - e0, failures);
+    std::printf("%4ux%-4u %7.0f %-26s %10.4g %14.4g %14.4g %8d\n", resolution, resolution, gamma, label,
+                max_strain, max_gain, energy(end) - e0, failures);
 }
 
 void print_accuracy(bool quick) {
     const int steps = quick ? 20 : 300;
-    std::printf("Falling flat, 1 m / 1 kg, k = 1e3 N/m, 1/60 s, %d steps. strain: max over the run of\n"
-                "(L - l0) / l0; max_gain_J: largest energy above the start; failures: steps undone as non-finite\n",
-                steps);
+    std::printf(
+        "Falling flat, 1 m / 1 kg, k = 1e3 N/m, 1/60 s, %d steps. strain: max over the run of\n"
+        "(L - l0) / l0; max_gain_J: largest energy above the start; failures: steps undone as non-finite\n",
+        steps);
     std::printf("%-9s %7s %-26s %10s %14s %14s %8s\n", "grid", "gamma", "solver", "strain", "max_gain_J",
                 "end_change_J", "failures");
     for (uint32_t resolution : {32u, 64u}) {

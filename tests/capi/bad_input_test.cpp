@@ -1770,7 +1770,8 @@ TEST_F(BadInput, StepAndPinAllocateNothingSoTheySucceedWhileTheAllocatorFails) {
     a_.host.allocations_left = 0;
     const Outcome o = RunOnFreshThread([&] { return cloth_step(a_.world, kFrame); });
     EXPECT_EQ(o.result, CLOTH_OK) << Name(o.result) << " " << o.error_after;
-    EXPECT_FALSE(SameFloats("position", before.positions, TakeSnapshot(a_.cloth).positions)) << "the step advanced";
+    EXPECT_FALSE(SameFloats("position", before.positions, TakeSnapshot(a_.cloth).positions))
+        << "the step advanced";
     std::vector<uint32_t> all(kParticles);
     for (uint32_t i = 0; i < kParticles; ++i) all[i] = i;
     EXPECT_EQ(cloth_pin(a_.cloth, all.data(), kParticles), CLOTH_OK) << cloth_get_last_error();
