@@ -200,7 +200,12 @@ CLOTH_API cloth_result cloth_world_set_gravity(cloth_world_id world, const float
 /// cloth takes its own number of substeps. If a cloth's state becomes
 /// non-finite, that cloth is restored to its state before this call, the
 /// other cloths advance normally, and CLOTH_ERROR_NONFINITE_STATE is
-/// returned (cloth_stats.last_step_result tells which cloth).
+/// returned (cloth_stats.last_step_result tells which cloth). The same
+/// holds with CLOTH_ERROR_OUT_OF_MEMORY if the CG reference solver cannot
+/// allocate (it is the only part of a step that allocates, and it uses the
+/// C++ heap). CLOTH_ERROR_SOLVER_FAILED means CG stopped at its iteration
+/// limit; the cloth still advanced. A step allocates nothing from the
+/// world's allocator.
 CLOTH_API cloth_result cloth_step(cloth_world_id world, float dt);
 
 /* ------------------------------------------------------------------ */
