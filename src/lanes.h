@@ -10,7 +10,17 @@
 // Hot loops are compiled twice on x86-64, for AVX2 and for the baseline,
 // and the loader picks one per machine. No FMA in either (-ffp-contract=off
 // and no "fma" target), so both give the same bits.
-#if defined(__x86_64__) && defined(__GNUC__) && defined(__ELF__)
+// ThreadSanitizer instruments the loader's ifunc resolvers, which run
+// before its runtime exists, so TSan builds keep the baseline only.
+#if defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define CLOTH_TSAN 1
+#endif
+#endif
+#if defined(__SANITIZE_THREAD__)
+#define CLOTH_TSAN 1
+#endif
+#if defined(__x86_64__) && defined(__GNUC__) && defined(__ELF__) && !defined(CLOTH_TSAN)
 #define CLOTH_HOT_LOOP __attribute__((target_clones("avx2", "default")))
 #else
 #define CLOTH_HOT_LOOP
