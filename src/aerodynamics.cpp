@@ -168,9 +168,7 @@ CLOTH_HOT_LOOP void gather_air(const Fabric& fabric, const Vec3Soa& corner_force
                 fz += L::load(&corner_force.z[entry]);
             }
         }
-        L::store(&particle_force.x[p], fx);
-        L::store(&particle_force.y[p], fy);
-        L::store(&particle_force.z[p], fz);
+        store_vec3<L>(particle_force, p, fx, fy, fz);
     });
 }
 

@@ -213,12 +213,9 @@ CLOTH_HOT_LOOP void ClothInstance::substep(float h, float frame_fraction_end, co
             const typename L::type vx = L::load(&v_.x[i]) + L::load(&dv_.x[i]);
             const typename L::type vy = L::load(&v_.y[i]) + L::load(&dv_.y[i]);
             const typename L::type vz = L::load(&v_.z[i]) + L::load(&dv_.z[i]);
-            L::store(&v_.x[i], vx);
-            L::store(&v_.y[i], vy);
-            L::store(&v_.z[i], vz);
-            L::store(&x_.x[i], L::load(&x_.x[i]) + vx * h);
-            L::store(&x_.y[i], L::load(&x_.y[i]) + vy * h);
-            L::store(&x_.z[i], L::load(&x_.z[i]) + vz * h);
+            store_vec3<L>(v_, i, vx, vy, vz);
+            store_vec3<L>(x_, i, L::load(&x_.x[i]) + vx * h, L::load(&x_.y[i]) + vy * h,
+                          L::load(&x_.z[i]) + vz * h);
         });
     }
 

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include "soa.h"
+
 // Hot loops are compiled twice on x86-64, for AVX2 and for the baseline,
 // and the loader picks one per machine. No FMA in either (-ffp-contract=off
 // and no "fma" target), so both give the same bits.
@@ -58,6 +60,35 @@ void for_each_lane_group(uint32_t begin, uint32_t end, uint32_t vector_begin, ui
         body(VectorLanes{}, p);
     }
     for (; p < end; ++p) body(ScalarLanes{}, p);
+}
+
+// Whole entries of the structure-of-arrays types, lanes at a time.
+template <class L>
+struct Sym3Lanes {
+    typename L::type xx, xy, xz, yy, yz, zz;
+};
+
+template <class L>
+Sym3Lanes<L> load_sym3(const Sym3Soa& a, uint32_t i) {
+    return {L::load(&a.xx[i]), L::load(&a.xy[i]), L::load(&a.xz[i]),
+            L::load(&a.yy[i]), L::load(&a.yz[i]), L::load(&a.zz[i])};
+}
+
+template <class L>
+void store_sym3(Sym3Soa& a, uint32_t i, const Sym3Lanes<L>& m) {
+    L::store(&a.xx[i], m.xx);
+    L::store(&a.xy[i], m.xy);
+    L::store(&a.xz[i], m.xz);
+    L::store(&a.yy[i], m.yy);
+    L::store(&a.yz[i], m.yz);
+    L::store(&a.zz[i], m.zz);
+}
+
+template <class L>
+void store_vec3(Vec3Soa& a, uint32_t i, typename L::type x, typename L::type y, typename L::type z) {
+    L::store(&a.x[i], x);
+    L::store(&a.y[i], y);
+    L::store(&a.z[i], z);
 }
 
 }  // namespace cloth

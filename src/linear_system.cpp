@@ -13,43 +13,25 @@ CLOTH_HOT_LOOP void assemble_particles(const AssemblyPass& pass, uint32_t begin,
     // springs add theirs.
     for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
         using L = decltype(lanes);
-        const typename L::type zero{};
-        L::store(&rhs.x[i], L::load(&external.x[i]));
-        L::store(&rhs.y[i], L::load(&external.y[i]));
-        L::store(&rhs.z[i], L::load(&external.z[i]));
-        const typename L::type m = L::load(&pass.mass[i]) * mass_factor;
-        L::store(&diagonal.xx[i], m);
-        L::store(&diagonal.yy[i], m);
-        L::store(&diagonal.zz[i], m);
-        L::store(&diagonal.xy[i], zero);
-        L::store(&diagonal.xz[i], zero);
-        L::store(&diagonal.yz[i], zero);
+        const typename L::type zero{}, m = L::load(&pass.mass[i]) * mass_factor;
+        store_vec3<L>(rhs, i, L::load(&external.x[i]), L::load(&external.y[i]), L::load(&external.z[i]));
+        store_sym3(diagonal, i, Sym3Lanes<L>{m, zero, zero, m, zero, m});
     });
     pass.springs->gather(begin, end, rhs, &diagonal);
     // b = h f~, W^-1 by cofactors (zero for pinned particles), p = W^-1 b.
     for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
         using L = decltype(lanes);
         using T = typename L::type;
-        const T xx = L::load(&diagonal.xx[i]), xy = L::load(&diagonal.xy[i]), xz = L::load(&diagonal.xz[i]);
-        const T yy = L::load(&diagonal.yy[i]), yz = L::load(&diagonal.yz[i]), zz = L::load(&diagonal.zz[i]);
+        const Sym3Lanes<L> w = load_sym3<L>(diagonal, i);
         T inverse[6];
-        invert_symmetric(xx, xy, xz, yy, yz, zz, 1.0f - L::load(&pass.pinned[i]), inverse);
-        const T ixx = inverse[0], ixy = inverse[1], ixz = inverse[2], iyy = inverse[3], iyz = inverse[4],
-                izz = inverse[5];
-        L::store(&diagonal_inverse.xx[i], ixx);
-        L::store(&diagonal_inverse.xy[i], ixy);
-        L::store(&diagonal_inverse.xz[i], ixz);
-        L::store(&diagonal_inverse.yy[i], iyy);
-        L::store(&diagonal_inverse.yz[i], iyz);
-        L::store(&diagonal_inverse.zz[i], izz);
+        invert_symmetric(w.xx, w.xy, w.xz, w.yy, w.yz, w.zz, 1.0f - L::load(&pass.pinned[i]), inverse);
+        const Sym3Lanes<L> iw{inverse[0], inverse[1], inverse[2], inverse[3], inverse[4], inverse[5]};
+        store_sym3(diagonal_inverse, i, iw);
         const T bx = L::load(&rhs.x[i]) * pass.h, by = L::load(&rhs.y[i]) * pass.h,
                 bz = L::load(&rhs.z[i]) * pass.h;
-        L::store(&rhs.x[i], bx);
-        L::store(&rhs.y[i], by);
-        L::store(&rhs.z[i], bz);
-        L::store(&p.x[i], ixx * bx + ixy * by + ixz * bz);
-        L::store(&p.y[i], ixy * bx + iyy * by + iyz * bz);
-        L::store(&p.z[i], ixz * bx + iyz * by + izz * bz);
+        store_vec3<L>(rhs, i, bx, by, bz);
+        store_vec3<L>(p, i, iw.xx * bx + iw.xy * by + iw.xz * bz, iw.xy * bx + iw.yy * by + iw.yz * bz,
+                      iw.xz * bx + iw.yz * by + iw.zz * bz);
     });
 }
 

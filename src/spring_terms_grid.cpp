@@ -95,32 +95,23 @@ inline void gather_families_impl(uint32_t begin, uint32_t end, uint32_t n, uint3
                 fz -= L::load(&t.z[s]);
             }
         }
-        L::store(&force.x[p], fx);
-        L::store(&force.y[p], fy);
-        L::store(&force.z[p], fz);
+        store_vec3<L>(force, p, fx, fy, fz);
         if (!diagonal) return;
-        Sym3Soa& w = *diagonal;
-        T xx = L::load(&w.xx[p]), xy = L::load(&w.xy[p]), xz = L::load(&w.xz[p]);
-        T yy = L::load(&w.yy[p]), yz = L::load(&w.yz[p]), zz = L::load(&w.zz[p]);
+        Sym3Lanes<L> w = load_sym3<L>(*diagonal, p);
         for (uint32_t f = 0; f < family_count; ++f) {
             const Sym3Soa& b = terms[f].block;
             for (uint32_t shift : {0u, offsets[f]}) {
                 if (p < shift) continue;
                 const uint32_t s = p - shift;
-                xx += L::load(&b.xx[s]);
-                xy += L::load(&b.xy[s]);
-                xz += L::load(&b.xz[s]);
-                yy += L::load(&b.yy[s]);
-                yz += L::load(&b.yz[s]);
-                zz += L::load(&b.zz[s]);
+                w.xx += L::load(&b.xx[s]);
+                w.xy += L::load(&b.xy[s]);
+                w.xz += L::load(&b.xz[s]);
+                w.yy += L::load(&b.yy[s]);
+                w.yz += L::load(&b.yz[s]);
+                w.zz += L::load(&b.zz[s]);
             }
         }
-        L::store(&w.xx[p], xx);
-        L::store(&w.xy[p], xy);
-        L::store(&w.xz[p], xz);
-        L::store(&w.yy[p], yy);
-        L::store(&w.yz[p], yz);
-        L::store(&w.zz[p], zz);
+        store_sym3(*diagonal, p, w);
     });
 }
 
