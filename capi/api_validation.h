@@ -1,0 +1,149 @@
+// Argument checks and conversions shared by the C API's files. Each check
+// returns a Status naming the bad argument; none changes anything.
+#pragma once
+
+#include <cloth/cloth.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "api_call.h"
+#include "settings.h"
+
+namespace cloth::api {
+// ---------------------------------------------------------------- validation
+
+inline bool finite3(const float* v) {
+    return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+inline Status check_desc(uint32_t struct_size, size_t expected, uint32_t cookie, const char* what) {
+    if (cookie != kCookie) {
+        return Status::error(CLOTH_ERROR_INVALID_DESC,
+                             "%s was not initialised by its cloth_default_*() function", what);
+    }
+    if (struct_size != expected) {
+        return Status::error(CLOTH_ERROR_INVALID_DESC, "%s.struct_size is %u, expected %zu", what,
+                             struct_size, expected);
+    }
+    return {};
+}
+
+// A non-negative finite parameter.
+inline Status check_non_negative(float value, const char* what) {
+    if (!std::isfinite(value)) return Status::error(CLOTH_ERROR_NOT_FINITE, "%s is not finite", what);
+    if (value < 0)
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "%s is negative (%g)", what, double(value));
+    return {};
+}
+
+inline Status check_spring_params(const cloth_spring_params& p, const char* what) {
+    char name[64];
+    std::snprintf(name, sizeof name, "%s stiffness", what);
+    Status s = check_non_negative(p.stiffness, name);
+    if (!s.ok()) return s;
+    std::snprintf(name, sizeof name, "%s damping", what);
+    return check_non_negative(p.damping, name);
+}
+
+inline Status check_solver(const cloth_solver_settings& s) {
+    if (s.struct_size != sizeof(cloth_solver_settings)) {
+        return Status::error(CLOTH_ERROR_INVALID_DESC,
+                             "cloth_solver_settings.struct_size is %u, expected %zu", s.struct_size,
+                             sizeof(cloth_solver_settings));
+    }
+    if (s.kind != CLOTH_SOLVER_DEFAULT && s.kind != CLOTH_SOLVER_JACOBI && s.kind != CLOTH_SOLVER_CG &&
+        s.kind != CLOTH_SOLVER_EXPLICIT) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown solver kind %d", int(s.kind));
+    }
+    if (s.iterations < 1 || s.iterations > 256) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "iterations %u is not in 1..256", s.iterations);
+    }
+    if (s.substeps < 1 || s.substeps > 64) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "substeps %u is not in 1..64", s.substeps);
+    }
+    if (!std::isfinite(s.cg_tolerance))
+        return Status::error(CLOTH_ERROR_NOT_FINITE, "cg_tolerance is not finite");
+    if (!(s.cg_tolerance > 0 && s.cg_tolerance < 1)) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "cg_tolerance %g is not in (0, 1)",
+                             double(s.cg_tolerance));
+    }
+    if (s.cg_max_iterations < 1 || s.cg_max_iterations > 100000) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "cg_max_iterations %u is not in 1..100000",
+                             s.cg_max_iterations);
+    }
+    return {};
+}
+
+inline Status check_aero(const cloth_aero_params& a) {
+    if (!finite3(a.wind)) return Status::error(CLOTH_ERROR_NOT_FINITE, "wind is not finite");
+    Status s = check_non_negative(a.air_density, "air_density");
+    if (s.ok()) s = check_non_negative(a.drag_coefficient, "drag_coefficient");
+    if (s.ok()) s = check_non_negative(a.lift_coefficient, "lift_coefficient");
+    if (s.ok()) s = check_non_negative(a.linear_drag, "linear_drag");
+    return s;
+}
+
+inline Status check_indices(const uint32_t* indices, uint32_t count, uint32_t particle_count) {
+    if (!indices) return null_error("indices");
+    if (count == 0 || count > particle_count) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "count %u is not in 1..%u", count, particle_count);
+    }
+    for (uint32_t k = 0; k < count; ++k) {
+        if (indices[k] >= particle_count) {
+            return Status::error(CLOTH_ERROR_INDEX_OUT_OF_RANGE,
+                                 "indices[%u] = %u, but the cloth has %u particles", k, indices[k],
+                                 particle_count);
+        }
+    }
+    return {};
+}
+
+inline Status check_points(const float* xyz, uint32_t count, const char* what) {
+    if (!xyz) return null_error(what);
+    for (uint32_t k = 0; k < count; ++k) {
+        if (!finite3(xyz + 3 * k))
+            return Status::error(CLOTH_ERROR_NOT_FINITE, "%s[%u] is not finite", what, k);
+    }
+    return {};
+}
+
+inline Status check_capacity(const void* out, uint32_t capacity, size_t needed) {
+    if (!out) return null_error("output buffer");
+    if (capacity < needed) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "capacity %u is less than the %zu values needed",
+                             capacity, needed);
+    }
+    return {};
+}
+
+inline SolverSettings to_core(const cloth_solver_settings& s) {
+    SolverSettings out;
+    out.kind = s.kind == CLOTH_SOLVER_DEFAULT ? CLOTH_SOLVER_JACOBI : s.kind;
+    out.iterations = s.iterations;
+    out.substeps = s.substeps;
+    out.cg_tolerance = s.cg_tolerance;
+    out.cg_max_iterations = s.cg_max_iterations;
+    out.compression_safe_jacobian = s.compression_safe_jacobian;
+    return out;
+}
+
+inline AeroParams to_core(const cloth_aero_params& a) {
+    AeroParams out;
+    out.wind = Vec3(a.wind[0], a.wind[1], a.wind[2]);
+    out.air_density = a.air_density;
+    out.drag_coefficient = a.drag_coefficient;
+    out.lift_coefficient = a.lift_coefficient;
+    out.linear_drag = a.linear_drag;
+    return out;
+}
+
+inline void copy_out(const Vec3Soa& values, float* out) {
+    for (size_t i = 0; i < values.size(); ++i) {
+        out[3 * i] = values.x[i];
+        out[3 * i + 1] = values.y[i];
+        out[3 * i + 2] = values.z[i];
+    }
+}
+
+}  // namespace cloth::api

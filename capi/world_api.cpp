@@ -1,0 +1,120 @@
+// C API: version, worlds and stepping. Validation runs completely before
+// anything is changed, so a failing call changes nothing.
+#include <cloth/cloth.h>
+
+#include <cmath>
+
+#include "api_call.h"
+#include "api_validation.h"
+
+using namespace cloth;
+using namespace cloth::api;
+
+extern "C" {
+
+// ================================================================ version
+
+CLOTH_API cloth_version cloth_get_version(void) {
+    return cloth_version{CLOTH_VERSION_MAJOR, CLOTH_VERSION_MINOR, CLOTH_VERSION_PATCH};
+}
+
+// ================================================================ world
+
+CLOTH_API cloth_world_desc cloth_default_world_desc(void) {
+    cloth_world_desc d{};
+    d.struct_size = sizeof(cloth_world_desc);
+    d.gravity[1] = -9.81f;
+    d.max_cloths = 1024;
+    d.max_fabrics = 256;
+    d.internal_cookie = kCookie;
+    return d;
+}
+
+CLOTH_API cloth_result cloth_world_create(const cloth_world_desc* desc, cloth_world_id* out_world) {
+    return api_call(__func__, [&](const World*&) -> Status {
+        if (!desc) return null_error("desc");
+        if (!out_world) return null_error("out_world");
+        Status s = check_desc(desc->struct_size, sizeof(cloth_world_desc), desc->internal_cookie,
+                              "cloth_world_desc");
+        if (!s.ok()) return s;
+        if (!finite3(desc->gravity)) return Status::error(CLOTH_ERROR_NOT_FINITE, "gravity is not finite");
+        if ((desc->alloc == nullptr) != (desc->free == nullptr)) {
+            return Status::error(CLOTH_ERROR_INVALID_VALUE, "set both alloc and free, or neither");
+        }
+        if (desc->max_cloths < 1 || desc->max_cloths > 65535 || desc->max_fabrics < 1 ||
+            desc->max_fabrics > 65535) {
+            return Status::error(CLOTH_ERROR_INVALID_COUNT, "max_cloths and max_fabrics must be in 1..65535");
+        }
+
+        WorldTable& table = world_table();
+        std::lock_guard<std::mutex> lock(table.mutex);
+        uint16_t index = 0;
+        while (index < kMaxWorlds && table.worlds[index]) ++index;
+        if (index == kMaxWorlds)
+            return Status::error(CLOTH_ERROR_CAPACITY, "%u worlds exist already", kMaxWorlds);
+        if (table.generations[index] == 0) table.generations[index] = 1;
+        const uint16_t generation = table.generations[index];
+
+        const HostMemory memory{desc->alloc, desc->free, desc->user};
+        void* storage = memory.allocate(sizeof(World), alignof(World));
+        World* world = nullptr;
+        try {
+            world = new (storage) World(*desc, index, generation);
+        } catch (...) {
+            memory.deallocate(storage, sizeof(World));
+            throw;
+        }
+        table.worlds[index] = world;
+        *out_world = cloth_world_id{static_cast<uint16_t>(index + 1), generation};
+        return {};
+    });
+}
+
+CLOTH_API cloth_result cloth_world_destroy(cloth_world_id id) {
+    return api_call(__func__, [&](const World*&) -> Status {
+        WorldTable& table = world_table();
+        World* world = nullptr;
+        {
+            std::lock_guard<std::mutex> lock(table.mutex);
+            if (id.index1 == 0 || id.index1 > kMaxWorlds || !table.worlds[id.index1 - 1] ||
+                table.generations[id.index1 - 1] != id.generation) {
+                return Status::error(CLOTH_ERROR_INVALID_HANDLE,
+                                     "world handle is null, destroyed or unknown");
+            }
+            world = table.worlds[id.index1 - 1];
+            table.worlds[id.index1 - 1] = nullptr;
+            uint16_t& generation = table.generations[id.index1 - 1];
+            generation = static_cast<uint16_t>(generation + 1 == 0 ? 1 : generation + 1);
+        }
+        const HostMemory memory = *world->memory();
+        world->~World();
+        memory.deallocate(world, sizeof(World));
+        return {};
+    });
+}
+
+CLOTH_API cloth_result cloth_world_set_gravity(cloth_world_id id, const float gravity[3]) {
+    return api_call(__func__, [&](const World*& log_world) -> Status {
+        World* world;
+        Status s = get_world(id, world, log_world);
+        if (!s.ok()) return s;
+        if (!gravity) return null_error("gravity");
+        if (!finite3(gravity)) return Status::error(CLOTH_ERROR_NOT_FINITE, "gravity is not finite");
+        world->gravity = Vec3(gravity[0], gravity[1], gravity[2]);
+        return {};
+    });
+}
+
+CLOTH_API cloth_result cloth_step(cloth_world_id id, float dt) {
+    return api_call(__func__, [&](const World*& log_world) -> Status {
+        World* world;
+        Status s = get_world(id, world, log_world);
+        if (!s.ok()) return s;
+        if (!std::isfinite(dt)) return Status::error(CLOTH_ERROR_NOT_FINITE, "dt is not finite");
+        if (!(dt > 0 && dt <= 1))
+            return Status::error(CLOTH_ERROR_INVALID_VALUE, "dt %g is not in (0, 1]", double(dt));
+        return world->step(dt);
+    });
+}
+
+}  // extern "C"
