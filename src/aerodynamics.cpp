@@ -24,27 +24,26 @@ struct AirConstants {
 };
 
 // The force on each corner of a triangle with edges e1, e2 whose corner
-// velocities sum to (svx, svy, svz). Branch-free so the loops vectorize;
-// still air or a collapsed triangle gives zero.
+// velocities sum to (svx, svy, svz). With n = e1 x e2 (|n| = 2A), u the air
+// velocity, d = n . u and r = 1 / (|n| |u|), the formulas of aerodynamics.h
+// reduce to
+//   f = s |u|^2 d r (Cd |d| r + Cl) n  -  s Cl d^2 r u,   s = rho / 12
+// (A |u|^2 cos^2 n/|n| = |u|^2 d |d| r^2 n / 2 and so on): one square root
+// and one division. Branch-free so the loops vectorize; still air or a
+// collapsed triangle gives zero.
 inline void corner_force(const AirConstants& k, float e1x, float e1y, float e1z, float e2x, float e2y,
                          float e2z, float svx, float svy, float svz, float& fx, float& fy, float& fz) {
     const float third = 1.0f / 3.0f;
     const float nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
-    const float twice_area = std::sqrt(nx * nx + ny * ny + nz * nz);
     const float ux = k.wx - svx * third, uy = k.wy - svy * third, uz = k.wz - svz * third;
+    const float normal_squared = nx * nx + ny * ny + nz * nz;
     const float speed_squared = ux * ux + uy * uy + uz * uz;
-    const float speed = std::sqrt(speed_squared);
-    // One division: 1 / (|n| |u|) gives both reciprocals.
-    const bool active = twice_area > 0.0f && speed_squared > 1e-12f;
-    const float inv_product = active ? 1.0f / (twice_area * speed) : 0.0f;
-    const float inv_area = speed * inv_product;
-    const float inv_speed = twice_area * inv_product;
-    const float cosine_signed = (nx * ux + ny * uy + nz * uz) * inv_product;
-    const float side = cosine_signed < 0.0f ? -inv_area : inv_area;  // n downwind
-    const float cosine = std::fabs(cosine_signed);
-    const float pressure = k.pressure_scale * speed_squared * twice_area;
-    const float normal_part = pressure * cosine * (k.drag * cosine + k.lift) * side;
-    const float wind_part = -pressure * k.lift * cosine * cosine * inv_speed;
+    const float product_squared = normal_squared * speed_squared;
+    const float r = product_squared > 1e-30f ? 1.0f / std::sqrt(product_squared) : 0.0f;
+    const float d = nx * ux + ny * uy + nz * uz;
+    const float dr = d * r;
+    const float normal_part = k.pressure_scale * speed_squared * dr * (k.drag * std::fabs(dr) + k.lift);
+    const float wind_part = -k.pressure_scale * k.lift * d * dr;
     fx = nx * normal_part + ux * wind_part;
     fy = ny * normal_part + uy * wind_part;
     fz = nz * normal_part + uz * wind_part;
@@ -65,23 +64,33 @@ CLOTH_HOT_LOOP void triangle_air_kernel(uint32_t begin, uint32_t end, AirConstan
     }
 }
 
-// One triangle shape of a grid: corners p + o0, p + o1, p + o2, cells
-// where mask[p] is 1.
-CLOTH_HOT_LOOP void grid_air_kernel(uint32_t begin, uint32_t end, AirConstants k, uint32_t o0, uint32_t o1,
-                                    uint32_t o2, const float* __restrict mask, const float* __restrict px,
-                                    const float* __restrict py, const float* __restrict pz,
-                                    const float* __restrict vx, const float* __restrict vy,
-                                    const float* __restrict vz, float* __restrict fx, float* __restrict fy,
-                                    float* __restrict fz) {
+// Both triangles of the grid cells [begin, end): corners a = p, b = p + o1,
+// c = p + o2, d = p + o3 form the fan (a, b, c), (a, c, d) (fabric.h), so
+// the two share their loads and the edge a-c. Cells where mask[p] is 0
+// get zero forces.
+CLOTH_HOT_LOOP void grid_cell_air_kernel(uint32_t begin, uint32_t end, AirConstants k, uint32_t o1,
+                                         uint32_t o2, uint32_t o3, const float* __restrict mask,
+                                         const float* __restrict px, const float* __restrict py,
+                                         const float* __restrict pz, const float* __restrict vx,
+                                         const float* __restrict vy, const float* __restrict vz,
+                                         float* __restrict f1x, float* __restrict f1y, float* __restrict f1z,
+                                         float* __restrict f2x, float* __restrict f2y,
+                                         float* __restrict f2z) {
     for (uint32_t p = begin; p < end; ++p) {
-        const uint32_t a = p + o0, b = p + o1, c = p + o2;
+        const uint32_t b = p + o1, c = p + o2, d = p + o3;
+        const float acx = px[c] - px[p], acy = py[c] - py[p], acz = pz[c] - pz[p];
+        const float sx = vx[p] + vx[c], sy = vy[p] + vy[c], sz = vz[p] + vz[c];
         float x, y, z;
-        corner_force(k, px[b] - px[a], py[b] - py[a], pz[b] - pz[a], px[c] - px[a], py[c] - py[a],
-                     pz[c] - pz[a], vx[a] + vx[b] + vx[c], vy[a] + vy[b] + vy[c], vz[a] + vz[b] + vz[c], x, y,
-                     z);
-        fx[p] = x * mask[p];
-        fy[p] = y * mask[p];
-        fz[p] = z * mask[p];
+        corner_force(k, px[b] - px[p], py[b] - py[p], pz[b] - pz[p], acx, acy, acz, sx + vx[b], sy + vy[b],
+                     sz + vz[b], x, y, z);
+        f1x[p] = x * mask[p];
+        f1y[p] = y * mask[p];
+        f1z[p] = z * mask[p];
+        corner_force(k, acx, acy, acz, px[d] - px[p], py[d] - py[p], pz[d] - pz[p], sx + vx[d], sy + vy[d],
+                     sz + vz[d], x, y, z);
+        f2x[p] = x * mask[p];
+        f2y[p] = y * mask[p];
+        f2z[p] = z * mask[p];
     }
 }
 
@@ -121,18 +130,16 @@ void evaluate_air(const Fabric& fabric, const AeroParams& air, const Vec3Soa& x,
                             corner_force.z.data());
         return;
     }
+    // Cells whose far corner would fall past the grid have no triangles
+    // (their mask is 0) and their entries are never written.
     const uint32_t n = fabric.particle_count();
     const uint32_t* shape = fabric.grid_triangle_shapes.data();
-    for (size_t s = 0; s < fabric.grid_triangle_shapes.size() / 3; ++s, shape += 3) {
-        // Cells whose far corner would fall past the grid have no triangles
-        // (their mask is 0) and their entries are never written.
-        const uint32_t reach = std::max({shape[0], shape[1], shape[2]});
-        const size_t base = s * n;
-        grid_air_kernel(begin, std::min(end, n - reach), k, shape[0], shape[1], shape[2],
-                        fabric.grid_cell_mask.data(), x.x.data(), x.y.data(), x.z.data(), v.x.data(),
-                        v.y.data(), v.z.data(), corner_force.x.data() + base, corner_force.y.data() + base,
-                        corner_force.z.data() + base);
-    }
+    const uint32_t o1 = shape[1], o2 = shape[2], o3 = shape[5];
+    const uint32_t reach = std::max({o1, o2, o3});
+    grid_cell_air_kernel(begin, std::min(end, n - reach), k, o1, o2, o3, fabric.grid_cell_mask.data(),
+                         x.x.data(), x.y.data(), x.z.data(), v.x.data(), v.y.data(), v.z.data(),
+                         corner_force.x.data(), corner_force.y.data(), corner_force.z.data(),
+                         corner_force.x.data() + n, corner_force.y.data() + n, corner_force.z.data() + n);
 }
 
 CLOTH_HOT_LOOP void gather_air(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begin,

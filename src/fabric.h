@@ -113,7 +113,9 @@ struct Fabric {
     // Grid fabrics only (empty otherwise): the same springs as families,
     // and the triangles as two shapes per cell. Shape k of the cell whose
     // first corner is particle p has corners p + grid_triangle_shapes[3k + i];
-    // the cell exists where grid_cell_mask[p] is 1.
+    // the cell exists where grid_cell_mask[p] is 1. The two shapes are a fan
+    // around the cell's first corner, (0, o1, o2) and (0, o2, o3), so the
+    // air pass evaluates both from shared loads (aerodynamics.cpp).
     std::vector<SpringFamily, HostAllocator<SpringFamily>> grid_families;
     HostVector<uint32_t> grid_triangle_shapes;
     HostVector<float> grid_cell_mask;

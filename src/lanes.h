@@ -51,9 +51,13 @@ struct VectorLanes {
 
 // Calls body(lanes, p) over [begin, end): eight particles at a time where
 // [p, p + 8) lies inside [vector_begin, vector_end), one at a time elsewhere.
+// Always inlined with the body flattened into it, so a CLOTH_HOT_LOOP
+// caller compiles the loop for its own target (AVX2) instead of calling an
+// out-of-line baseline copy.
 template <class Body>
-void for_each_lane_group(uint32_t begin, uint32_t end, uint32_t vector_begin, uint32_t vector_end,
-                         Body body) {
+__attribute__((always_inline, flatten)) inline void for_each_lane_group(uint32_t begin, uint32_t end,
+                                                                        uint32_t vector_begin,
+                                                                        uint32_t vector_end, Body body) {
     uint32_t p = begin;
     for (; p < end && p < vector_begin; ++p) body(ScalarLanes{}, p);
     for (; p + VectorLanes::width <= end && p + VectorLanes::width <= vector_end; p += VectorLanes::width) {

@@ -76,9 +76,10 @@ struct FamilyTerms {
 // p - offset is valid; loads at p stay below n), one at a time before it,
 // in the same order.
 template <class Count>
-inline void gather_families_impl(uint32_t begin, uint32_t end, uint32_t n, uint32_t max_offset,
-                                 const uint32_t* offsets, const FamilyTerms* terms, Count family_count,
-                                 Vec3Soa& force, Sym3Soa* diagonal) {
+__attribute__((always_inline)) inline void gather_families_impl(uint32_t begin, uint32_t end, uint32_t n,
+                                                                uint32_t max_offset, const uint32_t* offsets,
+                                                                const FamilyTerms* terms, Count family_count,
+                                                                Vec3Soa& force, Sym3Soa* diagonal) {
     for_each_lane_group(begin, end, max_offset, n, [&](auto lanes, uint32_t p) {
         using L = decltype(lanes);
         using T = typename L::type;
