@@ -1,17 +1,12 @@
-// One frame of one cloth, as a fixed sequence of stages (algorithm.md 4):
+// One frame of one cloth, as a sequence of named stages (step_stage.h has
+// the plan): per substep h = dt / substeps, the kinematic velocities of
+// pinned particles (serial, tiny), then air, forces and springs, assembly,
+// the solver's stages and integration, each a loop over particle groups.
 //
-//   per substep h = dt / substeps:
-//     0. per particle: kinematic velocities of pinned particles
-//     1. per triangle: air forces;  per particle: gather + gravity + drag
-//     2. per spring:   force, J, A_s (paper Code 4)
-//     3. per particle: W_ii, W_ii^-1, b_i, p_i (paper Code 1)
-//     4. solver:       dv (Jacobi: per-particle gathers; CG: reference)
-//     5. per particle: v += dv, x += h v
-//
-// Every stage is a loop over a range of particles, springs or triangles
-// that reads the previous stage's output only, with a barrier between
-// stages; all sums are gathers in the fabric's fixed order. That makes the
-// step parallel without atomics and bit-identical for any split of ranges.
+// Every stage reads the previous stages' output only, with a barrier
+// between stages; all sums are gathers in the fabric's fixed order. That
+// makes the step parallel without atomics and bit-identical for any
+// split of the groups over workers.
 #include "cloth_instance.h"
 
 #include <algorithm>
@@ -49,7 +44,8 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       dv_scratch_(memory),
       normals_(memory),
       backup_x_(memory),
-      backup_v_(memory) {
+      backup_v_(memory),
+      group_finite_(HostAllocator<uint8_t>(memory)) {
     const Fabric& f = *fabric_;
     const uint32_t n = f.particle_count();
     for (Vec3Soa* a : {&x_, &v_, &pin_target_, &pin_start_, &external_force_, &rhs_, &dv_, &dv_scratch_,
@@ -64,6 +60,8 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     triangle_force_.resize(air_storage_size(f));
     diagonal_.resize(n);
     diagonal_inverse_.resize(n);
+    group_count_ = (n + kGroupSize - 1) / kGroupSize;
+    group_finite_.assign(group_count_, 1);
     set_material(material);
 }
 
@@ -100,14 +98,16 @@ const Vec3Soa& ClothInstance::normals() const {
     return normals_;
 }
 
-CLOTH_HOT_LOOP bool ClothInstance::state_is_finite() const {
-    // x * 0 is 0 for finite x and NaN otherwise; NaN survives any sum.
-    const uint32_t n = particle_count();
+namespace {
+
+// Whether x and v are finite on [begin, end): x * 0 is 0 for finite x and
+// NaN otherwise; NaN survives any sum.
+CLOTH_HOT_LOOP bool range_is_finite(const Vec3Soa& x, const Vec3Soa& v, uint32_t begin, uint32_t end) {
     float sum[VectorLanes::width] = {};
-    for_each_lane_group(0, n, 0, n, [&](auto lanes, uint32_t i) {
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
         using L = decltype(lanes);
         typename L::type acc = L::load(sum);
-        for (const Vec3Soa* a : {&x_, &v_}) {
+        for (const Vec3Soa* a : {&x, &v}) {
             acc += L::load(&a->x[i]) * 0.0f + L::load(&a->y[i]) * 0.0f + L::load(&a->z[i]) * 0.0f;
         }
         L::store(sum, acc);
@@ -117,19 +117,182 @@ CLOTH_HOT_LOOP bool ClothInstance::state_is_finite() const {
     return std::isfinite(total);
 }
 
-Status ClothInstance::step(float dt, const Vec3& gravity) {
+}  // namespace
+
+bool ClothInstance::state_is_finite() const {
+    for (uint8_t finite : group_finite_) {
+        if (!finite) return false;
+    }
+    return true;
+}
+
+void ClothInstance::check_finite(uint32_t group) {
+    group_finite_[group] = range_is_finite(x_, v_, group_begin(group), group_end(group)) ? 1 : 0;
+}
+
+// ---------------------------------------------------------------- frame
+
+Status ClothInstance::step(float dt, const Vec3& gravity, TaskSystem* tasks) {
+    SerialTasks serial;
+    TaskSystem& runner = tasks ? *tasks : serial;
+    begin_frame(dt, gravity);
+    while (!frame_done()) {
+        prepare_stage();
+        auto body = [this](uint32_t begin, uint32_t end, uint32_t worker) {
+            for (uint32_t t = begin; t < end; ++t) run_task(t, worker);
+        };
+        parallel_for(runner, task_count(), 1, body);
+        finish_stage();
+    }
+    return end_frame();
+}
+
+bool ClothInstance::has_air() const {
+    return aero_.air_density > 0 && (aero_.drag_coefficient > 0 || aero_.lift_coefficient > 0);
+}
+
+void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     backup_x_ = x_;
     backup_v_ = v_;
     for (uint32_t i : pinned_list_) pin_start_.set(i, x_.get(i));
-    const uint32_t substeps = solver_.substeps;
-    const float h = dt / static_cast<float>(substeps);
-    bool converged = true;
-    try {
-        for (uint32_t k = 0; k < substeps; ++k) {
-            substep(h, static_cast<float>(k + 1) / static_cast<float>(substeps), gravity);
-            converged = converged && last_solve_.converged;
+    substeps_ = solver_.substeps;
+    h_ = dt / static_cast<float>(substeps_);
+    gravity_ = gravity;
+    frame_converged_ = true;
+    frame_out_of_memory_ = false;
+    std::fill(group_finite_.begin(), group_finite_.end(), uint8_t{1});
+    cursor_ = Cursor{};
+    cursor_.stage = first_stage_of_substep();
+    frame_done_ = false;
+}
+
+Stage ClothInstance::first_stage_of_substep() const { return has_air() ? Stage::kAir : Stage::kForces; }
+
+// The plan of a substep (step_stage.h). The solver dispatch is the branch
+// after kForces; post-integration stages are scheduled only when enabled.
+Stage ClothInstance::next_stage(Stage current) const {
+    switch (current) {
+        case Stage::kAir:
+            return Stage::kForces;
+        case Stage::kForces:
+            // Solver dispatch: the explicit baseline needs no system.
+            return solver_.kind == CLOTH_SOLVER_EXPLICIT ? Stage::kExplicit : Stage::kAssemble;
+        case Stage::kAssemble:
+            // Solver dispatch: the stages that turn the assembled system into dv.
+            if (solver_.kind == CLOTH_SOLVER_CG) return Stage::kSerialSolve;
+            return Stage::kJacobiSweep;
+        case Stage::kJacobiSweep:
+            return cursor_.sweep + 1 < solver_.iterations ? Stage::kJacobiSweep : Stage::kIntegrate;
+        case Stage::kSerialSolve:
+            return Stage::kIntegrate;
+        case Stage::kIntegrate:
+        case Stage::kExplicit:
+            // Post-integration passes plug in here, each behind its feature:
+            //   if (colliders enabled) return Stage::kCollisions;      (issue 6)
+            //   if (self-collision enabled) return Stage::kSelfCollision; (issue 5)
+            return Stage::kCount;
+        case Stage::kCollisions:
+            // if (self-collision enabled) return Stage::kSelfCollision;
+            return Stage::kCount;
+        case Stage::kSelfCollision:
+        case Stage::kCount:
+            break;
+    }
+    return Stage::kCount;  // kCount: the substep is over
+}
+
+void ClothInstance::prepare_stage() {
+    if (cursor_.stage == first_stage_of_substep()) {
+        // Pinned particles move linearly towards their frame-end targets.
+        const float fraction_end = static_cast<float>(cursor_.substep + 1) / static_cast<float>(substeps_);
+        for (uint32_t i : pinned_list_) v_.set(i, (pin_position(i, fraction_end) - x_.get(i)) / h_);
+    }
+    if (cursor_.stage == Stage::kAssemble) {
+        // Assembly writes p = W^-1 b (the first iterate) to dv_; a solver
+        // leaves its dv in *sweep_current_.
+        sweep_current_ = &dv_;
+        sweep_next_ = &dv_scratch_;
+    }
+}
+
+uint32_t ClothInstance::task_count() const { return cursor_.stage == Stage::kSerialSolve ? 1 : group_count_; }
+
+void ClothInstance::finish_stage() {
+    if (frame_out_of_memory_) {
+        frame_done_ = true;
+        return;
+    }
+    switch (cursor_.stage) {
+        case Stage::kJacobiSweep:
+            std::swap(sweep_current_, sweep_next_);
+            break;
+        case Stage::kSerialSolve:
+            frame_converged_ = frame_converged_ && last_solve_.converged;
+            break;
+        case Stage::kExplicit:
+            last_solve_ = SolveReport{};
+            break;
+        default:
+            break;
+    }
+    Stage next = next_stage(cursor_.stage);
+    if (cursor_.stage == Stage::kJacobiSweep) {
+        if (next == Stage::kJacobiSweep) {
+            ++cursor_.sweep;
+        } else {
+            last_solve_ = SolveReport{};
+            last_solve_.iterations = solver_.iterations;
+            cursor_.sweep = 0;
         }
-    } catch (const std::bad_alloc&) {
+    }
+    if (next == Stage::kCount) {
+        ++cursor_.substep;
+        if (cursor_.substep == substeps_) {
+            frame_done_ = true;
+            return;
+        }
+        next = first_stage_of_substep();
+    }
+    cursor_.stage = next;
+}
+
+void ClothInstance::run_task(uint32_t task, uint32_t) {
+    switch (cursor_.stage) {
+        case Stage::kAir:
+            run_air(task);
+            break;
+        case Stage::kForces:
+            run_forces(task);
+            break;
+        case Stage::kAssemble:
+            run_assemble(task);
+            break;
+        case Stage::kJacobiSweep:
+            run_jacobi_sweep(task);
+            break;
+        case Stage::kSerialSolve:
+            run_serial_solve();
+            return;
+        case Stage::kIntegrate:
+            run_integrate(task);
+            break;
+        case Stage::kExplicit:
+            run_explicit(task);
+            break;
+        case Stage::kCollisions:
+        case Stage::kSelfCollision:
+        case Stage::kCount:
+            break;
+    }
+    // The last stage of the frame checks its group for NaN and Inf.
+    if (next_stage(cursor_.stage) == Stage::kCount && cursor_.substep + 1 == substeps_) {
+        check_finite(task);
+    }
+}
+
+Status ClothInstance::end_frame() {
+    frame_done_ = true;
+    if (frame_out_of_memory_) {
         // Only the CG reference solver allocates during a step.
         x_ = backup_x_;
         v_ = backup_v_;
@@ -147,8 +310,8 @@ Status ClothInstance::step(float dt, const Vec3& gravity) {
             "the step produced a non-finite state; the cloth was restored to its state before "
             "the step (lower dt, raise substeps or iterations, or use a sturdier solver)");
     }
-    last_step_result_ = converged ? CLOTH_OK : CLOTH_ERROR_SOLVER_FAILED;
-    if (!converged) {
+    last_step_result_ = frame_converged_ ? CLOTH_OK : CLOTH_ERROR_SOLVER_FAILED;
+    if (!frame_converged_) {
         return Status::error(CLOTH_ERROR_SOLVER_FAILED,
                              "conjugate gradient stopped at its iteration limit (residual %g)",
                              static_cast<double>(last_solve_.residual));
@@ -160,23 +323,32 @@ Vec3 ClothInstance::pin_position(uint32_t i, float frame_fraction) const {
     return pin_start_.get(i) + (pin_target_.get(i) - pin_start_.get(i)) * frame_fraction;
 }
 
-CLOTH_HOT_LOOP void ClothInstance::substep(float h, float frame_fraction_end, const Vec3& gravity) {
-    const Fabric& f = *fabric_;
-    const uint32_t n = f.particle_count();
+void ClothInstance::group_items(uint32_t group, uint32_t items, uint32_t& begin, uint32_t& end) const {
+    begin = static_cast<uint32_t>(static_cast<uint64_t>(items) * group / group_count_);
+    end = static_cast<uint32_t>(static_cast<uint64_t>(items) * (group + 1) / group_count_);
+}
 
-    // 0. Pinned particles move linearly towards their frame-end targets.
-    for (uint32_t i : pinned_list_) v_.set(i, (pin_position(i, frame_fraction_end) - x_.get(i)) / h);
+// ---------------------------------------------------------------- stages
 
-    // 1. External forces: air (only when the scene has air), gravity, linear drag.
-    const bool has_air = aero_.air_density > 0 && (aero_.drag_coefficient > 0 || aero_.lift_coefficient > 0);
-    if (has_air) {
-        evaluate_air(f, aero_, x_, v_, 0, air_item_count(f), triangle_force_);
-        gather_air(f, triangle_force_, 0, n, external_force_);
+void ClothInstance::run_air(uint32_t group) {
+    uint32_t begin, end;
+    group_items(group, air_item_count(*fabric_), begin, end);
+    evaluate_air(*fabric_, aero_, x_, v_, begin, end, triangle_force_);
+}
+
+CLOTH_HOT_LOOP void ClothInstance::run_forces(uint32_t group) {
+    const uint32_t begin = group_begin(group), end = group_end(group);
+    // External forces: air (only when the scene has air), gravity, linear drag.
+    if (has_air()) {
+        gather_air(*fabric_, triangle_force_, begin, end, external_force_);
     } else {
-        external_force_.fill(Vec3::Zero());
+        for (HostVector<float>* a : {&external_force_.x, &external_force_.y, &external_force_.z}) {
+            std::fill(a->begin() + begin, a->begin() + end, 0.0f);
+        }
     }
     const float linear_drag = aero_.linear_drag;
-    for_each_lane_group(0, n, 0, n, [&](auto lanes, uint32_t i) {
+    const Vec3 gravity = gravity_;
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
         using L = decltype(lanes);
         const typename L::type m = L::load(&mass_[i]), drag = m * linear_drag;
         L::store(&external_force_.x[i],
@@ -186,41 +358,70 @@ CLOTH_HOT_LOOP void ClothInstance::substep(float h, float frame_fraction_end, co
         L::store(&external_force_.z[i],
                  L::load(&external_force_.z[i]) + m * gravity.z() - L::load(&v_.z[i]) * drag);
     });
+    // Springs: each spring (grid: each first particle) belongs to one group.
+    uint32_t spring_begin, spring_end;
+    group_items(group, springs_->item_count(), spring_begin, spring_end);
+    const float h = solver_.kind == CLOTH_SOLVER_EXPLICIT ? 0.0f : h_;  // h = 0: plain forces
+    springs_->evaluate(x_, v_, h, JacobianClamp::make(solver_.compression_safe_jacobian), spring_begin,
+                       spring_end);
+}
 
-    const JacobianClamp clamp = JacobianClamp::make(solver_.compression_safe_jacobian);
-    if (solver_.kind == CLOTH_SOLVER_EXPLICIT) {
-        // Plain spring forces (h = 0 drops the implicit terms), then Euler.
-        springs_->evaluate(x_, v_, 0.0f, clamp, 0, springs_->item_count());
-        springs_->gather(0, n, external_force_, nullptr);
-        integrate_explicit(external_force_, mass_.data(), pinned_.data(), h, 0, n, v_, x_);
-        last_solve_ = SolveReport{};
-    } else {
-        // 2. Springs.  3. Particle assembly (dv_ = p on exit).
-        springs_->evaluate(x_, v_, h, clamp, 0, springs_->item_count());
-        const AssemblyPass assembly{springs_.get(),   &external_force_, mass_.data(), pinned_.data(), h,
-                                    aero_.linear_drag};
-        assemble_particles(assembly, 0, n, diagonal_, diagonal_inverse_, rhs_, dv_);
-        // 4. Solve.
-        const LinearSystem system{springs_.get(), n, &diagonal_, &diagonal_inverse_, &rhs_, pinned_.data()};
-        if (solver_.kind == CLOTH_SOLVER_CG) {
-            last_solve_ = solve_cg(system, solver_.cg_tolerance, solver_.cg_max_iterations, dv_);
-        } else {
-            last_solve_ = solve_jacobi(system, solver_.iterations, dv_, dv_scratch_);
-        }
-        // 5. Integrate (dv is zero on pinned particles; they are placed below).
-        for_each_lane_group(0, n, 0, n, [&](auto lanes, uint32_t i) {
-            using L = decltype(lanes);
-            const typename L::type vx = L::load(&v_.x[i]) + L::load(&dv_.x[i]);
-            const typename L::type vy = L::load(&v_.y[i]) + L::load(&dv_.y[i]);
-            const typename L::type vz = L::load(&v_.z[i]) + L::load(&dv_.z[i]);
-            store_vec3<L>(v_, i, vx, vy, vz);
-            store_vec3<L>(x_, i, L::load(&x_.x[i]) + vx * h, L::load(&x_.y[i]) + vy * h,
-                          L::load(&x_.z[i]) + vz * h);
-        });
+void ClothInstance::run_assemble(uint32_t group) {
+    // dv_ = p on exit.
+    const AssemblyPass assembly{springs_.get(),   &external_force_, mass_.data(), pinned_.data(), h_,
+                                aero_.linear_drag};
+    assemble_particles(assembly, group_begin(group), group_end(group), diagonal_, diagonal_inverse_, rhs_,
+                       dv_);
+}
+
+void ClothInstance::run_jacobi_sweep(uint32_t group) {
+    const LinearSystem system{springs_.get(), particle_count(), &diagonal_, &diagonal_inverse_,
+                              &rhs_,          pinned_.data()};
+    jacobi_sweep(system, *sweep_current_, group_begin(group), group_end(group), *sweep_next_);
+}
+
+void ClothInstance::run_serial_solve() {
+    const LinearSystem system{springs_.get(), particle_count(), &diagonal_, &diagonal_inverse_,
+                              &rhs_,          pinned_.data()};
+    try {
+        last_solve_ = solve_cg(system, solver_.cg_tolerance, solver_.cg_max_iterations, *sweep_current_);
+    } catch (const std::bad_alloc&) {
+        frame_out_of_memory_ = true;  // end_frame restores the cloth
     }
+}
 
+CLOTH_HOT_LOOP void ClothInstance::run_integrate(uint32_t group) {
+    // dv is zero on pinned particles; they are placed below.
+    const Vec3Soa& dv = *sweep_current_;
+    const uint32_t begin = group_begin(group), end = group_end(group);
+    const float h = h_;
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        const typename L::type vx = L::load(&v_.x[i]) + L::load(&dv.x[i]);
+        const typename L::type vy = L::load(&v_.y[i]) + L::load(&dv.y[i]);
+        const typename L::type vz = L::load(&v_.z[i]) + L::load(&dv.z[i]);
+        store_vec3<L>(v_, i, vx, vy, vz);
+        store_vec3<L>(x_, i, L::load(&x_.x[i]) + vx * h, L::load(&x_.y[i]) + vy * h,
+                      L::load(&x_.z[i]) + vz * h);
+    });
+    land_pins(begin, end);
+}
+
+void ClothInstance::run_explicit(uint32_t group) {
+    // Plain spring forces (evaluated with h = 0), then symplectic Euler.
+    const uint32_t begin = group_begin(group), end = group_end(group);
+    springs_->gather(begin, end, external_force_, nullptr);
+    integrate_explicit(external_force_, mass_.data(), pinned_.data(), h_, begin, end, v_, x_);
+    land_pins(begin, end);
+}
+
+void ClothInstance::land_pins(uint32_t begin, uint32_t end) {
     // Pinned particles land exactly on their substep targets.
-    for (uint32_t i : pinned_list_) x_.set(i, pin_position(i, frame_fraction_end));
+    const float fraction_end = static_cast<float>(cursor_.substep + 1) / static_cast<float>(substeps_);
+    auto first = std::lower_bound(pinned_list_.begin(), pinned_list_.end(), begin);
+    for (auto it = first; it != pinned_list_.end() && *it < end; ++it) {
+        x_.set(*it, pin_position(*it, fraction_end));
+    }
 }
 
 }  // namespace cloth

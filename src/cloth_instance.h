@@ -1,10 +1,14 @@
 // One simulated cloth: per-instance state over a shared Fabric (Jolt's
 // SoftBodyMotionProperties, NvCloth's Cloth). Owns its material, solver
-// settings and scratch buffers; advances itself by one frame in step().
+// settings and scratch buffers. A frame is a sequence of named stages
+// (step_stage.h), each a loop over the cloth's particle groups; the world
+// runs the stages of all its cloths together on one task system
+// (World::step), and step() runs one cloth alone.
 #pragma once
 
 #include <cloth/cloth.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "fabric.h"
@@ -13,6 +17,8 @@
 #include "settings.h"
 #include "soa.h"
 #include "status.h"
+#include "step_stage.h"
+#include "task_system.h"
 
 namespace cloth {
 
@@ -26,10 +32,36 @@ class ClothInstance {
     const Fabric& fabric() const { return *fabric_; }
     uint32_t particle_count() const { return fabric_->particle_count(); }
 
-    // Advance by one frame of `dt` seconds (settings().substeps substeps).
-    // Returns CLOTH_ERROR_NONFINITE_STATE after restoring the state from
-    // before the call if the result was not finite.
-    Status step(float dt, const Vec3& gravity);
+    // Advance by one frame of `dt` seconds (settings().substeps substeps),
+    // running the stages on `tasks` (serially if null). Returns
+    // CLOTH_ERROR_NONFINITE_STATE after restoring the state from before the
+    // call if the result was not finite.
+    Status step(float dt, const Vec3& gravity, TaskSystem* tasks = nullptr);
+
+    // The frame protocol World::step drives (step() is the same loop for
+    // one cloth). Serial calls are made on the stepping thread; run_task
+    // on any worker, concurrently for different tasks of one stage:
+    //   begin_frame(dt, gravity)
+    //   while (!frame_done()) {
+    //       prepare_stage();                               // serial
+    //       run_task(t, worker) for t in [0, task_count()) // parallel
+    //       finish_stage();                                // serial, after the barrier
+    //   }
+    //   end_frame()
+    void begin_frame(float dt, const Vec3& gravity);
+    bool frame_done() const { return frame_done_; }
+    Stage stage() const { return cursor_.stage; }
+    void prepare_stage();
+    uint32_t task_count() const;
+    void run_task(uint32_t task, uint32_t worker);
+    void finish_stage();
+    Status end_frame();
+
+    // Particle groups: [group * kGroupSize, min(n, (group + 1) * kGroupSize)).
+    // Every per-particle stage runs one task per group, so tasks carry about
+    // the same work; a group is a row band on grids (row-major order).
+    static constexpr uint32_t kGroupSize = PaddedSlots::kChunk;
+    uint32_t group_count() const { return group_count_; }
 
     void set_material(const Material& material);  // recomputes masses
     const Material& material() const { return material_; }
@@ -58,7 +90,25 @@ class ClothInstance {
     cloth_result last_step_result() const { return last_step_result_; }
 
   private:
-    void substep(float h, float frame_fraction_end, const Vec3& gravity);
+    // Stage bodies for one task (step_stage.h lists what each does).
+    void run_air(uint32_t group);
+    void run_forces(uint32_t group);
+    void run_assemble(uint32_t group);
+    void run_jacobi_sweep(uint32_t group);
+    void run_serial_solve();
+    void run_integrate(uint32_t group);
+    void run_explicit(uint32_t group);
+    void land_pins(uint32_t begin, uint32_t end);
+    void check_finite(uint32_t group);
+    // The stage after the current one (the plan of a frame).
+    Stage next_stage(Stage current) const;
+    Stage first_stage_of_substep() const;
+    // Item range [begin, end) of `group` when `items` items are split over
+    // the groups (springs, triangles: each has one owning group).
+    void group_items(uint32_t group, uint32_t items, uint32_t& begin, uint32_t& end) const;
+    uint32_t group_begin(uint32_t group) const { return group * kGroupSize; }
+    uint32_t group_end(uint32_t group) const { return std::min(particle_count(), (group + 1) * kGroupSize); }
+    bool has_air() const;
     bool state_is_finite() const;
     // Where pinned particle i is at `frame_fraction` of the current frame.
     Vec3 pin_position(uint32_t i, float frame_fraction) const;
@@ -89,6 +139,24 @@ class ClothInstance {
 
     SolveReport last_solve_;
     cloth_result last_step_result_ = CLOTH_OK;
+
+    // The frame in progress.
+    struct Cursor {
+        Stage stage = Stage::kForces;
+        uint32_t substep = 0;
+        uint32_t sweep = 0;  // Jacobi sweep within the solve
+    };
+    uint32_t group_count_ = 0;
+    Cursor cursor_;
+    bool frame_done_ = true;
+    float h_ = 0;
+    uint32_t substeps_ = 1;
+    Vec3 gravity_ = Vec3::Zero();
+    bool frame_converged_ = true;
+    bool frame_out_of_memory_ = false;  // set by the serial solve task
+    Vec3Soa* sweep_current_ = nullptr;  // Jacobi: the iterate being read
+    Vec3Soa* sweep_next_ = nullptr;     // and the one being written
+    HostVector<uint8_t> group_finite_;  // per group, written by the last stage of a frame
 };
 
 }  // namespace cloth

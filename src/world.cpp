@@ -33,9 +33,13 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       index_(index),
       generation_(generation),
       fabrics_(HostAllocator<Slot<Fabric>>(&memory_)),
-      cloths_(HostAllocator<Slot<ClothInstance>>(&memory_)) {
+      cloths_(HostAllocator<Slot<ClothInstance>>(&memory_)),
+      tasks_(&serial_tasks_),
+      stepping_(HostAllocator<ClothInstance*>(&memory_)),
+      round_(HostAllocator<RoundTask>(&memory_)) {
     fabrics_.resize(desc.max_fabrics);
     cloths_.resize(desc.max_cloths);
+    stepping_.reserve(desc.max_cloths);
 }
 
 void World::log(cloth_log_level level, cloth_result code, const char* message) const {
@@ -87,6 +91,7 @@ Status World::create_cloth(std::shared_ptr<const Fabric> fabric, const Material&
                                         initial_positions[3 * i + 2]));
         }
     }
+    reserve_round_tasks(cloth->group_count());
     cloths_[slot].object = std::move(cloth);
     *out = cloth_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1),
                     cloths_[slot].generation, generation_};
@@ -101,12 +106,46 @@ Status World::destroy_cloth(cloth_id id) {
     return {};
 }
 
+// The step allocates nothing: a round holds at most one task per group
+// of every cloth (a serial stage has one task).
+void World::reserve_round_tasks(size_t extra_groups) {
+    size_t groups = extra_groups;
+    for (const Slot<ClothInstance>& slot : cloths_) {
+        if (slot.object) groups += slot.object->group_count();
+    }
+    round_.reserve(groups);
+}
+
 Status World::step(float dt) {
+    stepping_.clear();
+    for (Slot<ClothInstance>& slot : cloths_) {
+        if (!slot.object) continue;
+        slot.object->begin_frame(dt, gravity);
+        stepping_.push_back(slot.object.get());
+    }
+    auto run_range = [this](uint32_t begin, uint32_t end, uint32_t worker) {
+        for (uint32_t t = begin; t < end; ++t) round_[t].cloth->run_task(round_[t].task, worker);
+    };
+    for (;;) {
+        round_.clear();
+        for (ClothInstance* cloth : stepping_) {
+            if (cloth->frame_done()) continue;
+            cloth->prepare_stage();
+            const uint32_t count = cloth->task_count();
+            for (uint32_t t = 0; t < count; ++t) round_.push_back(RoundTask{cloth, t});
+        }
+        if (round_.empty()) break;
+        parallel_for(*tasks_, static_cast<uint32_t>(round_.size()), 1, run_range);
+        for (ClothInstance* cloth : stepping_) {
+            if (!cloth->frame_done()) cloth->finish_stage();
+        }
+    }
+
     Status first_failure;
     for (uint32_t s = 0; s < cloths_.size(); ++s) {
         ClothInstance* cloth = cloths_[s].object.get();
         if (!cloth) continue;
-        Status status = cloth->step(dt, gravity);
+        Status status = cloth->end_frame();
         if (status.ok()) continue;
         // A cloth that had to be restored outranks a solver warning.
         auto restored = [](cloth_result code) {

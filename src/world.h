@@ -14,6 +14,7 @@
 #include "fabric.h"
 #include "host_allocator.h"
 #include "status.h"
+#include "task_system.h"
 
 namespace cloth {
 
@@ -45,7 +46,10 @@ class World {
     Status destroy_cloth(cloth_id id);
 
     // Step every cloth; a cloth that goes non-finite is restored and
-    // reported, the others advance.
+    // reported, the others advance. All cloths advance together, stage by
+    // stage: each round runs the current stage of every unfinished cloth
+    // as one parallel_for over all their groups (cloths with fewer stages
+    // finish in fewer rounds), so many small cloths share the workers.
     Status step(float dt);
 
     void log(cloth_log_level level, cloth_result code, const char* message) const;
@@ -60,6 +64,17 @@ class World {
     uint16_t generation_;
     HostVector<Slot<Fabric>> fabrics_;
     HostVector<Slot<ClothInstance>> cloths_;
+
+    // One task of a round: group `task` of `cloth`'s current stage.
+    struct RoundTask {
+        ClothInstance* cloth;
+        uint32_t task;
+    };
+    void reserve_round_tasks(size_t extra_groups);
+    TaskSystem* tasks_ = nullptr;  // never null after construction
+    SerialTasks serial_tasks_;
+    HostVector<ClothInstance*> stepping_;  // the cloths of the frame in progress
+    HostVector<RoundTask> round_;          // sized for every group of every cloth
 };
 
 template <class T>

@@ -1,0 +1,78 @@
+// The named stages of one substep (algorithm.md 4; paper section III).
+//
+// Each stage is a loop over a cloth's particle groups (one task per group)
+// that reads only what earlier stages wrote, so the end of a stage is a
+// barrier and nothing inside one needs a lock or an atomic: every
+// per-particle sum is a gather in the fabric's fixed order. The world runs
+// the current stage of every cloth in one parallel_for (task_system.h), so
+// many cloths share the workers within one cloth_step.
+//
+// The plan of one substep (ClothInstance::next_stage):
+//
+//   kAir            per triangle: wind drag and lift (only when the cloth has air)
+//   kForces         per particle: external forces (air gather, gravity, drag);
+//                   per spring: f~, J, A_s (paper Code 4)
+//   -- solver dispatch on cloth_solver_kind (ClothInstance::next_stage):
+//   kAssemble       per particle: W_ii, W_ii^-1, b_i, p_i (paper Code 1)
+//   kJacobiSweep    JACOBI: one sweep per iteration (paper Code 2/3)
+//   kSerialSolve    CG reference: one task for the whole cloth
+//   kIntegrate      per particle: v += dv, x += h v; pins land
+//   kExplicit       EXPLICIT (replaces kAssemble..kIntegrate): gather, Euler
+//   -- after integration, where contact plugs in:
+//   kCollisions     colliders and attachments (issue 6)
+//   kSelfCollision  self-collision (issue 5)
+//
+// A new solver kind adds its stages here and its branch in next_stage();
+// a serial one runs as a single task like kSerialSolve. A new post-
+// integration pass gets a stage here, a body called from
+// ClothInstance::run_task, and a condition in next_stage() that schedules
+// it only when the feature is enabled (a feature that is off adds no pass).
+#pragma once
+
+#include <cstdint>
+
+namespace cloth {
+
+enum class Stage : uint8_t {
+    kAir,
+    kForces,
+    kAssemble,
+    kJacobiSweep,
+    kSerialSolve,
+    kIntegrate,
+    kExplicit,
+    kCollisions,
+    kSelfCollision,
+    kCount
+};
+
+constexpr uint32_t kStageCount = static_cast<uint32_t>(Stage::kCount);
+
+// Short stable names, for profiles and traces.
+inline const char* stage_name(Stage stage) {
+    switch (stage) {
+        case Stage::kAir:
+            return "air";
+        case Stage::kForces:
+            return "forces";
+        case Stage::kAssemble:
+            return "assemble";
+        case Stage::kJacobiSweep:
+            return "jacobi_sweep";
+        case Stage::kSerialSolve:
+            return "serial_solve";
+        case Stage::kIntegrate:
+            return "integrate";
+        case Stage::kExplicit:
+            return "explicit";
+        case Stage::kCollisions:
+            return "collisions";
+        case Stage::kSelfCollision:
+            return "self_collision";
+        case Stage::kCount:
+            break;
+    }
+    return "?";
+}
+
+}  // namespace cloth
