@@ -17,6 +17,7 @@
 namespace cloth::api {
 inline constexpr uint32_t kCookie = 0x636C7468;  // "clth": the desc came from cloth_default_*()
 inline constexpr uint32_t kMaxWorlds = 128;
+inline constexpr uint32_t kMaxWorkers = 256;
 
 // ---------------------------------------------------------------- worlds
 

@@ -45,6 +45,20 @@ CLOTH_API cloth_result cloth_world_create(const cloth_world_desc* desc, cloth_wo
             desc->max_fabrics > 65535) {
             return Status::error(CLOTH_ERROR_INVALID_COUNT, "max_cloths and max_fabrics must be in 1..65535");
         }
+        if ((desc->enqueue_task == nullptr) != (desc->finish_task == nullptr)) {
+            return Status::error(CLOTH_ERROR_INVALID_VALUE,
+                                 "set both enqueue_task and finish_task, or neither");
+        }
+        if (desc->worker_count > kMaxWorkers) {
+            return Status::error(CLOTH_ERROR_INVALID_COUNT, "worker_count %u is more than %u",
+                                 desc->worker_count, kMaxWorkers);
+        }
+        if (desc->enqueue_task && desc->worker_count == 0) {
+            return Status::error(CLOTH_ERROR_INVALID_COUNT,
+                                 "worker_count must be 1..%u with host task callbacks (the number of "
+                                 "worker indices the host passes)",
+                                 kMaxWorkers);
+        }
 
         WorldTable& table = world_table();
         std::lock_guard<std::mutex> lock(table.mutex);

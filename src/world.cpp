@@ -35,11 +35,18 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       fabrics_(HostAllocator<Slot<Fabric>>(&memory_)),
       cloths_(HostAllocator<Slot<ClothInstance>>(&memory_)),
       tasks_(&serial_tasks_),
+      host_tasks_(desc.enqueue_task, desc.finish_task, desc.task_user, desc.worker_count),
+      pool_(desc.enqueue_task ? 1 : desc.worker_count),
       stepping_(HostAllocator<ClothInstance*>(&memory_)),
       round_(HostAllocator<RoundTask>(&memory_)) {
     fabrics_.resize(desc.max_fabrics);
     cloths_.resize(desc.max_cloths);
     stepping_.reserve(desc.max_cloths);
+    if (desc.enqueue_task) {
+        tasks_ = &host_tasks_;
+    } else if (desc.worker_count > 1) {
+        tasks_ = &pool_;  // its threads keep their state on the C++ heap
+    }
 }
 
 void World::log(cloth_log_level level, cloth_result code, const char* message) const {

@@ -13,8 +13,10 @@
 #include "cloth_instance.h"
 #include "fabric.h"
 #include "host_allocator.h"
+#include "host_tasks.h"
 #include "status.h"
 #include "task_system.h"
+#include "thread_pool.h"
 
 namespace cloth {
 
@@ -29,6 +31,7 @@ class World {
     World(const cloth_world_desc& desc, uint16_t index, uint16_t generation);
 
     const HostMemory* memory() const { return &memory_; }
+    TaskSystem& tasks() { return *tasks_; }
     uint16_t index() const { return index_; }
 
     Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);
@@ -71,8 +74,10 @@ class World {
         uint32_t task;
     };
     void reserve_round_tasks(size_t extra_groups);
-    TaskSystem* tasks_ = nullptr;  // never null after construction
+    TaskSystem* tasks_ = nullptr;  // never null after construction: one of the three below
     SerialTasks serial_tasks_;
+    HostTasks host_tasks_;
+    ThreadPool pool_;  // starts no thread unless the world asked for workers and has no host callbacks
     HostVector<ClothInstance*> stepping_;  // the cloths of the frame in progress
     HostVector<RoundTask> round_;          // sized for every group of every cloth
 };

@@ -174,6 +174,21 @@ typedef enum cloth_log_level {
 /// Receives every error message (and warnings) of the world's calls.
 typedef void cloth_log_fn(cloth_log_level level, cloth_result code, const char* message, void* user);
 
+/// A range of a task the library hands to the host's job system: run items
+/// [begin, end) as `worker` (an index < cloth_world_desc.worker_count that
+/// no other thread uses at the same time), passing `task_context` back.
+typedef void cloth_task_fn(uint32_t begin, uint32_t end, uint32_t worker, void* task_context);
+/// Host job system, Box2D v3.1 style: run `task` over items [0, item_count)
+/// split in ranges of at least `min_range` items, on any of the host's
+/// workers, and return a handle for cloth_finish_task_fn, or NULL if the
+/// work already ran inside this call (then finish is not called). The
+/// ranges may run in any order, concurrently; results do not depend on
+/// the split or on which worker ran what.
+typedef void* cloth_enqueue_task_fn(cloth_task_fn* task, uint32_t item_count, uint32_t min_range,
+                                    void* task_context, void* user);
+/// Wait until every range of the enqueued task has run.
+typedef void cloth_finish_task_fn(void* host_task, void* user);
+
 typedef struct cloth_world_desc {
     uint32_t struct_size;  ///< sizeof(cloth_world_desc); set by cloth_default_world_desc()
     float gravity[3];      ///< m/s^2; default (0, -9.81, 0)
@@ -185,6 +200,15 @@ typedef struct cloth_world_desc {
     uint32_t max_cloths;       ///< capacity of the cloth table; default 1024, at most 65535
     uint32_t max_fabrics;      ///< capacity of the fabric table; default 256, at most 65535
     uint32_t internal_cookie;  ///< set by cloth_default_world_desc(); do not change
+    /// Threads that run the step's tasks, the thread calling cloth_step
+    /// among them; 0 or 1 = everything on the calling thread (default 0,
+    /// no thread is started). Without host callbacks the world starts
+    /// worker_count - 1 threads of its own (at most 256 workers); with
+    /// them, worker indices passed to the tasks are < worker_count (1..256).
+    uint32_t worker_count;
+    cloth_enqueue_task_fn* enqueue_task;  ///< optional host job system; both enqueue and finish, or neither
+    cloth_finish_task_fn* finish_task;    ///< optional
+    void* task_user;                      ///< passed to enqueue_task and finish_task
 } cloth_world_desc;
 
 CLOTH_API cloth_world_desc cloth_default_world_desc(void);
@@ -393,6 +417,16 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);
 /* ------------------------------------------------------------------ */
 /* Jobs, frame budget and profiling                                   */
 /* ------------------------------------------------------------------ */
+
+/* Jobs. A step is a sequence of stages (air, forces, assembly, solver
+ * sweeps, integration, ...), each a loop over particle groups of about 256
+ * particles; the stages of all cloths of a world run together, so many
+ * cloths share the workers. The world runs them on the host's job system
+ * (cloth_world_desc.enqueue_task/finish_task), on its own threads
+ * (cloth_world_desc.worker_count) or on the calling thread. Results are
+ * bit-identical in every case: every sum is formed in a fixed order, with
+ * no atomics or locks, whatever worker runs a group. Task callbacks must
+ * not call back into this API. */
 
 /* ------------------------------------------------------------------ */
 /* Snapshots                                                          */

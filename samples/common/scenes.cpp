@@ -18,7 +18,7 @@ Scene::Scene(const SceneConfig& config) {
     auto fail = [this](const char* what, cloth_result r) {
         error_ = std::string(what) + ": " + cloth_result_name(r) + " " + cloth_get_last_error();
     };
-    cloth_world_desc world_desc = cloth_default_world_desc();
+    cloth_world_desc world_desc = config.world;
     cloth_result r = cloth_world_create(&world_desc, &world_);
     if (r != CLOTH_OK) {
         fail("cloth_world_create", r);
@@ -52,12 +52,23 @@ Scene::Scene(const SceneConfig& config) {
         desc.aero.wind[0] = config.wind_speed;
         desc.aero.wind[2] = 0.1f * config.wind_speed;
     }
-    r = cloth_create(world_, &desc, &cloth_);
-    if (r != CLOTH_OK) {
-        fail("cloth_create", r);
-        return;
-    }
     particle_count_ = n * n;
+    std::vector<float> start(3 * static_cast<size_t>(particle_count_));
+    for (uint32_t copy = 0; copy < config.copies; ++copy) {
+        cloth_id cloth{};
+        if (copy > 0) {
+            // The same cloth 1.5 m further along z.
+            r = cloth_read_positions(cloths_[0], start.data(), static_cast<uint32_t>(start.size()));
+            for (size_t i = 2; i < start.size(); i += 3) start[i] += 1.5f * static_cast<float>(copy);
+            desc.initial_positions = start.data();
+        }
+        r = cloth_create(world_, &desc, &cloth);
+        if (r != CLOTH_OK) {
+            fail("cloth_create", r);
+            return;
+        }
+        cloths_.push_back(cloth);
+    }
 
     std::vector<uint32_t> pins;
     if (config.kind == SceneKind::kFlagInWind) {
@@ -65,10 +76,12 @@ Scene::Scene(const SceneConfig& config) {
     } else {
         pins = {0, n - 1};
     }
-    r = cloth_pin(cloth_, pins.data(), static_cast<uint32_t>(pins.size()));
-    if (r != CLOTH_OK) {
-        fail("cloth_pin", r);
-        return;
+    for (cloth_id cloth : cloths_) {
+        r = cloth_pin(cloth, pins.data(), static_cast<uint32_t>(pins.size()));
+        if (r != CLOTH_OK) {
+            fail("cloth_pin", r);
+            return;
+        }
     }
 }
 
@@ -79,13 +92,13 @@ Scene::~Scene() {
 cloth_stats Scene::stats() const {
     cloth_stats stats{};
     stats.struct_size = sizeof stats;
-    cloth_get_stats(cloth_, &stats);
+    cloth_get_stats(cloth(), &stats);
     return stats;
 }
 
 std::vector<float> Scene::positions() const {
     std::vector<float> xyz(3 * static_cast<size_t>(particle_count_));
-    cloth_read_positions(cloth_, xyz.data(), static_cast<uint32_t>(xyz.size()));
+    cloth_read_positions(cloth(), xyz.data(), static_cast<uint32_t>(xyz.size()));
     return xyz;
 }
 

@@ -32,9 +32,13 @@ struct SceneConfig {
     float wind_speed = 10.0f;   // m/s, flag only
     cloth_solver_settings solver = cloth_default_solver_settings();
     uint32_t spring_kinds = CLOTH_SPRING_ALL;
+    // The world (workers, host job system, ...).
+    cloth_world_desc world = cloth_default_world_desc();
+    // Cloths of the same fabric in the world, 1.5 m apart along z.
+    uint32_t copies = 1;
 };
 
-// Owns a world with one fabric and one cloth; destroys them on scope exit.
+// Owns a world with one fabric and its cloths; destroys them on scope exit.
 class Scene {
   public:
     explicit Scene(const SceneConfig& config);
@@ -47,17 +51,18 @@ class Scene {
 
     cloth_world_id world() const { return world_; }
     cloth_fabric_id fabric() const { return fabric_; }
-    cloth_id cloth() const { return cloth_; }
+    cloth_id cloth() const { return cloths_.empty() ? cloth_id{} : cloths_[0]; }
+    const std::vector<cloth_id>& cloths() const { return cloths_; }
     uint32_t particle_count() const { return particle_count_; }
 
     cloth_result step(float dt) { return cloth_step(world_, dt); }
     cloth_stats stats() const;
-    std::vector<float> positions() const;
+    std::vector<float> positions() const;  // of the first cloth
 
   private:
     cloth_world_id world_{};
     cloth_fabric_id fabric_{};
-    cloth_id cloth_{};
+    std::vector<cloth_id> cloths_;
     uint32_t particle_count_ = 0;
     std::string error_;
 };

@@ -59,10 +59,13 @@ CLOTH_HEADER_CHECK(version_major, CLOTH_VERSION_MAJOR == 1);
 /* Exact layout on 64-bit targets (LP64 and LLP64 agree for these structs).
  * The same numbers are checked in header_cxx.cpp. */
 #if UINTPTR_MAX == 0xFFFFFFFFFFFFFFFFu
-CLOTH_HEADER_CHECK(world_desc_layout, sizeof(cloth_world_desc) == 64 &&
+CLOTH_HEADER_CHECK(world_desc_layout, sizeof(cloth_world_desc) == 88 &&
                                           offsetof(cloth_world_desc, alloc) == 16 &&
                                           offsetof(cloth_world_desc, user) == 40 &&
-                                          offsetof(cloth_world_desc, internal_cookie) == 56);
+                                          offsetof(cloth_world_desc, internal_cookie) == 56 &&
+                                          offsetof(cloth_world_desc, worker_count) == 60 &&
+                                          offsetof(cloth_world_desc, enqueue_task) == 64 &&
+                                          offsetof(cloth_world_desc, task_user) == 80);
 CLOTH_HEADER_CHECK(grid_desc_layout,
                    sizeof(cloth_grid_desc) == 56 && offsetof(cloth_grid_desc, spring_kinds) == 48);
 CLOTH_HEADER_CHECK(mesh_desc_layout, sizeof(cloth_mesh_desc) == 48 &&

@@ -77,7 +77,10 @@ static_assert(CLOTH_VERSION_MAJOR == 1, "");
 
 // Exact layout on 64-bit targets; the same numbers as header_c99.c.
 #if UINTPTR_MAX == 0xFFFFFFFFFFFFFFFFu
-static_assert(sizeof(cloth_world_desc) == 64, "");
+static_assert(sizeof(cloth_world_desc) == 88, "");
+static_assert(offsetof(cloth_world_desc, worker_count) == 60, "");
+static_assert(offsetof(cloth_world_desc, enqueue_task) == 64, "");
+static_assert(offsetof(cloth_world_desc, task_user) == 80, "");
 static_assert(offsetof(cloth_world_desc, alloc) == 16, "");
 static_assert(offsetof(cloth_world_desc, user) == 40, "");
 static_assert(offsetof(cloth_world_desc, internal_cookie) == 56, "");
@@ -192,8 +195,19 @@ std::uint32_t cloth_header_cxx_uses_every_type() {
     cloth_alloc_fn* const alloc = HeaderAlloc;
     cloth_free_fn* const free_fn = HeaderFree;
     cloth_log_fn* const log = HeaderLog;
-    const cloth_world_desc world_desc{
-        sizeof(cloth_world_desc), {0.0f, -9.81f, 0.0f}, alloc, free_fn, log, nullptr, 1024, 256, 0};
+    const cloth_world_desc world_desc{sizeof(cloth_world_desc),
+                                      {0.0f, -9.81f, 0.0f},
+                                      alloc,
+                                      free_fn,
+                                      log,
+                                      nullptr,
+                                      1024,
+                                      256,
+                                      0,
+                                      0,
+                                      nullptr,
+                                      nullptr,
+                                      nullptr};
     const cloth_grid_desc grid_desc{
         sizeof(cloth_grid_desc), 32, 32, {0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, -1.0f, 0.0f},
         CLOTH_SPRING_ALL,        0};

@@ -1,0 +1,122 @@
+// The built-in pool (why it is written by hand: thread_pool.h).
+//
+// Protocol. The stepping thread publishes a job by writing its slot and
+// then the ticket (new epoch, next item 0); workers see the epoch change,
+// take ranges by compare-and-swap on the ticket and count finished items
+// in done_; the stepping thread takes ranges too and returns once done_
+// reaches the item count. Before it writes a slot it waits until no
+// worker is inside a job (inside_), so a late worker never reads a slot
+// while it is written.
+#include "thread_pool.h"
+
+#include <algorithm>
+
+namespace cloth {
+namespace {
+
+inline void cpu_pause() {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+}
+
+// Spin iterations before a worker sleeps: within a frame the next stage
+// comes within microseconds, between frames it is milliseconds away.
+constexpr uint32_t kSpinBeforeSleep = 1u << 14;
+// Spin iterations of a waiting stepping thread before it yields its core
+// (the machine may have fewer cores than workers).
+constexpr uint32_t kSpinBeforeYield = 1u << 10;
+
+inline uint32_t epoch_of(uint64_t ticket) { return static_cast<uint32_t>(ticket >> 32); }
+
+template <class Done>
+void wait_until(Done done) {
+    for (uint32_t spin = 0; !done(); ++spin) {
+        if (spin < kSpinBeforeYield) {
+            cpu_pause();
+        } else {
+            std::this_thread::yield();
+        }
+    }
+}
+
+}  // namespace
+
+ThreadPool::ThreadPool(uint32_t workers) : worker_count_(std::max(1u, workers)) {
+    threads_.reserve(worker_count_ - 1);
+    for (uint32_t w = 1; w < worker_count_; ++w) threads_.emplace_back([this, w] { worker_main(w); });
+}
+
+ThreadPool::~ThreadPool() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stop_.store(true);
+    }
+    wake_.notify_all();
+    for (std::thread& t : threads_) t.join();
+}
+
+void ThreadPool::parallel_for(uint32_t count, uint32_t min_range, RangeTask task, void* context) {
+    if (count == 0) return;
+    min_range = std::max(1u, min_range);
+    if (worker_count_ == 1 || count <= min_range) {
+        task(0, count, 0, context);
+        return;
+    }
+    wait_until([&] { return inside_.load() == 0; });
+    const uint32_t epoch = epoch_of(ticket_.load()) + 1;
+    // About four ranges per worker: enough to balance uneven groups.
+    const uint32_t grain = std::max(min_range, count / (4 * worker_count_));
+    jobs_[epoch & 1] = Job{task, context, count, grain};
+    done_.store(0);
+    ticket_.store(static_cast<uint64_t>(epoch) << 32);
+    if (sleepers_.load() > 0) {
+        { std::lock_guard<std::mutex> lock(mutex_); }
+        wake_.notify_all();
+    }
+    run_ranges(epoch, 0);
+    wait_until([&] { return done_.load(std::memory_order_acquire) >= count; });
+}
+
+void ThreadPool::run_ranges(uint32_t epoch, uint32_t worker) {
+    const Job job = jobs_[epoch & 1];
+    uint64_t ticket = ticket_.load();
+    for (;;) {
+        if (epoch_of(ticket) != epoch) return;
+        const uint32_t begin = static_cast<uint32_t>(ticket);
+        if (begin >= job.count) return;
+        const uint32_t end = std::min(job.count, begin + job.grain);
+        if (!ticket_.compare_exchange_weak(ticket, (static_cast<uint64_t>(epoch) << 32) | end)) continue;
+        job.task(begin, end, worker, job.context);
+        done_.fetch_add(end - begin, std::memory_order_release);
+        ticket = ticket_.load();
+    }
+}
+
+void ThreadPool::worker_main(uint32_t worker) {
+    uint32_t seen = 0;
+    auto has_work = [&] { return stop_.load() || epoch_of(ticket_.load()) != seen; };
+    for (;;) {
+        uint32_t spin = 0;
+        while (!has_work() && spin < kSpinBeforeSleep) {
+            cpu_pause();
+            ++spin;
+        }
+        if (!has_work()) {
+            std::unique_lock<std::mutex> lock(mutex_);
+            sleepers_.fetch_add(1);
+            wake_.wait(lock, has_work);
+            sleepers_.fetch_sub(1);
+        }
+        if (stop_.load()) return;
+        inside_.fetch_add(1);
+        const uint32_t epoch = epoch_of(ticket_.load());
+        if (epoch != seen) {
+            seen = epoch;
+            run_ranges(epoch, worker);
+        }
+        inside_.fetch_sub(1);
+    }
+}
+
+}  // namespace cloth

@@ -1,0 +1,70 @@
+// The built-in thread pool: the task system of a world whose host brings
+// no job system of its own (cloth_world_desc.worker_count > 1 and no
+// enqueue_task callback).
+//
+// Written by hand rather than taken from a library because what the step
+// needs is narrow and specific: one parallel_for at a time from one
+// stepping thread, which also works (it is worker 0); dispatch that
+// allocates nothing; stable worker indices for profiling; and a barrier
+// that spins briefly (stages are tens of microseconds apart within a
+// frame) before it sleeps (frames are milliseconds apart). The standard
+// library has no pool; TBB or Taskflow would add a dependency and a second
+// scheduler inside the host's engine for this one loop.
+//
+// Scheduling uses atomics (which range runs where); results never do:
+// every sum in a stage is a fixed-order gather, so the bits do not depend
+// on the schedule.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "task_system.h"
+
+namespace cloth {
+
+class ThreadPool final : public TaskSystem {
+  public:
+    // `workers` threads run tasks, the calling thread of parallel_for
+    // among them; workers - 1 threads are started here (none for 0 or 1).
+    explicit ThreadPool(uint32_t workers);
+    ~ThreadPool() override;
+    ThreadPool(const ThreadPool&) = delete;
+    ThreadPool& operator=(const ThreadPool&) = delete;
+
+    uint32_t worker_count() const override { return worker_count_; }
+    void parallel_for(uint32_t count, uint32_t min_range, RangeTask task, void* context) override;
+
+  private:
+    struct Job {
+        RangeTask task = nullptr;
+        void* context = nullptr;
+        uint32_t count = 0;
+        uint32_t grain = 1;
+    };
+    void worker_main(uint32_t worker);
+    // Runs ranges of the job of `epoch` until none is left.
+    void run_ranges(uint32_t epoch, uint32_t worker);
+
+    uint32_t worker_count_;
+    // Two job slots: the job of epoch e lives in slot e & 1, so a worker
+    // that is late for epoch e never reads a slot being written for e + 1.
+    Job jobs_[2];
+    // High 32 bits: epoch of the current job; low 32 bits: next item to
+    // hand out. A range is taken by compare-and-swap within one epoch, so
+    // a late worker can never take a range of a newer job.
+    std::atomic<uint64_t> ticket_{0};
+    std::atomic<uint32_t> done_{0};    // items of the current job finished
+    std::atomic<uint32_t> inside_{0};  // workers between reading the ticket and leaving run_ranges
+    std::atomic<uint32_t> sleepers_{0};
+    std::atomic<bool> stop_{false};
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    std::vector<std::thread> threads_;
+};
+
+}  // namespace cloth
