@@ -1,0 +1,794 @@
+// Decoder and contract checks of the C API fuzz harness (see api_sequence.h).
+//
+// Bounded work per input, so that executions stay fast: at most kMaxCalls
+// calls, grids of at most 16 x 16 particles, meshes of at most 48 vertices,
+// and steps only while the estimated solver work (particles x substeps x
+// iterations) stays under a budget. Bad values (NaN, Inf, huge counts,
+// out-of-range indices, stale and garbage handles) are drawn often; the
+// bounds only keep accepted inputs small.
+#include "api_sequence.h"
+
+#include <cloth/cloth.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <string>
+
+namespace cloth_fuzz {
+namespace {
+
+constexpr size_t kMaxCalls = 64;
+constexpr uint32_t kWorldSlots = 2;
+constexpr uint32_t kFabricSlots = 6;
+constexpr uint32_t kClothSlots = 8;
+constexpr uint32_t kMaxGridSide = 16;
+constexpr uint32_t kMaxMeshVertices = 48;
+constexpr uint32_t kMaxMeshTriangles = 96;
+constexpr uint64_t kStepWorkBudget = 100'000;   // particle-iterations per cloth_step call
+constexpr uint64_t kInputWorkBudget = 300'000;  // per input
+constexpr int kLastResultCode = CLOTH_ERROR_INTERNAL;
+
+[[noreturn]] void broken(const char* what, const char* detail = "") {
+    std::fprintf(stderr, "cloth fuzz: contract broken: %s %s\n", what, detail);
+    std::fflush(stderr);
+    std::abort();
+}
+
+// ---------------------------------------------------------------- bytes
+
+class Bytes {
+  public:
+    Bytes(const uint8_t* data, size_t size) : data_(data), size_(size) {}
+
+    bool empty() const { return pos_ >= size_; }
+    uint8_t u8() { return pos_ < size_ ? data_[pos_++] : 0; }
+    uint16_t u16() { return static_cast<uint16_t>(u8() | (u8() << 8)); }
+    uint32_t u32() { return static_cast<uint32_t>(u16()) | (static_cast<uint32_t>(u16()) << 16); }
+
+    // Mostly edge values and small sane numbers, sometimes raw bits.
+    float any_float() {
+        static const float kEdge[] = {0.0f,
+                                      -0.0f,
+                                      1.0f,
+                                      -1.0f,
+                                      0.5f,
+                                      1.0f / 60.0f,
+                                      1e-30f,
+                                      1e30f,
+                                      std::numeric_limits<float>::max(),
+                                      -std::numeric_limits<float>::max(),
+                                      std::numeric_limits<float>::denorm_min(),
+                                      std::numeric_limits<float>::infinity(),
+                                      -std::numeric_limits<float>::infinity(),
+                                      std::numeric_limits<float>::quiet_NaN(),
+                                      1e-7f,
+                                      1e6f};
+        constexpr uint8_t kEdgeCount = sizeof kEdge / sizeof kEdge[0];
+        const uint8_t b = u8();
+        if (b < 64) return kEdge[b % kEdgeCount];
+        if (b < 224) return (static_cast<float>(u8()) - 128.0f) / 16.0f;  // -8 .. 8
+        uint32_t bits = u32();
+        float f;
+        std::memcpy(&f, &bits, sizeof f);
+        return f;
+    }
+    void floats(float* out, size_t n) {
+        for (size_t i = 0; i < n; ++i) out[i] = any_float();
+    }
+
+    // A count: mostly in 0..small_max, sometimes one past `limit` or huge.
+    uint32_t count(uint32_t small_max, uint32_t limit) {
+        const uint8_t b = u8();
+        if (b < 224) return b % (small_max + 1);
+        switch (b % 4) {
+            case 0:
+                return limit;
+            case 1:
+                return limit + 1;
+            case 2:
+                return 0xFFFFFFFFu;
+            default:
+                return 0x80000000u;
+        }
+    }
+
+  private:
+    const uint8_t* data_;
+    size_t size_;
+    size_t pos_ = 0;
+};
+
+// ---------------------------------------------------------------- host
+
+// A counting allocator that checks every free and can be told to fail.
+struct Host {
+    std::map<void*, size_t> live;
+    long fail_after = -1;  // < 0: never fail
+    uint64_t allocations = 0;
+    int last_logged = -1;
+};
+
+void* host_alloc(size_t size, size_t alignment, void* user) {
+    Host* host = static_cast<Host*>(user);
+    if (alignment == 0 || (alignment & (alignment - 1)) != 0 || alignment > 64)
+        broken("allocator asked for a bad alignment");
+    if (host->fail_after == 0) return nullptr;
+    if (host->fail_after > 0) --host->fail_after;
+    if (size > (size_t{64} << 20)) return nullptr;  // a bounded host
+    void* p = std::aligned_alloc(alignment, (size + alignment - 1) / alignment * alignment);
+    if (!p) return nullptr;
+    host->live[p] = size;
+    ++host->allocations;
+    return p;
+}
+
+void host_free(void* ptr, size_t size, void* user) {
+    Host* host = static_cast<Host*>(user);
+    auto it = host->live.find(ptr);
+    if (it == host->live.end()) broken("free of a pointer the allocator did not return, or a double free");
+    if (it->second != size) broken("free with another size than was allocated");
+    host->live.erase(it);
+    std::free(ptr);
+}
+
+void host_log(cloth_log_level level, cloth_result code, const char* message, void* user) {
+    if (level != CLOTH_LOG_ERROR && level != CLOTH_LOG_WARNING && level != CLOTH_LOG_INFO)
+        broken("log with an unknown level");
+    if (!message || !*message) broken("log without a message");
+    static_cast<Host*>(user)->last_logged = code;
+}
+
+// ---------------------------------------------------------------- state
+
+struct WorldSlot {
+    cloth_world_id id{};
+    Host host;
+    bool live = false;
+    bool counted = false;  // uses the counting allocator
+};
+
+class Harness {
+  public:
+    Harness(const uint8_t* data, size_t size) : in_(data, size) {}
+    ~Harness();
+
+    RunStats run();
+
+  private:
+    // Every call goes through here: a known code and, on failure, a message.
+    cloth_result check(cloth_result r, const char* call);
+    void check_cloths_finite(uint32_t world_slot);
+
+    cloth_world_id pick_world();
+    cloth_fabric_id pick_fabric();
+    cloth_id pick_cloth();
+    uint32_t particles_of(cloth_id id);
+    std::vector<float> state_of(cloth_id id);
+
+    void world_create();
+    void world_destroy();
+    void world_set_gravity();
+    void fabric_grid();
+    void fabric_mesh();
+    void fabric_obj();
+    void fabric_destroy();
+    void fabric_query();
+    void cloth_create_call();
+    void cloth_destroy_call();
+    void step();
+    void particle_edit();
+    void is_pinned();
+    void solver();
+    void material();
+    void read();
+    void stats();
+    void allocator_schedule();
+    void null_arguments();
+
+    void add_fabric(cloth_fabric_id id) { fabrics_[next_fabric_++ % kFabricSlots] = id; }
+    void add_cloth(cloth_id id) { cloths_[next_cloth_++ % kClothSlots] = id; }
+
+    Bytes in_;
+    RunStats stats_;
+    WorldSlot worlds_[kWorldSlots];
+    cloth_fabric_id fabrics_[kFabricSlots]{};
+    cloth_id cloths_[kClothSlots]{};
+    uint32_t next_fabric_ = 0;
+    uint32_t next_cloth_ = 0;
+    uint64_t work_ = 0;
+};
+
+Harness::~Harness() {
+    for (WorldSlot& w : worlds_) {
+        if (!w.live) continue;
+        w.host.fail_after = -1;
+        if (cloth_world_destroy(w.id) != CLOTH_OK) broken("cloth_world_destroy of a live world failed");
+        if (w.counted && !w.host.live.empty()) broken("memory still allocated after cloth_world_destroy");
+    }
+}
+
+cloth_result Harness::check(cloth_result r, const char* call) {
+    ++stats_.calls;
+    static const bool trace = std::getenv("CLOTH_FUZZ_TRACE") != nullptr;  // print every call
+    if (trace)
+        std::fprintf(stderr, "  %s -> %s %s\n", call, cloth_result_name(r), r ? cloth_get_last_error() : "");
+    if (static_cast<int>(r) < 0 || static_cast<int>(r) > kLastResultCode)
+        broken(call, "returned an unknown code");
+    const char* name = cloth_result_name(r);
+    if (!name || !*name) broken(call, "has a result without a name");
+    if (r != CLOTH_OK) {
+        ++stats_.rejected;
+        const char* message = cloth_get_last_error();
+        if (!message || !*message) broken(call, "failed without a message");
+    }
+    return r;
+}
+
+cloth_world_id Harness::pick_world() {
+    const uint8_t b = in_.u8();
+    if (b >= 240) return cloth_world_id{static_cast<uint16_t>(in_.u8()), in_.u16()};  // garbage
+    return worlds_[b % kWorldSlots].id;  // live, destroyed (stale) or null
+}
+
+cloth_fabric_id Harness::pick_fabric() {
+    const uint8_t b = in_.u8();
+    if (b >= 240) return cloth_fabric_id{static_cast<uint16_t>(in_.u8()), in_.u16(), in_.u16(), in_.u16()};
+    return fabrics_[b % kFabricSlots];
+}
+
+cloth_id Harness::pick_cloth() {
+    const uint8_t b = in_.u8();
+    if (b >= 240) return cloth_id{static_cast<uint16_t>(in_.u8()), in_.u16(), in_.u16(), in_.u16()};
+    return cloths_[b % kClothSlots];
+}
+
+// Particle count of a cloth, 0 if the handle is not live.
+uint32_t Harness::particles_of(cloth_id id) {
+    uint32_t n = 0;
+    if (check(cloth_get_particle_count(id, &n), "cloth_get_particle_count") != CLOTH_OK) return 0;
+    if (n == 0) broken("a live cloth has no particles");
+    return n;
+}
+
+// Positions, velocities and pin flags of a cloth, bit for bit (empty if
+// the handle is not live).
+std::vector<float> Harness::state_of(cloth_id id) {
+    const uint32_t n = particles_of(id);
+    std::vector<float> state(7 * size_t{n});
+    if (n == 0) return state;
+    if (cloth_read_positions(id, state.data(), 3 * n) != CLOTH_OK ||
+        cloth_read_velocities(id, state.data() + 3 * size_t{n}, 3 * n) != CLOTH_OK)
+        broken("reading a live cloth failed");
+    for (uint32_t i = 0; i < n; ++i) {
+        bool pinned = false;
+        if (cloth_is_pinned(id, i, &pinned) != CLOTH_OK) broken("cloth_is_pinned of a live cloth failed");
+        state[6 * size_t{n} + i] = pinned ? 1.0f : 0.0f;
+    }
+    return state;  // a live cloth is always finite, so == on these compares exactly
+}
+
+// After any step: every cloth of the world is finite (a cloth that went
+// non-finite must have been restored).
+void Harness::check_cloths_finite(uint32_t world_slot) {
+    const cloth_world_id w = worlds_[world_slot].id;
+    for (const cloth_id& c : cloths_) {
+        if (c.world1 != w.index1 || c.world_generation != w.generation) continue;
+        const uint32_t n = particles_of(c);
+        if (n == 0) continue;
+        std::vector<float> values(3 * size_t{n});
+        if (check(cloth_read_positions(c, values.data(), 3 * n), "cloth_read_positions") != CLOTH_OK)
+            broken("reading a live cloth failed");
+        for (float v : values)
+            if (!std::isfinite(v)) broken("a cloth has a non-finite position after cloth_step");
+        if (check(cloth_read_velocities(c, values.data(), 3 * n), "cloth_read_velocities") != CLOTH_OK)
+            broken("reading a live cloth failed");
+        for (float v : values)
+            if (!std::isfinite(v)) broken("a cloth has a non-finite velocity after cloth_step");
+    }
+}
+
+// ---------------------------------------------------------------- world
+
+void Harness::world_create() {
+    uint32_t slot = kWorldSlots;
+    for (uint32_t i = kWorldSlots; i-- > 0;)
+        if (!worlds_[i].live) slot = i;  // the first free slot
+    const uint8_t flags = in_.u8();
+    if (slot == kWorldSlots) return;  // keep at most two worlds (the process table holds 128)
+    WorldSlot& w = worlds_[slot];
+    w.host = Host{};
+    cloth_world_desc desc = cloth_default_world_desc();
+    w.counted = flags & 1;
+    if (w.counted) {
+        desc.alloc = host_alloc;
+        desc.free = host_free;
+        desc.user = &w.host;
+        if (flags & 2) w.host.fail_after = in_.u8() % 16;
+    }
+    if (flags & 4) {
+        desc.log = host_log;
+        desc.user = &w.host;
+    }
+    if (flags & 8) in_.floats(desc.gravity, 3);
+    if (flags & 16) {
+        desc.max_cloths = in_.count(8, 65535);
+        desc.max_fabrics = in_.count(6, 65535);
+    } else {
+        desc.max_cloths = 8;
+        desc.max_fabrics = 6;
+    }
+    if (flags & 32) desc.struct_size = in_.u8();
+    if (flags & 64) desc.internal_cookie ^= in_.u32() | 1;
+    if (flags & 128) {
+        if (in_.u8() & 1)
+            desc.alloc = nullptr;
+        else
+            desc.free = nullptr;
+    }
+    cloth_world_id id{};
+    if (check(cloth_world_create(&desc, &id), "cloth_world_create") == CLOTH_OK) {
+        if (id.index1 == 0) broken("cloth_world_create returned a null id");
+        w.id = id;
+        w.live = true;
+    } else if (w.counted && !w.host.live.empty()) {
+        broken("a failed cloth_world_create kept memory");
+    }
+}
+
+void Harness::world_destroy() {
+    const cloth_world_id id = pick_world();
+    const cloth_result r = check(cloth_world_destroy(id), "cloth_world_destroy");
+    for (WorldSlot& w : worlds_) {
+        if (!w.live || w.id.index1 != id.index1 || w.id.generation != id.generation) continue;
+        if (r != CLOTH_OK) broken("cloth_world_destroy of a live world failed");
+        w.live = false;  // the id stays in the table as a stale handle
+        if (w.counted && !w.host.live.empty()) broken("memory still allocated after cloth_world_destroy");
+    }
+}
+
+void Harness::world_set_gravity() {
+    const cloth_world_id id = pick_world();
+    float g[3];
+    in_.floats(g, 3);
+    check(cloth_world_set_gravity(id, g), "cloth_world_set_gravity");
+}
+
+// ---------------------------------------------------------------- fabric
+
+void Harness::fabric_grid() {
+    const cloth_world_id world = pick_world();
+    cloth_grid_desc desc = cloth_default_grid_desc();
+    const uint8_t flags = in_.u8();
+    // Huge sides only in combinations the library must reject (> 2^24 particles).
+    static const uint32_t kHuge[] = {1u << 24, 1u << 31, 0xFFFFFFFFu};
+    auto side = [&]() -> uint32_t {
+        const uint8_t b = in_.u8();
+        return b < 240 ? b % (kMaxGridSide + 1) : kHuge[b % 3];
+    };
+    desc.columns = side();
+    desc.rows = side();
+    if (flags & 1) in_.floats(desc.origin, 3);
+    if (flags & 2) in_.floats(desc.u, 3);
+    if (flags & 4) in_.floats(desc.v, 3);
+    if (flags & 8) desc.spring_kinds = in_.u8() & 0x0F;
+    if (flags & 16) desc.struct_size = in_.u8();
+    if (flags & 32) desc.internal_cookie = in_.u32();
+    cloth_fabric_id id{};
+    if (check(cloth_fabric_create_grid(world, &desc, &id), "cloth_fabric_create_grid") == CLOTH_OK)
+        add_fabric(id);
+}
+
+void Harness::fabric_mesh() {
+    const cloth_world_id world = pick_world();
+    cloth_mesh_desc desc = cloth_default_mesh_desc();
+    const uint8_t flags = in_.u8();
+    desc.vertex_count = in_.count(kMaxMeshVertices, (1u << 24) + 1);
+    desc.triangle_count = in_.count(kMaxMeshTriangles, (1u << 26) + 1);
+    // Arrays exactly as long as the counts claim (ASan sees any over-read);
+    // a huge count must be rejected before the arrays are read at all.
+    const uint32_t vertices = desc.vertex_count <= kMaxMeshVertices ? desc.vertex_count : 1;
+    const uint32_t triangles = desc.triangle_count <= kMaxMeshTriangles ? desc.triangle_count : 1;
+    std::vector<float> positions(3 * size_t{vertices});
+    std::vector<uint32_t> indices(3 * size_t{triangles});
+    constexpr uint32_t kRow = 7;
+    for (uint32_t i = 0; i < vertices; ++i) {
+        positions[3 * i] = 0.1f * static_cast<float>(i % kRow);
+        positions[3 * i + 1] = -0.1f * static_cast<float>(i / kRow);
+        positions[3 * i + 2] = 0.0f;
+    }
+    // Triangles of a strip over that lattice, then fuzzed overrides.
+    for (uint32_t t = 0; t < triangles; ++t) {
+        const uint32_t i = t / 2;
+        const uint32_t a = i, b = i + 1, c = i + kRow, d = i + kRow + 1;
+        const uint32_t n = std::max(vertices, 1u);
+        const uint32_t tri[3] = {(t % 2 ? b : a) % n, (t % 2 ? d : b) % n, c % n};
+        std::copy(tri, tri + 3, &indices[3 * t]);
+    }
+    const uint32_t float_edits = flags & 7, index_edits = (flags >> 3) & 7;
+    for (uint32_t k = 0; k < float_edits && !positions.empty(); ++k)
+        positions[in_.u16() % positions.size()] = in_.any_float();
+    for (uint32_t k = 0; k < index_edits && !indices.empty(); ++k) {
+        const uint32_t at = in_.u16() % indices.size();
+        indices[at] = in_.u8() < 200 ? in_.u8() % (vertices + 2) : in_.u32();
+    }
+    if (flags & 64) desc.spring_kinds = in_.u8() & 0x0F;
+    const bool null_arrays = (flags & 128) && (in_.u8() & 1);
+    desc.positions = null_arrays ? nullptr : positions.data();
+    desc.indices = null_arrays ? nullptr : indices.data();
+    cloth_fabric_id id{};
+    if (check(cloth_fabric_create_mesh(world, &desc, &id), "cloth_fabric_create_mesh") == CLOTH_OK)
+        add_fabric(id);
+}
+
+// An OBJ file made of fuzz bytes, behind a memfd (no file system writes).
+void Harness::fabric_obj() {
+    const cloth_world_id world = pick_world();
+    const uint8_t flags = in_.u8();
+    const uint32_t kinds = flags & 1 ? in_.u8() & 0x0F : CLOTH_SPRING_ALL;
+    std::string text;
+    if (flags & 2) text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
+    const uint32_t length = in_.u8();
+    for (uint32_t i = 0; i < length && !in_.empty(); ++i) text.push_back(static_cast<char>(in_.u8()));
+    if (flags & 4) {
+        cloth_fabric_id id{};
+        check(cloth_fabric_create_obj(world, "/nonexistent/cloth-fuzz.obj", kinds, &id),
+              "cloth_fabric_create_obj");
+        return;
+    }
+    const int fd = memfd_create("cloth-fuzz-obj", 0);
+    if (fd < 0) return;
+    if (write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size())) {
+        char path[64];
+        std::snprintf(path, sizeof path, "/proc/self/fd/%d", fd);
+        cloth_fabric_id id{};
+        if (check(cloth_fabric_create_obj(world, path, kinds, &id), "cloth_fabric_create_obj") == CLOTH_OK)
+            add_fabric(id);
+    }
+    close(fd);
+}
+
+void Harness::fabric_destroy() { check(cloth_fabric_destroy(pick_fabric()), "cloth_fabric_destroy"); }
+
+void Harness::fabric_query() {
+    const cloth_fabric_id id = pick_fabric();
+    uint32_t n = 0;
+    switch (in_.u8() % 4) {
+        case 0:
+            check(cloth_fabric_get_particle_count(id, &n), "cloth_fabric_get_particle_count");
+            break;
+        case 1:
+            check(cloth_fabric_get_triangle_count(id, &n), "cloth_fabric_get_triangle_count");
+            break;
+        case 2:
+            check(cloth_fabric_get_spring_count(id, in_.u8() & 0x0F, &n), "cloth_fabric_get_spring_count");
+            break;
+        default: {
+            // A buffer of exactly the capacity claimed: ASan sees any overflow.
+            const uint32_t capacity = in_.u16() % 2048;
+            std::vector<uint32_t> out(std::max(capacity, 1u));
+            check(cloth_fabric_read_triangles(id, out.data(), capacity), "cloth_fabric_read_triangles");
+        }
+    }
+}
+
+// ---------------------------------------------------------------- cloth
+
+void Harness::cloth_create_call() {
+    const cloth_world_id world = pick_world();
+    cloth_desc desc = cloth_default_desc();
+    desc.fabric = pick_fabric();
+    const uint8_t flags = in_.u8();
+    if (flags & 1) desc.area_density = in_.any_float();
+    if (flags & 2) desc.particle_mass = in_.any_float();
+    if (flags & 4) {
+        desc.structural = {in_.any_float(), in_.any_float()};
+        desc.shear = {in_.any_float(), in_.any_float()};
+        desc.bend = {in_.any_float(), in_.any_float()};
+    }
+    if (flags & 8) {
+        desc.solver.kind = static_cast<cloth_solver_kind>(in_.u8() % 5);
+        desc.solver.iterations = in_.count(8, 256);
+        desc.solver.substeps = in_.count(4, 64);
+        desc.solver.cg_tolerance = in_.any_float();
+        desc.solver.cg_max_iterations = in_.count(50, 100000);
+        desc.solver.compression_safe_jacobian = in_.u8() & 1;
+    }
+    if (flags & 16) {
+        in_.floats(desc.aero.wind, 3);
+        desc.aero.air_density = in_.any_float();
+        desc.aero.drag_coefficient = in_.any_float();
+        desc.aero.lift_coefficient = in_.any_float();
+        desc.aero.linear_drag = in_.any_float();
+    }
+    std::vector<float> initial;
+    if (flags & 32) {
+        uint32_t n = 0;
+        if (cloth_fabric_get_particle_count(desc.fabric, &n) != CLOTH_OK) n = 1;
+        initial.assign(3 * size_t{n}, 0.0f);
+        for (size_t i = 0; i < initial.size(); ++i) initial[i] = 0.05f * static_cast<float>(i % 17);
+        const uint32_t edits = in_.u8() % 4;
+        for (uint32_t k = 0; k < edits; ++k) initial[in_.u16() % initial.size()] = in_.any_float();
+        desc.initial_positions = initial.data();
+    }
+    if (flags & 64) desc.struct_size = in_.u8();
+    if (flags & 128) desc.internal_cookie = in_.u32();
+    cloth_id id{};
+    if (check(cloth_create(world, &desc, &id), "cloth_create") == CLOTH_OK) add_cloth(id);
+}
+
+void Harness::cloth_destroy_call() { check(cloth_destroy(pick_cloth()), "cloth_destroy"); }
+
+void Harness::step() {
+    const uint8_t b = in_.u8();
+    const uint32_t slot = b % kWorldSlots;
+    const cloth_world_id world = b >= 240 ? cloth_world_id{in_.u8(), in_.u16()} : worlds_[slot].id;
+    const uint8_t d = in_.u8();
+    float dt = d < 128 ? 1.0f / 60.0f : d < 192 ? static_cast<float>(d - 127) / 64.0f : in_.any_float();
+    // Bound the solver work: estimate it from each cloth's settings.
+    uint64_t work = 0;
+    for (const cloth_id& c : cloths_) {
+        if (c.world1 != world.index1 || c.world_generation != world.generation) continue;
+        cloth_solver_settings s{};
+        uint32_t n = 0;
+        if (cloth_get_particle_count(c, &n) != CLOTH_OK || cloth_get_solver(c, &s) != CLOTH_OK) continue;
+        const uint64_t per_substep = s.kind == CLOTH_SOLVER_CG ? s.cg_max_iterations + 1 : s.iterations + 1;
+        work += uint64_t{n} * s.substeps * per_substep;
+    }
+    if (work > kStepWorkBudget || work_ + work > kInputWorkBudget) return;
+    work_ += work;
+    const cloth_result r = check(cloth_step(world, dt), "cloth_step");
+    const bool advanced = r == CLOTH_OK || r == CLOTH_ERROR_NONFINITE_STATE ||
+                          r == CLOTH_ERROR_SOLVER_FAILED || r == CLOTH_ERROR_OUT_OF_MEMORY;
+    if (advanced) ++stats_.steps;
+    if (b < 240 && worlds_[slot].live) check_cloths_finite(slot);
+}
+
+void Harness::particle_edit() {
+    const cloth_id id = pick_cloth();
+    const uint8_t what = in_.u8();
+    const uint32_t particles = particles_of(id);
+    // Buffers exactly as long as the count claims; a count above the
+    // particle count must be rejected before the buffer is read.
+    const uint32_t count = in_.count(8, particles);
+    const size_t length = count <= 4096 ? count : 1;
+    std::vector<uint32_t> indices(std::max<size_t>(length, 1));
+    for (size_t k = 0; k < length; ++k) {
+        const uint8_t b = in_.u8();
+        indices[k] = b < 224 ? b % std::max(particles, 1u) : b < 240 ? particles : in_.u32();
+    }
+    std::vector<float> xyz(3 * indices.size());
+    for (size_t k = 0; k < xyz.size(); ++k) xyz[k] = k < 6 ? in_.any_float() : 0.01f * static_cast<float>(k);
+    const uint32_t* idx = (what & 0x80) ? nullptr : indices.data();
+    const std::vector<float> before = state_of(id);
+    cloth_result r;
+    switch (what % 4) {
+        case 0:
+            r = check(cloth_pin(id, idx, count), "cloth_pin");
+            break;
+        case 1:
+            r = check(cloth_unpin(id, idx, count), "cloth_unpin");
+            break;
+        case 2:
+            r = check(cloth_set_positions(id, idx, xyz.data(), count), "cloth_set_positions");
+            break;
+        default:
+            r = check(cloth_set_pin_targets(id, idx, xyz.data(), count), "cloth_set_pin_targets");
+    }
+    // A rejected call changes nothing (bit for bit).
+    if (r != CLOTH_OK && state_of(id) != before) broken("a rejected particle edit changed the cloth");
+}
+
+void Harness::is_pinned() {
+    const cloth_id id = pick_cloth();
+    bool pinned = false;
+    const uint8_t b = in_.u8();
+    const uint32_t index = b < 200 ? b : in_.u32();
+    check(cloth_is_pinned(id, index, &pinned), "cloth_is_pinned");
+}
+
+void Harness::solver() {
+    const cloth_id id = pick_cloth();
+    cloth_solver_settings s = cloth_default_solver_settings();
+    const uint8_t flags = in_.u8();
+    if (flags & 1) {
+        check(cloth_get_solver(id, &s), "cloth_get_solver");
+        return;
+    }
+    s.kind = static_cast<cloth_solver_kind>(in_.u8() % 5);
+    s.iterations = in_.count(8, 256);
+    s.substeps = in_.count(4, 64);
+    if (flags & 2) s.cg_tolerance = in_.any_float();
+    s.cg_max_iterations = in_.count(50, 100000);
+    s.compression_safe_jacobian = flags & 4;
+    if (flags & 8) s.struct_size = in_.u8();
+    check(cloth_set_solver(id, &s), "cloth_set_solver");
+}
+
+void Harness::material() {
+    const cloth_id id = pick_cloth();
+    const uint8_t what = in_.u8();
+    switch (what % 3) {
+        case 0: {
+            const uint32_t kinds = in_.u8() & 0x0F;
+            const cloth_spring_params p{in_.any_float(), in_.any_float()};
+            check(cloth_set_spring_params(id, kinds, p), "cloth_set_spring_params");
+            break;
+        }
+        case 1: {
+            cloth_aero_params a{};
+            in_.floats(a.wind, 3);
+            a.air_density = in_.any_float();
+            a.drag_coefficient = in_.any_float();
+            a.lift_coefficient = in_.any_float();
+            a.linear_drag = in_.any_float();
+            check(cloth_set_aero(id, &a), "cloth_set_aero");
+            break;
+        }
+        default: {
+            float wind[3];
+            in_.floats(wind, 3);
+            check(cloth_set_wind(id, wind), "cloth_set_wind");
+        }
+    }
+}
+
+void Harness::read() {
+    const cloth_id id = pick_cloth();
+    const uint8_t what = in_.u8();
+    const uint32_t particles = particles_of(id);
+    const uint8_t b = in_.u8();
+    // Capacity: exact, one short, or anything small; the buffer is exactly that long.
+    const uint32_t capacity = b < 128   ? 3 * particles
+                              : b < 192 ? (3 * particles) - (particles > 0)
+                                        : in_.u16() % 2048;
+    std::vector<float> out(std::max(capacity, 1u));
+    switch (what % 3) {
+        case 0:
+            check(cloth_read_positions(id, out.data(), capacity), "cloth_read_positions");
+            break;
+        case 1:
+            check(cloth_read_velocities(id, out.data(), capacity), "cloth_read_velocities");
+            break;
+        default:
+            check(cloth_read_normals(id, out.data(), capacity), "cloth_read_normals");
+    }
+}
+
+void Harness::stats() {
+    const cloth_id id = pick_cloth();
+    cloth_stats s{};
+    s.struct_size = in_.u8() < 224 ? sizeof s : in_.u8();
+    check(cloth_get_stats(id, &s), "cloth_get_stats");
+}
+
+void Harness::allocator_schedule() {
+    WorldSlot& w = worlds_[in_.u8() % kWorldSlots];
+    const uint8_t b = in_.u8();
+    w.host.fail_after = b < 128 ? b % 8 : -1;
+}
+
+void Harness::null_arguments() {
+    const cloth_world_id world = pick_world();
+    const cloth_id cloth = pick_cloth();
+    const cloth_fabric_id fabric = pick_fabric();
+    switch (in_.u8() % 12) {
+        case 0:
+            check(cloth_world_create(nullptr, nullptr), "cloth_world_create");
+            break;
+        case 1:
+            check(cloth_world_set_gravity(world, nullptr), "cloth_world_set_gravity");
+            break;
+        case 2:
+            check(cloth_fabric_create_grid(world, nullptr, nullptr), "cloth_fabric_create_grid");
+            break;
+        case 3:
+            check(cloth_fabric_create_mesh(world, nullptr, nullptr), "cloth_fabric_create_mesh");
+            break;
+        case 4:
+            check(cloth_fabric_create_obj(world, nullptr, 0, nullptr), "cloth_fabric_create_obj");
+            break;
+        case 5:
+            check(cloth_create(world, nullptr, nullptr), "cloth_create");
+            break;
+        case 6:
+            check(cloth_read_positions(cloth, nullptr, 0xFFFFFFFFu), "cloth_read_positions");
+            break;
+        case 7:
+            check(cloth_set_wind(cloth, nullptr), "cloth_set_wind");
+            break;
+        case 8:
+            check(cloth_set_aero(cloth, nullptr), "cloth_set_aero");
+            break;
+        case 9:
+            check(cloth_get_stats(cloth, nullptr), "cloth_get_stats");
+            break;
+        case 10:
+            check(cloth_fabric_read_triangles(fabric, nullptr, 0xFFFFFFFFu), "cloth_fabric_read_triangles");
+            break;
+        default:
+            check(cloth_set_solver(cloth, nullptr), "cloth_set_solver");
+    }
+}
+
+RunStats Harness::run() {
+    for (size_t calls = 0; calls < kMaxCalls && !in_.empty(); ++calls) {
+        switch (in_.u8() % kOpCount) {
+            case kWorldCreate:
+                world_create();
+                break;
+            case kWorldDestroy:
+                world_destroy();
+                break;
+            case kWorldSetGravity:
+                world_set_gravity();
+                break;
+            case kFabricGrid:
+                fabric_grid();
+                break;
+            case kFabricMesh:
+                fabric_mesh();
+                break;
+            case kFabricObj:
+                fabric_obj();
+                break;
+            case kFabricDestroy:
+                fabric_destroy();
+                break;
+            case kFabricQuery:
+                fabric_query();
+                break;
+            case kClothCreate:
+                cloth_create_call();
+                break;
+            case kClothDestroy:
+                cloth_destroy_call();
+                break;
+            case kStep:
+                step();
+                break;
+            case kParticleEdit:
+                particle_edit();
+                break;
+            case kIsPinned:
+                is_pinned();
+                break;
+            case kSolver:
+                solver();
+                break;
+            case kMaterial:
+                material();
+                break;
+            case kRead:
+                read();
+                break;
+            case kStats:
+                stats();
+                break;
+            case kAllocatorSchedule:
+                allocator_schedule();
+                break;
+            case kNullArguments:
+                null_arguments();
+                break;
+            default:
+                break;
+        }
+    }
+    return stats_;
+}
+
+}  // namespace
+
+RunStats run_api_sequence(const uint8_t* data, size_t size) {
+    Harness harness(data, size);
+    return harness.run();  // the destructor destroys the worlds and checks for leaks
+}
+
+}  // namespace cloth_fuzz

@@ -1,0 +1,115 @@
+// Hand-written seed inputs of the fuzz harness: one short scenario per
+// area of the C API, encoded in the harness's byte format (api_sequence.cpp
+// decodes it; the two must change together). `cloth_fuzz_replay
+// --write-seeds DIR` writes them to the corpus.
+#include <cstdint>
+#include <vector>
+
+#include "api_sequence.h"
+
+namespace cloth_fuzz {
+namespace {
+
+// Byte writer mirroring Harness's decoder.
+struct Encoder {
+    std::vector<uint8_t> bytes;
+
+    Encoder& u8(uint8_t v) {
+        bytes.push_back(v);
+        return *this;
+    }
+    Encoder& u16(uint16_t v) { return u8(v & 0xFF).u8(v >> 8); }
+    Encoder& op(Op o) { return u8(o); }
+    // Edge values, by their index in Bytes::any_float's table.
+    Encoder& edge(uint8_t index) { return u8(index); }
+    // A small value v in -8..8 with a step of 1/16.
+    Encoder& small(float v) { return u8(100).u8(static_cast<uint8_t>(v * 16.0f + 128.0f)); }
+    Encoder& slot(uint8_t s) { return u8(s); }
+
+    Encoder& world(uint8_t flags) { return op(kWorldCreate).u8(flags); }
+    Encoder& grid(uint8_t world, uint8_t columns, uint8_t rows) {
+        return op(kFabricGrid).slot(world).u8(0).u8(columns).u8(rows);
+    }
+    Encoder& cloth(uint8_t world, uint8_t fabric) { return op(kClothCreate).slot(world).slot(fabric).u8(0); }
+    Encoder& step(uint8_t world, int times) {
+        for (int i = 0; i < times; ++i) op(kStep).slot(world).u8(0);
+        return *this;
+    }
+    // Pin (what = 0) two particles.
+    Encoder& pin2(uint8_t cloth, uint8_t a, uint8_t b) {
+        op(kParticleEdit).slot(cloth).u8(0).u8(2).u8(a).u8(b);
+        for (int k = 0; k < 6; ++k) small(0.0f);
+        return *this;
+    }
+    Encoder& wind(uint8_t cloth, float x, float z) {
+        return op(kMaterial).slot(cloth).u8(2).small(x).small(0.0f).small(z);
+    }
+    Encoder& read(uint8_t cloth, uint8_t what) { return op(kRead).slot(cloth).u8(what).u8(0); }
+};
+
+}  // namespace
+
+std::vector<std::vector<uint8_t>> seed_inputs() {
+    std::vector<std::vector<uint8_t>> seeds;
+
+    // A pinned flag in wind on the default heap, stepped and read back.
+    Encoder flag;
+    flag.world(0).grid(0, 16, 12).cloth(0, 0).pin2(0, 0, 15).wind(0, 6.0f, 1.0f).step(0, 12);
+    flag.read(0, 0).read(0, 1).read(0, 2).op(kStats).slot(0).u8(0);
+    seeds.push_back(flag.bytes);
+
+    // A mesh strip (14 vertices, 12 triangles) on the counting allocator,
+    // its fabric released while the cloth lives, then the cloth destroyed.
+    Encoder mesh;
+    mesh.world(1).op(kFabricMesh).slot(0).u8(0).u8(14).u8(12);
+    mesh.cloth(0, 0).step(0, 4).op(kFabricDestroy).slot(0).step(0, 2).op(kClothDestroy).slot(0).step(0, 1);
+    seeds.push_back(mesh.bytes);
+
+    // A mesh with an index out of range and a NaN vertex (flags: 1 float
+    // edit, 1 index edit).
+    Encoder bad_mesh;
+    bad_mesh.world(1).op(kFabricMesh).slot(0).u8(1 | (1 << 3)).u8(14).u8(12);
+    bad_mesh.u16(5).edge(13).u16(7).u8(0).u8(15);  // NaN, then index 15 of 14 vertices
+    seeds.push_back(bad_mesh.bytes);
+
+    // An OBJ quad (two triangles) made into a cloth.
+    Encoder obj;
+    obj.world(0).op(kFabricObj).slot(0).u8(2).u8(0).cloth(0, 0).step(0, 3);
+    seeds.push_back(obj.bytes);
+
+    // Allocation failures: the counting allocator fails after 3 more
+    // allocations during cloth and fabric creation, then recovers.
+    Encoder oom;
+    oom.world(1).grid(0, 8, 8).op(kAllocatorSchedule).u8(0).u8(3).cloth(0, 0).grid(0, 8, 8);
+    oom.op(kAllocatorSchedule).u8(0).u8(255).cloth(0, 0).step(0, 2);
+    seeds.push_back(oom.bytes);
+
+    // Huge stiffness with the explicit integrator goes non-finite; the
+    // step restores the cloth and a second cloth keeps advancing.
+    Encoder blow_up;
+    blow_up.world(0).grid(0, 8, 8).cloth(0, 0);
+    blow_up.op(kClothCreate).slot(0).slot(0).u8(4 | 8);
+    blow_up.edge(7).small(0.0f).edge(7).small(0.0f).edge(7).small(0.0f);  // 1e30 N/m springs
+    blow_up.u8(3).u8(1).u8(1).small(0.5f).u8(50).u8(1);                   // explicit, 1 substep
+    blow_up.step(0, 3);
+    seeds.push_back(blow_up.bytes);
+
+    // The CG reference solver on a small grid.
+    Encoder cg;
+    cg.world(0).grid(0, 6, 6).cloth(0, 0);
+    cg.op(kSolver).slot(0).u8(2).u8(2).u8(1).u8(1).small(0.0625f).u8(40);
+    cg.step(0, 2);
+    seeds.push_back(cg.bytes);
+
+    // Stale and garbage handles, NULL arguments, destroy in a bad order.
+    Encoder stale;
+    stale.world(4).grid(0, 4, 4).cloth(0, 0).op(kWorldDestroy).slot(0);
+    stale.step(0, 1).op(kClothDestroy).slot(0).op(kFabricDestroy).slot(0);
+    for (uint8_t k = 0; k < 12; ++k) stale.op(kNullArguments).slot(0).slot(0).slot(0).u8(k);
+    stale.op(kClothDestroy).u8(250).u8(1).u16(1).u16(1).u16(1);
+    seeds.push_back(stale.bytes);
+
+    return seeds;
+}
+
+}  // namespace cloth_fuzz
