@@ -15,6 +15,7 @@
 #include "aerodynamics.h"
 #include "integrator_explicit.h"
 #include "lanes.h"
+#include "self_collision.h"
 #include "solvers.h"
 #include "spring_terms.h"
 #include "springs.h"
@@ -93,6 +94,17 @@ void ClothInstance::set_position(uint32_t particle, const Vec3& x) {
     pin_target_.set(particle, x);
 }
 
+void ClothInstance::set_self_collision(const SelfCollisionSettings* settings) {
+    if (!settings) {
+        self_collision_.reset();
+        return;
+    }
+    // The cloth's own allocator (the world's host memory), as for its other buffers.
+    const HostMemory* memory = x_.x.get_allocator().memory();
+    self_collision_ = std::allocate_shared<SelfCollision>(HostAllocator<SelfCollision>(memory), memory,
+                                                          *fabric_, *settings);
+}
+
 const Vec3Soa& ClothInstance::normals() const {
     compute_vertex_normals(*fabric_, x_, 0, particle_count(), normals_);
     return normals_;
@@ -127,7 +139,9 @@ bool ClothInstance::state_is_finite() const {
 }
 
 void ClothInstance::check_finite(uint32_t group) {
-    group_finite_[group] = range_is_finite(x_, v_, group_begin(group), group_end(group)) ? 1 : 0;
+    // Self-collision's response is the last stage; its velocities become v_ after the barrier.
+    const Vec3Soa& v = cursor_.stage == Stage::kSelfRespond ? self_collision_->next_velocities() : v_;
+    group_finite_[group] = range_is_finite(x_, v, group_begin(group), group_end(group)) ? 1 : 0;
 }
 
 // ---------------------------------------------------------------- frame
@@ -189,12 +203,21 @@ Stage ClothInstance::next_stage(Stage current) const {
         case Stage::kExplicit:
             // Post-integration passes plug in here, each behind its feature:
             //   if (colliders enabled) return Stage::kCollisions;      (issue 6)
-            //   if (self-collision enabled) return Stage::kSelfCollision; (issue 5)
-            return Stage::kCount;
+            return self_collision_ ? Stage::kSelfCollision : Stage::kCount;
         case Stage::kCollisions:
-            // if (self-collision enabled) return Stage::kSelfCollision;
-            return Stage::kCount;
+            return self_collision_ ? Stage::kSelfCollision : Stage::kCount;
         case Stage::kSelfCollision:
+            return Stage::kSelfSort;
+        case Stage::kSelfSort:
+            return Stage::kSelfContacts;
+        case Stage::kSelfContacts:
+            return Stage::kSelfProject;
+        case Stage::kSelfProject:
+            // Another pass while overlaps remain (known after the barrier).
+            return self_overlapping_ && cursor_.sweep + 1 < self_collision_->settings().passes
+                       ? Stage::kSelfProject
+                       : Stage::kSelfRespond;
+        case Stage::kSelfRespond:
         case Stage::kCount:
             break;
     }
@@ -215,7 +238,9 @@ void ClothInstance::prepare_stage() {
     }
 }
 
-uint32_t ClothInstance::task_count() const { return cursor_.stage == Stage::kSerialSolve ? 1 : group_count_; }
+uint32_t ClothInstance::task_count() const {
+    return cursor_.stage == Stage::kSerialSolve || cursor_.stage == Stage::kSelfSort ? 1 : group_count_;
+}
 
 void ClothInstance::finish_stage() {
     if (frame_out_of_memory_) {
@@ -232,10 +257,19 @@ void ClothInstance::finish_stage() {
         case Stage::kExplicit:
             last_solve_ = SolveReport{};
             break;
+        case Stage::kSelfProject:
+            self_collision_->apply_positions(x_);
+            self_overlapping_ = self_collision_->any_overlapping();
+            break;
+        case Stage::kSelfRespond:
+            self_collision_->apply_velocities(v_);
+            break;
         default:
             break;
     }
     Stage next = next_stage(cursor_.stage);
+    if (cursor_.stage == Stage::kSelfProject)
+        cursor_.sweep = next == Stage::kSelfProject ? cursor_.sweep + 1 : 0;
     if (cursor_.stage == Stage::kJacobiSweep) {
         if (next == Stage::kJacobiSweep) {
             ++cursor_.sweep;
@@ -279,8 +313,14 @@ void ClothInstance::run_task(uint32_t task, uint32_t) {
         case Stage::kExplicit:
             run_explicit(task);
             break;
-        case Stage::kCollisions:
         case Stage::kSelfCollision:
+        case Stage::kSelfSort:
+        case Stage::kSelfContacts:
+        case Stage::kSelfProject:
+        case Stage::kSelfRespond:
+            run_self_collision(task);
+            break;
+        case Stage::kCollisions:
         case Stage::kCount:
             break;
     }
@@ -413,6 +453,35 @@ void ClothInstance::run_explicit(uint32_t group) {
     springs_->gather(begin, end, external_force_, nullptr);
     integrate_explicit(external_force_, mass_.data(), pinned_.data(), h_, begin, end, v_, x_);
     land_pins(begin, end);
+}
+
+void ClothInstance::run_self_collision(uint32_t group) {
+    SelfCollision& c = *self_collision_;
+    const uint32_t begin = group_begin(group), end = group_end(group);
+    switch (cursor_.stage) {
+        case Stage::kSelfCollision: {
+            uint32_t region_begin, region_end;
+            group_items(group, c.region_count(), region_begin, region_end);
+            c.check_regions(x_, region_begin, region_end);
+            c.compute_keys(x_, begin, end);
+            break;
+        }
+        case Stage::kSelfSort:
+            c.sort_into_buckets();
+            break;
+        case Stage::kSelfContacts:
+            c.find_contacts(x_, begin, end);
+            c.compute_inverse_mass(mass_.data(), pinned_.data(), begin, end);
+            break;
+        case Stage::kSelfProject:
+            c.project(x_, begin, end);
+            break;
+        case Stage::kSelfRespond:
+            c.respond_velocities(x_, v_, begin, end);
+            break;
+        default:
+            break;
+    }
 }
 
 void ClothInstance::land_pins(uint32_t begin, uint32_t end) {

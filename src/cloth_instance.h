@@ -23,6 +23,8 @@
 namespace cloth {
 
 class SpringTerms;
+class SelfCollision;
+struct SelfCollisionSettings;
 
 class ClothInstance {
   public:
@@ -86,6 +88,11 @@ class ClothInstance {
     // Unit area-weighted vertex normals of the current positions.
     const Vec3Soa& normals() const;
 
+    // Self-collision (self_collision.h): off (null, nothing allocated) until
+    // enabled; `settings` null turns it off and frees it. Allocates when on.
+    void set_self_collision(const SelfCollisionSettings* settings);
+    const SelfCollision* self_collision() const { return self_collision_.get(); }
+
     const SolveReport& last_solve() const { return last_solve_; }
     cloth_result last_step_result() const { return last_step_result_; }
 
@@ -98,6 +105,7 @@ class ClothInstance {
     void run_serial_solve();
     void run_integrate(uint32_t group);
     void run_explicit(uint32_t group);
+    void run_self_collision(uint32_t group);  // the kSelf* stages
     void land_pins(uint32_t begin, uint32_t end);
     void check_finite(uint32_t group);
     // The stage after the current one (the plan of a frame).
@@ -136,6 +144,9 @@ class ClothInstance {
     Vec3Soa dv_, dv_scratch_;               // per particle
     mutable Vec3Soa normals_;               // per particle, filled by normals()
     Vec3Soa backup_x_, backup_v_;
+
+    std::shared_ptr<SelfCollision> self_collision_;  // null while off
+    bool self_overlapping_ = false;                  // the last projection pass left overlaps
 
     SolveReport last_solve_;
     cloth_result last_step_result_ = CLOTH_OK;

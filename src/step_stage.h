@@ -20,7 +20,13 @@
 //   kExplicit       EXPLICIT (replaces kAssemble..kIntegrate): gather, Euler
 //   -- after integration, where contact plugs in:
 //   kCollisions     colliders and attachments (issue 6)
-//   kSelfCollision  self-collision (issue 5)
+//   kSelfCollision  self-collision (issue 5, self_collision.h), in five stages:
+//                   per group: region checks and hash keys;
+//   kSelfSort       one task: counting sort into buckets;
+//   kSelfContacts   per group: each particle's contact list;
+//   kSelfProject    per group: one Jacobi projection pass (repeated while
+//                   overlaps remain, at most `passes` times);
+//   kSelfRespond    per group: velocity response (paper eq. 13), the last stage
 //
 // A new solver kind adds its stages here and its branch in next_stage();
 // a serial one runs as a single task like kSerialSolve. A new post-
@@ -43,6 +49,10 @@ enum class Stage : uint8_t {
     kExplicit,
     kCollisions,
     kSelfCollision,
+    kSelfSort,
+    kSelfContacts,
+    kSelfProject,
+    kSelfRespond,
     kCount
 };
 
@@ -68,7 +78,15 @@ inline const char* stage_name(Stage stage) {
         case Stage::kCollisions:
             return "collisions";
         case Stage::kSelfCollision:
-            return "self_collision";
+            return "self_hash";
+        case Stage::kSelfSort:
+            return "self_sort";
+        case Stage::kSelfContacts:
+            return "self_contacts";
+        case Stage::kSelfProject:
+            return "self_project";
+        case Stage::kSelfRespond:
+            return "self_respond";
         case Stage::kCount:
             break;
     }

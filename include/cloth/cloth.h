@@ -440,6 +440,50 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);
 /* Self-collision                                                     */
 /* ------------------------------------------------------------------ */
 
+/* Particle-particle self-collision (paper section IV): particles of one
+ * cloth closer than `thickness` are pushed apart to `thickness` and lose
+ * the approaching part of their relative velocity (paper eq. 13), with
+ * optional Coulomb friction on the sliding part. Candidates come from a
+ * spatial hash; collision-free regions (Volino: patches whose normals stay
+ * within a cone and whose outline does not cross itself, re-checked every
+ * substep) skip pairs that cannot collide. Rest neighbours (particles
+ * joined by a spring or a few triangle edges apart) never repel. Runs after
+ * every substep; results are bit-identical for any thread count.
+ * Off by default: a cloth allocates nothing for it until it is enabled,
+ * and frees it again when it is disabled. */
+
+typedef struct cloth_self_collision_desc {
+    uint32_t struct_size;  ///< sizeof(cloth_self_collision_desc)
+    bool enabled;          ///< default false
+    float thickness;       ///< theta_c, m; > 0 and at most twice the fabric's mean rest edge; default 0.01
+    float friction;        ///< Coulomb coefficient on the sliding velocity, >= 0; default 0
+    bool use_regions;      ///< skip pairs inside collision-free regions; default true
+    uint32_t passes;       ///< at most this many projection passes per substep, 1..16; default 8
+    uint32_t internal_cookie;
+} cloth_self_collision_desc;
+
+CLOTH_API cloth_self_collision_desc cloth_default_self_collision_desc(void);
+
+/// Enable, change or disable (desc->enabled = false) self-collision of a
+/// cloth. Enabling allocates (CLOTH_ERROR_OUT_OF_MEMORY changes nothing);
+/// a thickness above twice the fabric's mean rest edge is
+/// CLOTH_ERROR_INVALID_VALUE (rest neighbours would need too many rings).
+CLOTH_API cloth_result cloth_set_self_collision(cloth_id cloth, const cloth_self_collision_desc* desc);
+/// The current settings (enabled = false and defaults while off).
+CLOTH_API cloth_result cloth_get_self_collision(cloth_id cloth, cloth_self_collision_desc* out_desc);
+
+/// What the last substep's self-collision did (all zero while off).
+typedef struct cloth_self_collision_stats {
+    uint32_t struct_size;           ///< set by the caller to sizeof(cloth_self_collision_stats)
+    uint32_t contacts;              ///< pairs closer than thickness when contacts were searched
+    uint32_t regions;               ///< collision-free region candidates of the fabric
+    uint32_t valid_regions;         ///< of those, collision-free at the last check
+    uint32_t overflowed_particles;  ///< particles with more close neighbours than contact slots (16)
+    uint32_t passes;                ///< projection passes run
+} cloth_self_collision_stats;
+
+CLOTH_API cloth_result cloth_get_self_collision_stats(cloth_id cloth, cloth_self_collision_stats* out_stats);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

@@ -147,6 +147,11 @@ CLOTH_CHECK_SIGNATURE(cloth_set_spring_params, cloth_result (*)(cloth_id, uint32
 CLOTH_CHECK_SIGNATURE(cloth_set_aero, cloth_result (*)(cloth_id, const cloth_aero_params*));
 CLOTH_CHECK_SIGNATURE(cloth_set_wind, cloth_result (*)(cloth_id, const float*));
 CLOTH_CHECK_SIGNATURE(cloth_get_stats, cloth_result (*)(cloth_id, cloth_stats*));
+CLOTH_CHECK_SIGNATURE(cloth_default_self_collision_desc, cloth_self_collision_desc (*)(void));
+CLOTH_CHECK_SIGNATURE(cloth_set_self_collision, cloth_result (*)(cloth_id, const cloth_self_collision_desc*));
+CLOTH_CHECK_SIGNATURE(cloth_get_self_collision, cloth_result (*)(cloth_id, cloth_self_collision_desc*));
+CLOTH_CHECK_SIGNATURE(cloth_get_self_collision_stats,
+                      cloth_result (*)(cloth_id, cloth_self_collision_stats*));
 #undef CLOTH_CHECK_SIGNATURE
 
 // Callback typedefs accept ordinary functions of the documented shape.

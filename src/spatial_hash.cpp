@@ -1,0 +1,69 @@
+// Spatial hash of particles: see spatial_hash.h (and why it is hand-written).
+#include "spatial_hash.h"
+
+#include <cmath>
+
+namespace cloth {
+
+namespace {
+
+// Cells beyond +-2^30 would overflow the neighbour offsets; such far (or
+// non-finite) particles are clamped into the outermost cell. fmax/fmin
+// send NaN to the clamp bound too.
+constexpr float kCellLimit = 1073741824.0f;
+
+int32_t cell_of(float coordinate, float inverse_cell) {
+    const float c = std::floor(coordinate * inverse_cell);
+    return static_cast<int32_t>(std::fmin(std::fmax(c, -kCellLimit), kCellLimit));
+}
+
+}  // namespace
+
+SpatialHash::SpatialHash(const HostMemory* memory)
+    : cell_x_(HostAllocator<int32_t>(memory)),
+      cell_y_(HostAllocator<int32_t>(memory)),
+      cell_z_(HostAllocator<int32_t>(memory)),
+      bucket_of_(HostAllocator<uint32_t>(memory)),
+      bucket_start_(HostAllocator<uint32_t>(memory)),
+      bucket_fill_(HostAllocator<uint32_t>(memory)),
+      sorted_(HostAllocator<uint32_t>(memory)) {}
+
+void SpatialHash::reserve(uint32_t particle_count) {
+    // About two buckets per particle (a power of two, so the hash is a mask).
+    uint32_t buckets = 64;
+    while (buckets < 2u * particle_count && buckets < (1u << 30)) buckets *= 2;
+    bucket_mask_ = buckets - 1;
+    for (HostVector<int32_t>* a : {&cell_x_, &cell_y_, &cell_z_}) a->assign(particle_count, 0);
+    bucket_of_.assign(particle_count, 0);
+    sorted_.assign(particle_count, 0);
+    bucket_start_.assign(static_cast<size_t>(buckets) + 1, 0);
+    bucket_fill_.assign(buckets, 0);
+}
+
+void SpatialHash::compute_keys(const Vec3Soa& x, float cell_size, uint32_t begin, uint32_t end) {
+    cell_size_ = cell_size;
+    const float inverse = 1.0f / cell_size;
+    for (uint32_t i = begin; i < end; ++i) {
+        cell_x_[i] = cell_of(x.x[i], inverse);
+        cell_y_[i] = cell_of(x.y[i], inverse);
+        cell_z_[i] = cell_of(x.z[i], inverse);
+        bucket_of_[i] = bucket_of_cell(cell_x_[i], cell_y_[i], cell_z_[i]);
+    }
+}
+
+void SpatialHash::sort_into_buckets() {
+    const uint32_t n = particle_count();
+    std::fill(bucket_fill_.begin(), bucket_fill_.end(), 0u);
+    for (uint32_t i = 0; i < n; ++i) ++bucket_fill_[bucket_of_[i]];
+    uint32_t sum = 0;
+    for (uint32_t b = 0; b < bucket_count(); ++b) {
+        bucket_start_[b] = sum;
+        sum += bucket_fill_[b];
+        bucket_fill_[b] = bucket_start_[b];
+    }
+    bucket_start_[bucket_count()] = sum;
+    // Ascending i, so each bucket lists its particles in ascending index.
+    for (uint32_t i = 0; i < n; ++i) sorted_[bucket_fill_[bucket_of_[i]]++] = i;
+}
+
+}  // namespace cloth

@@ -1,0 +1,246 @@
+// C API contract of self-collision (cloth.h section "Self-collision"):
+// off by default and allocating nothing until enabled, freed when
+// disabled, every bad input rejected with its code and a message and
+// nothing changed (checked by the settings read back, the allocator's
+// live bytes, and a twin world stepped alongside staying bit-identical).
+#include <cloth/cloth.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+namespace {
+
+struct Counter {
+    long long live_bytes = 0;
+};
+
+void* counting_alloc(size_t size, size_t alignment, void* user) {
+    static_cast<Counter*>(user)->live_bytes += static_cast<long long>(size);
+    return std::aligned_alloc(alignment < sizeof(void*) ? sizeof(void*) : alignment,
+                              (size + alignment - 1) / alignment * alignment);
+}
+void counting_free(void* p, size_t size, void* user) {
+    static_cast<Counter*>(user)->live_bytes -= static_cast<long long>(size);
+    std::free(p);
+}
+
+// A world with one 16x16 cloth hanging from two corners, folding as it swings.
+struct ClothWorld {
+    Counter counter;
+    cloth_world_id world{};
+    cloth_fabric_id fabric{};
+    cloth_id cloth{};
+
+    ClothWorld() {
+        cloth_world_desc wd = cloth_default_world_desc();
+        wd.alloc = counting_alloc;
+        wd.free = counting_free;
+        wd.user = &counter;
+        EXPECT_EQ(cloth_world_create(&wd, &world), CLOTH_OK);
+        cloth_grid_desc gd = cloth_default_grid_desc();
+        gd.columns = gd.rows = 16;
+        gd.v[1] = 0;
+        gd.v[2] = 1;  // horizontal: it falls and folds about its pins
+        EXPECT_EQ(cloth_fabric_create_grid(world, &gd, &fabric), CLOTH_OK);
+        cloth_desc cd = cloth_default_desc();
+        cd.fabric = fabric;
+        cd.solver.substeps = 4;
+        EXPECT_EQ(cloth_create(world, &cd, &cloth), CLOTH_OK);
+        const uint32_t pins[] = {0, 15};
+        EXPECT_EQ(cloth_pin(cloth, pins, 2), CLOTH_OK);
+    }
+    ~ClothWorld() { cloth_world_destroy(world); }
+    std::vector<float> positions() const {
+        std::vector<float> x(3 * 256);
+        cloth_read_positions(cloth, x.data(), static_cast<uint32_t>(x.size()));
+        return x;
+    }
+};
+
+TEST(SelfCollisionApi, OffByDefaultAllocatesNothingUntilEnabledAndFreesWhenDisabled) {
+    ClothWorld w;
+    cloth_self_collision_desc d{};
+    ASSERT_EQ(cloth_get_self_collision(w.cloth, &d), CLOTH_OK);
+    EXPECT_FALSE(d.enabled) << "off by default";
+    const long long before = w.counter.live_bytes;
+    ASSERT_EQ(cloth_step(w.world, 1.0f / 60.0f), CLOTH_OK);
+    EXPECT_EQ(w.counter.live_bytes, before) << "a cloth without self-collision allocates none of it";
+
+    d = cloth_default_self_collision_desc();
+    d.enabled = true;
+    d.thickness = 0.05f;
+    d.friction = 0.3f;
+    ASSERT_EQ(cloth_set_self_collision(w.cloth, &d), CLOTH_OK);
+    const long long enabled = w.counter.live_bytes;
+    EXPECT_GT(enabled, before);
+    for (int i = 0; i < 5; ++i) ASSERT_EQ(cloth_step(w.world, 1.0f / 60.0f), CLOTH_OK);
+    EXPECT_EQ(w.counter.live_bytes, enabled) << "a step allocates nothing";
+    cloth_self_collision_desc back{};
+    ASSERT_EQ(cloth_get_self_collision(w.cloth, &back), CLOTH_OK);
+    EXPECT_TRUE(back.enabled);
+    EXPECT_EQ(back.thickness, 0.05f);
+    EXPECT_EQ(back.friction, 0.3f);
+    cloth_self_collision_stats stats{};
+    stats.struct_size = sizeof stats;
+    ASSERT_EQ(cloth_get_self_collision_stats(w.cloth, &stats), CLOTH_OK);
+    EXPECT_EQ(stats.regions, 4u) << "a 16x16 grid has four 8x8 regions";
+    EXPECT_GE(stats.passes, 1u);
+
+    d.enabled = false;
+    ASSERT_EQ(cloth_set_self_collision(w.cloth, &d), CLOTH_OK);
+    EXPECT_EQ(w.counter.live_bytes, before) << "disabling frees it";
+    ASSERT_EQ(cloth_get_self_collision_stats(w.cloth, &stats), CLOTH_OK);
+    EXPECT_EQ(stats.regions, 0u);
+}
+
+TEST(SelfCollisionApi, BadInputIsRejectedWithItsCodeAndChangesNothing) {
+    ClothWorld w, twin;
+    cloth_self_collision_desc good = cloth_default_self_collision_desc();
+    good.enabled = true;
+    good.thickness = 0.04f;
+    ASSERT_EQ(cloth_set_self_collision(w.cloth, &good), CLOTH_OK);
+    ASSERT_EQ(cloth_set_self_collision(twin.cloth, &good), CLOTH_OK);
+    const long long bytes = w.counter.live_bytes;
+
+    auto expect_rejected = [&](cloth_result expected, cloth_id id, const cloth_self_collision_desc* desc,
+                               const char* what) {
+        EXPECT_EQ(cloth_set_self_collision(id, desc), expected) << what;
+        EXPECT_GT(std::strlen(cloth_get_last_error()), 0u) << what;
+        cloth_self_collision_desc back{};
+        ASSERT_EQ(cloth_get_self_collision(w.cloth, &back), CLOTH_OK);
+        EXPECT_TRUE(back.enabled && back.thickness == 0.04f) << what << ": settings changed";
+        EXPECT_EQ(w.counter.live_bytes, bytes) << what << ": memory changed";
+    };
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    cloth_self_collision_desc d = good;
+    expect_rejected(CLOTH_ERROR_NULL_POINTER, w.cloth, nullptr, "null desc");
+    expect_rejected(CLOTH_ERROR_INVALID_HANDLE, cloth_id{}, &good, "null cloth");
+    d.internal_cookie = 0;
+    expect_rejected(CLOTH_ERROR_INVALID_DESC, w.cloth, &d, "uninitialised desc");
+    d = good;
+    d.struct_size = 4;
+    expect_rejected(CLOTH_ERROR_INVALID_DESC, w.cloth, &d, "wrong struct_size");
+    d = good;
+    d.thickness = nan;
+    expect_rejected(CLOTH_ERROR_NOT_FINITE, w.cloth, &d, "NaN thickness");
+    d.thickness = 0;
+    expect_rejected(CLOTH_ERROR_INVALID_VALUE, w.cloth, &d, "zero thickness");
+    d.thickness = -0.01f;
+    expect_rejected(CLOTH_ERROR_INVALID_VALUE, w.cloth, &d, "negative thickness");
+    d.thickness = 0.5f;  // the 16x16 grid's mean edge is about 0.076 m
+    expect_rejected(CLOTH_ERROR_INVALID_VALUE, w.cloth, &d, "thickness beyond two rest edges");
+    d = good;
+    d.friction = -1;
+    expect_rejected(CLOTH_ERROR_INVALID_VALUE, w.cloth, &d, "negative friction");
+    d.friction = std::numeric_limits<float>::infinity();
+    expect_rejected(CLOTH_ERROR_NOT_FINITE, w.cloth, &d, "infinite friction");
+    d = good;
+    d.passes = 0;
+    expect_rejected(CLOTH_ERROR_INVALID_VALUE, w.cloth, &d, "zero passes");
+    d.passes = 17;
+    expect_rejected(CLOTH_ERROR_INVALID_VALUE, w.cloth, &d, "too many passes");
+
+    EXPECT_EQ(cloth_get_self_collision(w.cloth, nullptr), CLOTH_ERROR_NULL_POINTER);
+    EXPECT_EQ(cloth_get_self_collision_stats(w.cloth, nullptr), CLOTH_ERROR_NULL_POINTER);
+    cloth_self_collision_stats stats{};
+    stats.struct_size = 3;
+    EXPECT_EQ(cloth_get_self_collision_stats(w.cloth, &stats), CLOTH_ERROR_INVALID_DESC);
+    EXPECT_EQ(stats.contacts, 0u) << "nothing written";
+
+    // Turning it off needs no valid values, only a valid desc.
+    cloth_self_collision_desc off = cloth_default_self_collision_desc();
+    off.thickness = nan;
+    for (int i = 0; i < 30; ++i) {
+        ASSERT_EQ(cloth_step(w.world, 1.0f / 60.0f), CLOTH_OK);
+        ASSERT_EQ(cloth_step(twin.world, 1.0f / 60.0f), CLOTH_OK);
+    }
+    EXPECT_EQ(w.positions(), twin.positions()) << "rejected calls left hidden state behind";
+    EXPECT_EQ(cloth_set_self_collision(w.cloth, &off), CLOTH_OK);
+}
+
+}  // namespace
+
+namespace {
+
+uint64_t fnv1a(uint64_t hash, const void* data, size_t size) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
+    return hash;
+}
+
+// A 24x24 curtain (three particle groups) lowered onto itself by its top
+// row with self-collision on; hash of positions and velocities after 40
+// steps, and the number of contacts seen.
+uint64_t curtain_hash(uint32_t workers, uint32_t& contacts_seen) {
+    cloth_world_desc wd = cloth_default_world_desc();
+    wd.worker_count = workers;
+    cloth_world_id world{};
+    EXPECT_EQ(cloth_world_create(&wd, &world), CLOTH_OK);
+    cloth_grid_desc gd = cloth_default_grid_desc();
+    gd.columns = gd.rows = 24;
+    gd.origin[1] = 1.0f;
+    gd.origin[2] = 0.0f;
+    cloth_fabric_id fabric{};
+    EXPECT_EQ(cloth_fabric_create_grid(world, &gd, &fabric), CLOTH_OK);
+    cloth_desc cd = cloth_default_desc();
+    cd.fabric = fabric;
+    cd.solver.substeps = 4;
+    cd.structural.stiffness = cd.shear.stiffness = 200.0f;
+    std::vector<float> start(3 * 576);
+    for (uint32_t i = 0; i < 576; ++i) {
+        start[3 * i] = static_cast<float>(i % 24) / 23.0f;
+        start[3 * i + 1] = 1.0f - static_cast<float>(i / 24) / 23.0f;
+        start[3 * i + 2] = 0.04f * std::sin(static_cast<float>(i / 24));
+    }
+    cd.initial_positions = start.data();
+    cloth_id cloth{};
+    EXPECT_EQ(cloth_create(world, &cd, &cloth), CLOTH_OK);
+    cloth_self_collision_desc sd = cloth_default_self_collision_desc();
+    sd.enabled = true;
+    sd.thickness = 0.035f;
+    sd.friction = 0.2f;
+    EXPECT_EQ(cloth_set_self_collision(cloth, &sd), CLOTH_OK);
+    uint32_t top[24];
+    for (uint32_t i = 0; i < 24; ++i) top[i] = i;
+    EXPECT_EQ(cloth_pin(cloth, top, 24), CLOTH_OK);
+    contacts_seen = 0;
+    for (int step = 0; step < 40; ++step) {
+        std::vector<float> targets(3 * 24);
+        for (uint32_t i = 0; i < 24; ++i) {
+            targets[3 * i] = start[3 * i];
+            targets[3 * i + 1] = 1.0f - 0.02f * static_cast<float>(step + 1);
+            targets[3 * i + 2] = start[3 * i + 2];
+        }
+        EXPECT_EQ(cloth_set_pin_targets(cloth, top, targets.data(), 24), CLOTH_OK);
+        EXPECT_EQ(cloth_step(world, 1.0f / 60.0f), CLOTH_OK);
+        cloth_self_collision_stats stats{};
+        stats.struct_size = sizeof stats;
+        EXPECT_EQ(cloth_get_self_collision_stats(cloth, &stats), CLOTH_OK);
+        contacts_seen += stats.contacts;
+    }
+    uint64_t hash = 14695981039346656037ull;
+    std::vector<float> values(3 * 576);
+    EXPECT_EQ(cloth_read_positions(cloth, values.data(), 3 * 576), CLOTH_OK);
+    hash = fnv1a(hash, values.data(), values.size() * sizeof(float));
+    EXPECT_EQ(cloth_read_velocities(cloth, values.data(), 3 * 576), CLOTH_OK);
+    hash = fnv1a(hash, values.data(), values.size() * sizeof(float));
+    cloth_world_destroy(world);
+    return hash;
+}
+
+TEST(SelfCollisionApi, ResultsAreBitIdenticalForEveryWorkerCount) {
+    uint32_t contacts = 0;
+    const uint64_t reference = curtain_hash(0, contacts);
+    EXPECT_GT(contacts, 0u) << "the curtain must fold onto itself for the test to mean anything";
+    for (uint32_t workers : {1u, 2u, 3u}) {
+        uint32_t c = 0;
+        EXPECT_EQ(curtain_hash(workers, c), reference) << workers << " workers";
+        EXPECT_EQ(c, contacts);
+    }
+}
+
+}  // namespace
