@@ -53,6 +53,7 @@ class ClothInstance {
     void begin_frame(float dt, const Vec3& gravity);
     bool frame_done() const { return frame_done_; }
     Stage stage() const { return cursor_.stage; }
+    uint32_t substep() const { return cursor_.substep; }
     void prepare_stage();
     uint32_t task_count() const;
     void run_task(uint32_t task, uint32_t worker);

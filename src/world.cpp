@@ -1,5 +1,7 @@
 #include "world.h"
 
+#include <algorithm>
+#include <climits>
 #include <cstdlib>
 
 namespace cloth {
@@ -37,16 +39,22 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       tasks_(&serial_tasks_),
       host_tasks_(desc.enqueue_task, desc.finish_task, desc.task_user, desc.worker_count),
       pool_(desc.enqueue_task ? 1 : desc.worker_count),
-      stepping_(HostAllocator<ClothInstance*>(&memory_)),
-      round_(HostAllocator<RoundTask>(&memory_)) {
+      stepping_(HostAllocator<uint32_t>(&memory_)),
+      round_(HostAllocator<RoundTask>(&memory_)),
+      round_times_(HostAllocator<TaskTime>(&memory_)),
+      cloth_cost_ns_(HostAllocator<int64_t>(&memory_)),
+      profile_(&memory_) {
     fabrics_.resize(desc.max_fabrics);
     cloths_.resize(desc.max_cloths);
     stepping_.reserve(desc.max_cloths);
+    cloth_cost_ns_.assign(desc.max_cloths, 0);
+    profile_.origin_ns = now_ns();
     if (desc.enqueue_task) {
         tasks_ = &host_tasks_;
     } else if (desc.worker_count > 1) {
         tasks_ = &pool_;  // its threads keep their state on the C++ heap
     }
+    profile_.worker_busy_ns.assign(tasks_->worker_count(), 0);
 }
 
 void World::log(cloth_log_level level, cloth_result code, const char* message) const {
@@ -121,29 +129,105 @@ void World::reserve_round_tasks(size_t extra_groups) {
         if (slot.object) groups += slot.object->group_count();
     }
     round_.reserve(groups);
+    round_times_.resize(std::max(round_times_.size(), groups));
+}
+
+void World::set_profiling(uint32_t max_tasks) {
+    if (max_tasks == 0) {
+        HostVector<TaskRecord>{HostAllocator<TaskRecord>(&memory_)}.swap(profile_.tasks);
+    } else {
+        HostVector<TaskRecord> records{HostAllocator<TaskRecord>(&memory_)};
+        records.reserve(max_tasks);
+        profile_.tasks.swap(records);
+    }
+}
+
+void World::set_zone_callbacks(cloth_zone_begin_fn* begin, cloth_zone_end_fn* end, void* user) {
+    zone_begin_ = begin;
+    zone_end_ = end;
+    zone_user_ = user;
+}
+
+void World::run_round_range(uint32_t begin, uint32_t end, uint32_t worker) {
+    if (!timing() && !zone_begin_) {
+        for (uint32_t t = begin; t < end; ++t) round_[t].cloth->run_task(round_[t].task, worker);
+        return;
+    }
+    // A host may pass any worker index; keep it inside the profile's arrays.
+    worker = std::min(worker, static_cast<uint32_t>(profile_.worker_busy_ns.size()) - 1);
+    for (uint32_t t = begin; t < end; ++t) {
+        const char* name = stage_name(round_[t].stage);
+        if (zone_begin_) zone_begin_(name, worker, zone_user_);
+        const int64_t start = now_ns();
+        round_[t].cloth->run_task(round_[t].task, worker);
+        round_times_[t] = TaskTime{start, now_ns(), worker};
+        if (zone_end_) zone_end_(name, worker, zone_user_);
+    }
+}
+
+void World::account_round(uint32_t count) {
+    int64_t first[kStageCount], last[kStageCount];
+    std::fill(std::begin(first), std::end(first), INT64_MAX);
+    std::fill(std::begin(last), std::end(last), INT64_MIN);
+    for (uint32_t t = 0; t < count; ++t) {
+        const RoundTask& task = round_[t];
+        const TaskTime& time = round_times_[t];
+        const uint32_t s = static_cast<uint32_t>(task.stage);
+        const int64_t duration = time.end_ns - time.start_ns;
+        cloth_cost_ns_[task.slot] += duration;
+        profile_.worker_busy_ns[time.worker] += duration;
+        profile_.stage_tasks[s] += 1;
+        first[s] = std::min(first[s], time.start_ns);
+        last[s] = std::max(last[s], time.end_ns);
+        if (profile_.tasks.size() < profile_.tasks.capacity()) {
+            profile_.tasks.push_back(TaskRecord{task.slot, cloths_[task.slot].generation, task.stage,
+                                                task.task, time.worker, task.substep, time.start_ns,
+                                                time.end_ns});
+        } else if (profile_.tasks.capacity() > 0) {
+            ++profile_.tasks_dropped;
+        }
+    }
+    for (uint32_t s = 0; s < kStageCount; ++s) {
+        if (first[s] > last[s]) continue;
+        if (profile_.stage_ns[s] == 0) profile_.stage_first_start_ns[s] = first[s];
+        profile_.stage_ns[s] += last[s] - first[s];
+    }
 }
 
 Status World::step(float dt) {
+    const int64_t start = now_ns();
+    if (zone_begin_) zone_begin_("cloth_step", 0, zone_user_);
+    profile_.begin(++frame_, start, budget_ms_);
+    const bool timed = timing();
     stepping_.clear();
-    for (Slot<ClothInstance>& slot : cloths_) {
-        if (!slot.object) continue;
-        slot.object->begin_frame(dt, gravity);
-        stepping_.push_back(slot.object.get());
+    for (uint32_t s = 0; s < cloths_.size(); ++s) {
+        ClothInstance* cloth = cloths_[s].object.get();
+        if (!cloth) continue;
+        cloth->begin_frame(dt, gravity);
+        cloth_cost_ns_[s] = 0;
+        stepping_.push_back(s);
     }
+    profile_.awake_cloths = static_cast<uint32_t>(stepping_.size());
     auto run_range = [this](uint32_t begin, uint32_t end, uint32_t worker) {
-        for (uint32_t t = begin; t < end; ++t) round_[t].cloth->run_task(round_[t].task, worker);
+        run_round_range(begin, end, worker);
     };
     for (;;) {
         round_.clear();
-        for (ClothInstance* cloth : stepping_) {
+        for (uint32_t s : stepping_) {
+            ClothInstance* cloth = cloths_[s].object.get();
             if (cloth->frame_done()) continue;
             cloth->prepare_stage();
             const uint32_t count = cloth->task_count();
-            for (uint32_t t = 0; t < count; ++t) round_.push_back(RoundTask{cloth, t});
+            for (uint32_t t = 0; t < count; ++t) {
+                round_.push_back(RoundTask{cloth, t, s, cloth->stage(), cloth->substep()});
+            }
         }
         if (round_.empty()) break;
-        parallel_for(*tasks_, static_cast<uint32_t>(round_.size()), 1, run_range);
-        for (ClothInstance* cloth : stepping_) {
+        const uint32_t count = static_cast<uint32_t>(round_.size());
+        parallel_for(*tasks_, count, 1, run_range);
+        if (timed) account_round(count);
+        for (uint32_t s : stepping_) {
+            ClothInstance* cloth = cloths_[s].object.get();
             if (!cloth->frame_done()) cloth->finish_stage();
         }
     }
@@ -162,6 +246,9 @@ Status World::step(float dt) {
             first_failure = Status::error(status.code, "cloth slot %u: %.360s", s + 1, status.message);
         }
     }
+    profile_.end_ns = now_ns();
+    if (budget_ms_ > 0) profile_.overrun = profile_.step_ms() > budget_ms_;
+    if (zone_end_) zone_end_("cloth_step", 0, zone_user_);
     return first_failure;
 }
 

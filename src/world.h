@@ -12,6 +12,7 @@
 
 #include "cloth_instance.h"
 #include "fabric.h"
+#include "frame_profile.h"
 #include "host_allocator.h"
 #include "host_tasks.h"
 #include "status.h"
@@ -57,7 +58,26 @@ class World {
 
     void log(cloth_log_level level, cloth_result code, const char* message) const;
 
+    // Profiling (frame_profile.h). Recording keeps up to max_tasks task
+    // records per frame (0: off, frees them).
+    void set_profiling(uint32_t max_tasks);
+    const FrameProfile& frame_profile() const { return profile_; }
+    void set_zone_callbacks(cloth_zone_begin_fn* begin, cloth_zone_end_fn* end, void* user);
+    // The id of the cloth in `slot` (for task records).
+    cloth_id cloth_id_of(uint32_t slot, uint16_t generation) const {
+        return cloth_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1), generation,
+                        generation_};
+    }
+
   private:
+    // Whether tasks are timed this frame (profiling or a budget needs it).
+    bool timing() const { return profile_.tasks.capacity() > 0 || budget_ms_ > 0; }
+    // Run tasks [begin, end) of the current round, as `worker`.
+    void run_round_range(uint32_t begin, uint32_t end, uint32_t worker);
+    // After a round's barrier: fold its task times into the profile and
+    // the per-cloth costs.
+    void account_round(uint32_t count);
+
     template <class T>
     static uint32_t find_free_slot(const HostVector<Slot<T>>& slots);
 
@@ -72,14 +92,26 @@ class World {
     struct RoundTask {
         ClothInstance* cloth;
         uint32_t task;
+        uint32_t slot;
+        Stage stage;
+        uint32_t substep;
     };
     void reserve_round_tasks(size_t extra_groups);
     TaskSystem* tasks_ = nullptr;  // never null after construction: one of the three below
     SerialTasks serial_tasks_;
     HostTasks host_tasks_;
     ThreadPool pool_;  // starts no thread unless the world asked for workers and has no host callbacks
-    HostVector<ClothInstance*> stepping_;  // the cloths of the frame in progress
-    HostVector<RoundTask> round_;          // sized for every group of every cloth
+    HostVector<uint32_t> stepping_;      // slots of the cloths of the frame in progress
+    HostVector<RoundTask> round_;        // sized for every group of every cloth
+    HostVector<TaskTime> round_times_;   // one slot per task of the round, written by its worker
+    HostVector<int64_t> cloth_cost_ns_;  // per cloth slot: task time of the last frame
+
+    FrameProfile profile_;
+    uint64_t frame_ = 0;
+    double budget_ms_ = 0;
+    cloth_zone_begin_fn* zone_begin_ = nullptr;
+    cloth_zone_end_fn* zone_end_ = nullptr;
+    void* zone_user_ = nullptr;
 };
 
 template <class T>

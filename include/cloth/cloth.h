@@ -428,6 +428,92 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);
  * no atomics or locks, whatever worker runs a group. Task callbacks must
  * not call back into this API. */
 
+/// The stages of a step, in the order a substep runs them.
+typedef enum cloth_stage {
+    CLOTH_STAGE_AIR = 0,             ///< per triangle: wind drag and lift
+    CLOTH_STAGE_FORCES = 1,          ///< external forces; per spring: force, Jacobian, A_s
+    CLOTH_STAGE_ASSEMBLE = 2,        ///< per particle: W_ii, W_ii^-1, b, p
+    CLOTH_STAGE_JACOBI_SWEEP = 3,    ///< one Jacobi sweep
+    CLOTH_STAGE_SERIAL_SOLVE = 4,    ///< the CG reference solve (one task per cloth)
+    CLOTH_STAGE_INTEGRATE = 5,       ///< v += dv, x += h v
+    CLOTH_STAGE_EXPLICIT = 6,        ///< explicit baseline: forces and Euler
+    CLOTH_STAGE_COLLISIONS = 7,      ///< colliders and attachments
+    CLOTH_STAGE_SELF_COLLISION = 8,  ///< self-collision
+    CLOTH_STAGE_FORCE_U32 = 0x7FFFFFFF
+} cloth_stage;
+
+#define CLOTH_MAX_STAGES 16
+#define CLOTH_MAX_WORKERS 256
+
+/// A stage's short name ("forces", "jacobi_sweep", ...); "?" if unknown. Never NULL.
+CLOTH_API const char* cloth_stage_name(cloth_stage stage);
+
+/// What the last cloth_step of a world cost. Filled by
+/// cloth_world_get_frame_profile; times in milliseconds of wall time.
+/// Stage and worker times are measured while profiling is enabled or a
+/// frame budget is set, and are zero otherwise.
+typedef struct cloth_frame_profile {
+    uint32_t struct_size;   ///< set by the caller to sizeof(cloth_frame_profile)
+    uint32_t worker_count;  ///< workers of the world's task system (entries of the worker arrays)
+    uint64_t frame;         ///< number of cloth_step calls so far, this one included
+    double step_ms;         ///< the whole cloth_step call
+    double budget_ms;       ///< the world's frame budget (0: none)
+    double budget_used;     ///< step_ms / budget_ms (0 without a budget)
+    bool overrun;           ///< step_ms > budget_ms (never without a budget)
+    uint32_t awake_cloths;
+    uint32_t sleeping_cloths;
+    double stage_ms[CLOTH_MAX_STAGES];         ///< per cloth_stage: wall time of its rounds, summed
+    uint32_t stage_tasks[CLOTH_MAX_STAGES];    ///< per cloth_stage: tasks run
+    double worker_busy_ms[CLOTH_MAX_WORKERS];  ///< per worker: time inside tasks
+    double worker_idle_ms[CLOTH_MAX_WORKERS];  ///< per worker: step_ms - busy
+    uint32_t task_count;     ///< task records kept for this frame (cloth_world_read_task_records)
+    uint32_t tasks_dropped;  ///< tasks beyond the profiling capacity, not recorded
+} cloth_frame_profile;
+
+/// One task of a frame: a group of one cloth's particles in one stage.
+typedef struct cloth_task_record {
+    cloth_id cloth;
+    cloth_stage stage;
+    uint32_t group;   ///< particle group of the cloth
+    uint32_t worker;  ///< worker that ran it
+    uint32_t substep;
+    double start_us;  ///< microseconds since the world was created
+    double end_us;
+} cloth_task_record;
+
+/// Record every task of each frame, up to `max_tasks_per_frame` (the
+/// memory is allocated here, from the world's allocator); 0 turns
+/// recording off and frees it. Stage and worker times are measured while
+/// it is on. Off by default.
+CLOTH_API cloth_result cloth_world_set_profiling(cloth_world_id world, uint32_t max_tasks_per_frame);
+/// The profile of the last cloth_step.
+CLOTH_API cloth_result cloth_world_get_frame_profile(cloth_world_id world, cloth_frame_profile* out_profile);
+/// Copy the last frame's task records (at most `capacity`); *out_count
+/// receives the number copied.
+CLOTH_API cloth_result cloth_world_read_task_records(cloth_world_id world, cloth_task_record* out_records,
+                                                     uint32_t capacity, uint32_t* out_count);
+/// The last frame as Chrome trace-event JSON (opens in Perfetto and
+/// chrome://tracing): one event for the step, one per stage used (on its
+/// own track, duration = the stage's summed wall time, starting at its
+/// first task) and one per recorded task (on its worker's track). Writes
+/// at most `capacity` bytes including the terminating NUL; *out_size
+/// receives the bytes needed including the NUL. With buffer NULL and
+/// capacity 0 it only reports the size; a buffer too small gives
+/// CLOTH_ERROR_INVALID_COUNT and writes nothing.
+CLOTH_API cloth_result cloth_world_write_trace_json(cloth_world_id world, char* buffer, size_t capacity,
+                                                    size_t* out_size);
+
+/// Profiler zones for the host's profiler (Tracy, Unreal Insights, ...):
+/// begin and end are called on the thread that runs the work, around
+/// every cloth_step ("cloth_step", worker 0) and every task (the stage's
+/// name, as a static string, and the worker index). They must be cheap,
+/// must not call this API, and may run concurrently on different workers.
+typedef void cloth_zone_begin_fn(const char* name, uint32_t worker, void* user);
+typedef void cloth_zone_end_fn(const char* name, uint32_t worker, void* user);
+/// Install (or, with both NULL, remove) zone callbacks.
+CLOTH_API cloth_result cloth_world_set_zone_callbacks(cloth_world_id world, cloth_zone_begin_fn* begin,
+                                                      cloth_zone_end_fn* end, void* user);
+
 /* ------------------------------------------------------------------ */
 /* Snapshots                                                          */
 /* ------------------------------------------------------------------ */
