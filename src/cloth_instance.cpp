@@ -467,7 +467,7 @@ void ClothInstance::run_self_collision(uint32_t group) {
             break;
         }
         case Stage::kSelfSort:
-            c.sort_into_buckets();
+            c.sort_into_buckets(x_);
             break;
         case Stage::kSelfContacts:
             c.find_contacts(x_, begin, end);

@@ -287,17 +287,29 @@ void SelfCollision::compute_keys(const Vec3Soa& x, uint32_t begin, uint32_t end)
 void SelfCollision::find_contacts(const Vec3Soa& x, uint32_t begin, uint32_t end) {
     const float radius = settings_.thickness * kSearchMargin;
     const float radius2 = radius * radius, thickness2 = settings_.thickness * settings_.thickness;
+    // Plain pointers, so the stores into the contact slots cannot make the
+    // compiler reload them per candidate.
+    const uint32_t* region = region_of_.data();
+    const uint8_t* region_valid = region_valid_.data();
+    const bool use_regions = settings_.use_regions;
+    const uint32_t* neighbours = rest_neighbour_.data();
+    const uint32_t* neighbour_offset = rest_neighbour_offset_.data();
     for (uint32_t i = begin; i < end; ++i) {
         uint32_t* other = &contact_other_[static_cast<size_t>(i) * kMaxContacts];
         float* distance2 = &contact_distance2_[static_cast<size_t>(i) * kMaxContacts];
         uint32_t count = 0, touching = 0;
         bool overflow = false;
         const float xi = x.x[i], yi = x.y[i], zi = x.z[i];
-        hash_.for_each_near(i, [&](uint32_t j) {
-            if (skipped_by_region(i, j)) return;
-            const float dx = xi - x.x[j], dy = yi - x.y[j], dz = zi - x.z[j];
+        const uint32_t region_i = region[i];
+        const bool region_i_free = use_regions && region_valid[region_i] != 0;
+        const uint32_t* neighbours_first = neighbours + neighbour_offset[i];
+        const uint32_t* neighbours_last = neighbours + neighbour_offset[i + 1];
+        hash_.for_each_near(i, [&](uint32_t j, float xj, float yj, float zj) {
+            const float dx = xi - xj, dy = yi - yj, dz = zi - zj;
             const float d2 = dx * dx + dy * dy + dz * dz;
-            if (!(d2 < radius2) || is_rest_neighbour(i, j)) return;
+            if (!(d2 < radius2)) return;
+            if (region_i_free && region[j] == region_i) return;  // one collision-free region
+            if (std::binary_search(neighbours_first, neighbours_last, j)) return;  // rest neighbours
             if (d2 < thickness2) ++touching;
             if (count < kMaxContacts) {
                 other[count] = j;
@@ -418,7 +430,7 @@ void SelfCollision::run(Vec3Soa& x, Vec3Soa& v, const float* mass, const float* 
     const uint32_t n = particle_count_;
     check_regions(x, 0, region_count());
     compute_keys(x, 0, n);
-    sort_into_buckets();
+    sort_into_buckets(x);
     find_contacts(x, 0, n);
     compute_inverse_mass(mass, pinned, 0, n);
     for (uint32_t pass = 0; pass < settings_.passes; ++pass) {

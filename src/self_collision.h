@@ -9,7 +9,7 @@
 // they are the Stage::kSelf* stages of step_stage.h:
 //   1. check_regions(regions)     per region: is it still collision-free?
 //      compute_keys(particles)    per particle: hash cell and bucket
-//   2. sort_into_buckets()        serial O(n) counting sort
+//   2. sort_into_buckets(x)       serial O(n) counting sort
 //   3. find_contacts(particles)   per particle: its own list of nearby
 //                                 particles, written only by its owner
 //   4. project(particles)         per particle, one Jacobi pass: reads x,
@@ -86,8 +86,8 @@ class SelfCollision {
     // ---- stages (see the file comment)
     void check_regions(const Vec3Soa& x, uint32_t region_begin, uint32_t region_end);
     void compute_keys(const Vec3Soa& x, uint32_t begin, uint32_t end);
-    void sort_into_buckets() {
-        hash_.sort_into_buckets();
+    void sort_into_buckets(const Vec3Soa& x) {
+        hash_.sort_into_buckets(x);
         last_passes_ = 0;
     }
     void find_contacts(const Vec3Soa& x, uint32_t begin, uint32_t end);

@@ -26,7 +26,13 @@ SpatialHash::SpatialHash(const HostMemory* memory)
       bucket_of_(HostAllocator<uint32_t>(memory)),
       bucket_start_(HostAllocator<uint32_t>(memory)),
       bucket_fill_(HostAllocator<uint32_t>(memory)),
-      sorted_(HostAllocator<uint32_t>(memory)) {}
+      sorted_(HostAllocator<uint32_t>(memory)),
+      sorted_cell_x_(HostAllocator<int32_t>(memory)),
+      sorted_cell_y_(HostAllocator<int32_t>(memory)),
+      sorted_cell_z_(HostAllocator<int32_t>(memory)),
+      sorted_x_(HostAllocator<float>(memory)),
+      sorted_y_(HostAllocator<float>(memory)),
+      sorted_z_(HostAllocator<float>(memory)) {}
 
 void SpatialHash::reserve(uint32_t particle_count) {
     // About two buckets per particle (a power of two, so the hash is a mask).
@@ -36,6 +42,9 @@ void SpatialHash::reserve(uint32_t particle_count) {
     for (HostVector<int32_t>* a : {&cell_x_, &cell_y_, &cell_z_}) a->assign(particle_count, 0);
     bucket_of_.assign(particle_count, 0);
     sorted_.assign(particle_count, 0);
+    for (HostVector<int32_t>* a : {&sorted_cell_x_, &sorted_cell_y_, &sorted_cell_z_})
+        a->assign(particle_count, 0);
+    for (HostVector<float>* a : {&sorted_x_, &sorted_y_, &sorted_z_}) a->assign(particle_count, 0.0f);
     bucket_start_.assign(static_cast<size_t>(buckets) + 1, 0);
     bucket_fill_.assign(buckets, 0);
 }
@@ -51,7 +60,7 @@ void SpatialHash::compute_keys(const Vec3Soa& x, float cell_size, uint32_t begin
     }
 }
 
-void SpatialHash::sort_into_buckets() {
+void SpatialHash::sort_into_buckets(const Vec3Soa& x) {
     const uint32_t n = particle_count();
     std::fill(bucket_fill_.begin(), bucket_fill_.end(), 0u);
     for (uint32_t i = 0; i < n; ++i) ++bucket_fill_[bucket_of_[i]];
@@ -63,7 +72,16 @@ void SpatialHash::sort_into_buckets() {
     }
     bucket_start_[bucket_count()] = sum;
     // Ascending i, so each bucket lists its particles in ascending index.
-    for (uint32_t i = 0; i < n; ++i) sorted_[bucket_fill_[bucket_of_[i]]++] = i;
+    for (uint32_t i = 0; i < n; ++i) {
+        const uint32_t e = bucket_fill_[bucket_of_[i]]++;
+        sorted_[e] = i;
+        sorted_cell_x_[e] = cell_x_[i];
+        sorted_cell_y_[e] = cell_y_[i];
+        sorted_cell_z_[e] = cell_z_[i];
+        sorted_x_[e] = x.x[i];
+        sorted_y_[e] = x.y[i];
+        sorted_z_[e] = x.z[i];
+    }
 }
 
 }  // namespace cloth

@@ -12,15 +12,19 @@
 //
 // Three passes:
 //   1. compute_keys(begin, end)  per particle, any split: cell and bucket;
-//   2. sort_into_buckets()       serial O(n + buckets) counting sort; within
-//                                a bucket particles stay in ascending index;
+//   2. sort_into_buckets(x)      serial O(n + buckets) counting sort; within
+//                                a bucket particles stay in ascending index,
+//                                stored with their cell and position so a
+//                                query streams through contiguous memory;
 //   3. for_each_near(i, visit)   per particle, read-only: every particle j
 //                                of the 27 cells around i's cell, each once,
-//                                in ascending (bucket, index) order.
+//                                cell by cell in a fixed order, ascending
+//                                index within a cell.
 // With a cell size >= r, every pair closer than r is found by pass 3 from
-// both ends (a point within r of i lies in one of the 27 cells; hash
-// collisions only add far particles, which the caller's distance test
-// drops).
+// both ends: a point within r of i lies in one of the 27 cells. An entry is
+// taken only when its own cell is the cell being visited, so particles of
+// other cells that share a bucket (hash collisions) are skipped, and two
+// neighbour cells hashing to one bucket cannot visit anyone twice.
 #pragma once
 
 #include <algorithm>
@@ -48,11 +52,12 @@ class SpatialHash {
     // cell size. Non-finite or huge coordinates are clamped, never UB.
     void compute_keys(const Vec3Soa& x, float cell_size, uint32_t begin, uint32_t end);
 
-    // Pass 2: counting sort of all particles into buckets (serial).
-    void sort_into_buckets();
+    // Pass 2: counting sort of all particles into buckets (serial). `x` is
+    // the same as in pass 1.
+    void sort_into_buckets(const Vec3Soa& x);
 
-    // Pass 3: calls visit(j) for every particle j != i in the buckets of
-    // the 27 cells around particle i's cell, each j once, in a fixed order.
+    // Pass 3: calls visit(j, xj, yj, zj) for every particle j != i in the
+    // 27 cells around particle i's cell, each j once, in a fixed order.
     template <class Visit>
     void for_each_near(uint32_t i, Visit visit) const;
 
@@ -70,29 +75,31 @@ class SpatialHash {
     HostVector<uint32_t> bucket_of_;                // per particle
     HostVector<uint32_t> bucket_start_;             // per bucket + 1: first entry in sorted_
     HostVector<uint32_t> bucket_fill_;              // per bucket: scratch of the sort
-    HostVector<uint32_t> sorted_;                   // particles by bucket, ascending index within one
+    // Particles by bucket, ascending index within one, with their cells and positions.
+    HostVector<uint32_t> sorted_;
+    HostVector<int32_t> sorted_cell_x_, sorted_cell_y_, sorted_cell_z_;
+    HostVector<float> sorted_x_, sorted_y_, sorted_z_;
 };
 
 template <class Visit>
 void SpatialHash::for_each_near(uint32_t i, Visit visit) const {
-    // The 27 buckets, sorted and deduplicated: two neighbour cells that hash
-    // to one bucket must not visit its particles twice.
-    uint32_t buckets[27];
-    uint32_t count = 0;
-    for (int32_t dz = -1; dz <= 1; ++dz) {
-        for (int32_t dy = -1; dy <= 1; ++dy) {
-            for (int32_t dx = -1; dx <= 1; ++dx) {
-                buckets[count++] = bucket_of_cell(cell_x_[i] + dx, cell_y_[i] + dy, cell_z_[i] + dz);
+    // Plain pointers: the visitor's stores cannot alias them, so the loop
+    // keeps them in registers.
+    const uint32_t* start = bucket_start_.data();
+    const uint32_t* sorted = sorted_.data();
+    const int32_t *sx = sorted_cell_x_.data(), *sy = sorted_cell_y_.data(), *sz = sorted_cell_z_.data();
+    const float *px = sorted_x_.data(), *py = sorted_y_.data(), *pz = sorted_z_.data();
+    const int32_t ci_x = cell_x_[i], ci_y = cell_y_[i], ci_z = cell_z_[i];
+    for (int32_t cz = ci_z - 1; cz <= ci_z + 1; ++cz) {
+        for (int32_t cy = ci_y - 1; cy <= ci_y + 1; ++cy) {
+            for (int32_t cx = ci_x - 1; cx <= ci_x + 1; ++cx) {
+                const uint32_t bucket = bucket_of_cell(cx, cy, cz);
+                const uint32_t last = start[bucket + 1];
+                for (uint32_t e = start[bucket]; e < last; ++e) {
+                    if (sx[e] != cx || sy[e] != cy || sz[e] != cz || sorted[e] == i) continue;
+                    visit(sorted[e], px[e], py[e], pz[e]);
+                }
             }
-        }
-    }
-    std::sort(buckets, buckets + count);
-    count = static_cast<uint32_t>(std::unique(buckets, buckets + count) - buckets);
-    for (uint32_t k = 0; k < count; ++k) {
-        const uint32_t first = bucket_start_[buckets[k]], last = bucket_start_[buckets[k] + 1];
-        for (uint32_t e = first; e < last; ++e) {
-            const uint32_t j = sorted_[e];
-            if (j != i) visit(j);
         }
     }
 }

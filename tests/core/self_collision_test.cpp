@@ -52,7 +52,7 @@ uint32_t check_against_brute_force(SelfCollision& c, const Vec3Soa& x, uint32_t 
     const uint32_t n = c.particle_count();
     c.check_regions(x, 0, c.region_count());
     c.compute_keys(x, 0, n);
-    c.sort_into_buckets();
+    c.sort_into_buckets(x);
     c.find_contacts(x, 0, n);
     EXPECT_EQ(c.stats().overflowed_particles, 0u) << "the scene must fit the contact slots";
     const float theta = c.settings().thickness;
@@ -255,7 +255,7 @@ TEST(SelfCollision, RangeSplitGivesIdenticalBits) {
     };
     each(split.region_count(), [&](uint32_t b, uint32_t e) { split.check_regions(xp, b, e); });
     each(n, [&](uint32_t b, uint32_t e) { split.compute_keys(xp, b, e); });
-    split.sort_into_buckets();
+    split.sort_into_buckets(xp);
     each(n, [&](uint32_t b, uint32_t e) { split.find_contacts(xp, b, e); });
     each(n, [&](uint32_t b, uint32_t e) { split.compute_inverse_mass(mass.data(), pinned.data(), b, e); });
     for (uint32_t pass = 0; pass < s.passes; ++pass) {

@@ -44,12 +44,13 @@ Pairs hashed(const Vec3Soa& x, float radius) {
     const uint32_t n = static_cast<uint32_t>(x.size());
     hash.reserve(n);
     hash.compute_keys(x, radius, 0, n);
-    hash.sort_into_buckets();
+    hash.sort_into_buckets(x);
     Pairs pairs, reversed;
     for (uint32_t i = 0; i < n; ++i) {
         std::vector<uint32_t> seen;
-        hash.for_each_near(i, [&](uint32_t j) {
+        hash.for_each_near(i, [&](uint32_t j, float xj, float yj, float zj) {
             seen.push_back(j);
+            EXPECT_EQ(Vec3(xj, yj, zj), x.get(j)) << "the visit carries j's position";
             if ((x.get(i) - x.get(j)).squaredNorm() < radius * radius) {
                 (i < j ? pairs : reversed).insert({std::min(i, j), std::max(i, j)});
             }
@@ -104,12 +105,12 @@ TEST(SpatialHash, KeysDoNotDependOnTheRangeSplit) {
     whole.compute_keys(x, 0.07f, 0, 999);
     for (uint32_t begin = 0; begin < 999; begin += 100)
         split.compute_keys(x, 0.07f, begin, std::min(999u, begin + 100));
-    whole.sort_into_buckets();
-    split.sort_into_buckets();
+    whole.sort_into_buckets(x);
+    split.sort_into_buckets(x);
     for (uint32_t i = 0; i < 999; ++i) {
         std::vector<uint32_t> a, b;
-        whole.for_each_near(i, [&](uint32_t j) { a.push_back(j); });
-        split.for_each_near(i, [&](uint32_t j) { b.push_back(j); });
+        whole.for_each_near(i, [&](uint32_t j, float, float, float) { a.push_back(j); });
+        split.for_each_near(i, [&](uint32_t j, float, float, float) { b.push_back(j); });
         ASSERT_EQ(a, b) << "particle " << i;
     }
 }
@@ -126,9 +127,9 @@ TEST(SpatialHash, NonFiniteAndFarPositionsAreClampedNotUndefined) {
     SpatialHash hash(testing::heap());
     hash.reserve(4);
     hash.compute_keys(x, 0.1f, 0, 4);
-    hash.sort_into_buckets();
+    hash.sort_into_buckets(x);
     bool found = false;
-    hash.for_each_near(2, [&](uint32_t j) { found = found || j == 3; });
+    hash.for_each_near(2, [&](uint32_t j, float, float, float) { found = found || j == 3; });
     EXPECT_TRUE(found);
 }
 
