@@ -11,7 +11,7 @@ namespace {
 
 constexpr uint32_t kTile = 8;          // grid regions: kTile x kTile particles
 constexpr uint32_t kPatchSize = 64;    // mesh regions: at most this many particles
-constexpr float kConvergence = 0.01f;  // a pass is needed while an overlap exceeds 1% of theta_c
+constexpr float kConvergence = 0.02f;  // a pass is needed while an overlap exceeds 2% of theta_c
 
 // Particle adjacency along triangle edges (CSR, sorted, no duplicates).
 void triangle_edge_adjacency(const Fabric& fabric, std::vector<uint32_t>& offset,
@@ -281,7 +281,7 @@ void SelfCollision::check_regions(const Vec3Soa& x, uint32_t region_begin, uint3
 }
 
 void SelfCollision::compute_keys(const Vec3Soa& x, uint32_t begin, uint32_t end) {
-    hash_.compute_keys(x, settings_.thickness * kSearchMargin, begin, end);
+    hash_.compute_keys(x, settings_.thickness * kSearchMargin, begin, end);  // the search radius
 }
 
 void SelfCollision::find_contacts(const Vec3Soa& x, uint32_t begin, uint32_t end) {

@@ -12,8 +12,9 @@ namespace {
 // send NaN to the clamp bound too.
 constexpr float kCellLimit = 1073741824.0f;
 
-int32_t cell_of(float coordinate, float inverse_cell) {
-    const float c = std::floor(coordinate * inverse_cell);
+// floor(scaled) as a cell index.
+int32_t cell_of(float scaled) {
+    const float c = std::floor(scaled);
     return static_cast<int32_t>(std::fmin(std::fmax(c, -kCellLimit), kCellLimit));
 }
 
@@ -23,6 +24,9 @@ SpatialHash::SpatialHash(const HostMemory* memory)
     : cell_x_(HostAllocator<int32_t>(memory)),
       cell_y_(HostAllocator<int32_t>(memory)),
       cell_z_(HostAllocator<int32_t>(memory)),
+      block_x_(HostAllocator<int32_t>(memory)),
+      block_y_(HostAllocator<int32_t>(memory)),
+      block_z_(HostAllocator<int32_t>(memory)),
       bucket_of_(HostAllocator<uint32_t>(memory)),
       bucket_start_(HostAllocator<uint32_t>(memory)),
       bucket_fill_(HostAllocator<uint32_t>(memory)),
@@ -39,7 +43,9 @@ void SpatialHash::reserve(uint32_t particle_count) {
     uint32_t buckets = 64;
     while (buckets < 2u * particle_count && buckets < (1u << 30)) buckets *= 2;
     bucket_mask_ = buckets - 1;
-    for (HostVector<int32_t>* a : {&cell_x_, &cell_y_, &cell_z_}) a->assign(particle_count, 0);
+    for (HostVector<int32_t>* a : {&cell_x_, &cell_y_, &cell_z_, &block_x_, &block_y_, &block_z_}) {
+        a->assign(particle_count, 0);
+    }
     bucket_of_.assign(particle_count, 0);
     sorted_.assign(particle_count, 0);
     for (HostVector<int32_t>* a : {&sorted_cell_x_, &sorted_cell_y_, &sorted_cell_z_})
@@ -49,13 +55,19 @@ void SpatialHash::reserve(uint32_t particle_count) {
     bucket_fill_.assign(buckets, 0);
 }
 
-void SpatialHash::compute_keys(const Vec3Soa& x, float cell_size, uint32_t begin, uint32_t end) {
-    cell_size_ = cell_size;
-    const float inverse = 1.0f / cell_size;
+void SpatialHash::compute_keys(const Vec3Soa& x, float radius, uint32_t begin, uint32_t end) {
+    cell_size_ = 2.0f * radius;
+    const float inverse = 1.0f / cell_size_;
     for (uint32_t i = begin; i < end; ++i) {
-        cell_x_[i] = cell_of(x.x[i], inverse);
-        cell_y_[i] = cell_of(x.y[i], inverse);
-        cell_z_[i] = cell_of(x.z[i], inverse);
+        const float sx = x.x[i] * inverse, sy = x.y[i] * inverse, sz = x.z[i] * inverse;
+        cell_x_[i] = cell_of(sx);
+        cell_y_[i] = cell_of(sy);
+        cell_z_[i] = cell_of(sz);
+        // The 2x2x2 block starts one cell down on each axis where x_i lies
+        // in the lower half of its cell (see the header).
+        block_x_[i] = cell_of(sx - 0.5f);
+        block_y_[i] = cell_of(sy - 0.5f);
+        block_z_[i] = cell_of(sz - 0.5f);
         bucket_of_[i] = bucket_of_cell(cell_x_[i], cell_y_[i], cell_z_[i]);
     }
 }

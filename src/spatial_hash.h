@@ -1,7 +1,8 @@
 // Spatial hash of particles for self-collision (paper section IV,
-// algorithm.md 5): cubic cells of a given size, each cell (ix, iy, iz)
-// hashed into a power-of-two number of buckets (about twice the particle
-// count), particles counting-sorted into their buckets every step.
+// algorithm.md 5): cubic cells of twice the search radius r, each cell
+// (ix, iy, iz) hashed into a power-of-two number of buckets (about twice
+// the particle count), particles counting-sorted into their buckets every
+// step.
 //
 // Written by hand: no Debian package offers a particle hash with fixed
 // memory (sized once per cloth), no allocation per frame, a result order
@@ -17,14 +18,19 @@
 //                                stored with their cell and position so a
 //                                query streams through contiguous memory;
 //   3. for_each_near(i, visit)   per particle, read-only: every particle j
-//                                of the 27 cells around i's cell, each once,
+//                                of the 2x2x2 cells nearest i, each once,
 //                                cell by cell in a fixed order, ascending
 //                                index within a cell.
-// With a cell size >= r, every pair closer than r is found by pass 3 from
-// both ends: a point within r of i lies in one of the 27 cells. An entry is
-// taken only when its own cell is the cell being visited, so particles of
-// other cells that share a bucket (hash collisions) are skipped, and two
-// neighbour cells hashing to one bucket cannot visit anyone twice.
+// Why 2x2x2 cells of size 2r find every pair closer than r (the gap the
+// paper leaves, algorithm.md 5): along each axis, if p lies in the lower
+// half of its cell [k c, k c + c/2), every q with |q - p| < r = c/2 lies in
+// cells k-1 or k; if p lies in the upper half, in cells k or k+1. So the
+// block starting at floor(p / c - 1/2) holds every neighbour within r. It
+// visits 8 cells instead of the 27 a cell of size r needs, over about the
+// same area of a cloth surface. An entry is taken only when its own cell is
+// the cell being visited, so particles of other cells that share a bucket
+// (hash collisions) are skipped, and two visited cells hashing to one
+// bucket cannot visit anyone twice.
 #pragma once
 
 #include <algorithm>
@@ -47,17 +53,19 @@ class SpatialHash {
     uint32_t bucket_count() const { return bucket_mask_ + 1; }
     float cell_size() const { return cell_size_; }
 
-    // Pass 1 for particles [begin, end): integer cell of x_i at `cell_size`
-    // (> 0) and its bucket. Every call of one build must use the same
-    // cell size. Non-finite or huge coordinates are clamped, never UB.
-    void compute_keys(const Vec3Soa& x, float cell_size, uint32_t begin, uint32_t end);
+    // Pass 1 for particles [begin, end): cell of x_i (cells of 2 * radius,
+    // radius > 0), its bucket, and the first cell of its 2x2x2 query block.
+    // Every call of one build must use the same radius. Non-finite or huge
+    // coordinates are clamped, never UB.
+    void compute_keys(const Vec3Soa& x, float radius, uint32_t begin, uint32_t end);
 
     // Pass 2: counting sort of all particles into buckets (serial). `x` is
     // the same as in pass 1.
     void sort_into_buckets(const Vec3Soa& x);
 
     // Pass 3: calls visit(j, xj, yj, zj) for every particle j != i in the
-    // 27 cells around particle i's cell, each j once, in a fixed order.
+    // 2x2x2 cells nearest particle i (a superset of those within the
+    // radius), each j once, in a fixed order.
     template <class Visit>
     void for_each_near(uint32_t i, Visit visit) const;
 
@@ -71,10 +79,11 @@ class SpatialHash {
   private:
     float cell_size_ = 1.0f;
     uint32_t bucket_mask_ = 0;
-    HostVector<int32_t> cell_x_, cell_y_, cell_z_;  // per particle
-    HostVector<uint32_t> bucket_of_;                // per particle
-    HostVector<uint32_t> bucket_start_;             // per bucket + 1: first entry in sorted_
-    HostVector<uint32_t> bucket_fill_;              // per bucket: scratch of the sort
+    HostVector<int32_t> cell_x_, cell_y_, cell_z_;     // per particle
+    HostVector<int32_t> block_x_, block_y_, block_z_;  // per particle: first cell of its query block
+    HostVector<uint32_t> bucket_of_;                   // per particle
+    HostVector<uint32_t> bucket_start_;                // per bucket + 1: first entry in sorted_
+    HostVector<uint32_t> bucket_fill_;                 // per bucket: scratch of the sort
     // Particles by bucket, ascending index within one, with their cells and positions.
     HostVector<uint32_t> sorted_;
     HostVector<int32_t> sorted_cell_x_, sorted_cell_y_, sorted_cell_z_;
@@ -89,10 +98,10 @@ void SpatialHash::for_each_near(uint32_t i, Visit visit) const {
     const uint32_t* sorted = sorted_.data();
     const int32_t *sx = sorted_cell_x_.data(), *sy = sorted_cell_y_.data(), *sz = sorted_cell_z_.data();
     const float *px = sorted_x_.data(), *py = sorted_y_.data(), *pz = sorted_z_.data();
-    const int32_t ci_x = cell_x_[i], ci_y = cell_y_[i], ci_z = cell_z_[i];
-    for (int32_t cz = ci_z - 1; cz <= ci_z + 1; ++cz) {
-        for (int32_t cy = ci_y - 1; cy <= ci_y + 1; ++cy) {
-            for (int32_t cx = ci_x - 1; cx <= ci_x + 1; ++cx) {
+    const int32_t bx = block_x_[i], by = block_y_[i], bz = block_z_[i];
+    for (int32_t cz = bz; cz <= bz + 1; ++cz) {
+        for (int32_t cy = by; cy <= by + 1; ++cy) {
+            for (int32_t cx = bx; cx <= bx + 1; ++cx) {
                 const uint32_t bucket = bucket_of_cell(cx, cy, cz);
                 const uint32_t last = start[bucket + 1];
                 for (uint32_t e = start[bucket]; e < last; ++e) {
