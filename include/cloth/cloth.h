@@ -438,7 +438,11 @@ typedef enum cloth_stage {
     CLOTH_STAGE_INTEGRATE = 5,       ///< v += dv, x += h v
     CLOTH_STAGE_EXPLICIT = 6,        ///< explicit baseline: forces and Euler
     CLOTH_STAGE_COLLISIONS = 7,      ///< colliders and attachments
-    CLOTH_STAGE_SELF_COLLISION = 8,  ///< self-collision
+    CLOTH_STAGE_SELF_COLLISION = 8,  ///< self-collision: region checks and hash keys (per group)
+    CLOTH_STAGE_SELF_SORT = 9,       ///< self-collision: counting sort into buckets (one task per cloth)
+    CLOTH_STAGE_SELF_CONTACTS = 10,  ///< self-collision: each particle's contact list
+    CLOTH_STAGE_SELF_PROJECT = 11,   ///< self-collision: one projection pass (repeated while overlaps remain)
+    CLOTH_STAGE_SELF_RESPOND = 12,   ///< self-collision: velocity response (paper eq. 13) and friction
     CLOTH_STAGE_FORCE_U32 = 0x7FFFFFFF
 } cloth_stage;
 

@@ -49,6 +49,7 @@ bool check(cloth_result result, const char* call) {
 
 struct RunResult {
     bool ok = false;
+    double stage_ms[CLOTH_MAX_STAGES] = {};  // summed over frames (frame profile)
     double p50_ms = 0, p95_ms = 0;
     uint32_t max_contacts = 0;
     uint32_t interpenetrating = 0;  // far-apart pairs (> 3 grid steps) closer than thickness / 2
@@ -119,6 +120,7 @@ RunResult run(const Options& o, bool self_collision, bool print) {
     cloth_world_desc wd = cloth_default_world_desc();
     cloth_world_id world;
     if (!check(cloth_world_create(&wd, &world), "cloth_world_create")) return out;
+    if (!check(cloth_world_set_profiling(world, 4096), "cloth_world_set_profiling")) return out;
     cloth_grid_desc grid = cloth_default_grid_desc();
     grid.columns = grid.rows = n;
     if (wind) {  // hanging, top edge at 1.6 m
@@ -171,6 +173,10 @@ RunResult run(const Options& o, bool self_collision, bool print) {
         const cloth_result result = cloth_step(world, kDt);
         step_ms.push_back(thread_cpu_ms() - start);
         if (result != CLOTH_OK) std::fprintf(stderr, "frame %d: %s\n", frame, cloth_get_last_error());
+        cloth_frame_profile profile{};
+        profile.struct_size = sizeof profile;
+        cloth_world_get_frame_profile(world, &profile);
+        for (int s = 0; s < CLOTH_MAX_STAGES; ++s) out.stage_ms[s] += profile.stage_ms[s];
         cloth_read_positions(cloth, x.data(), static_cast<uint32_t>(x.size()));
         if (!wind) apply_obstacles(cloth, x, true);
         cloth_self_collision_stats stats{};
@@ -243,6 +249,15 @@ int main(int argc, char** argv) {
         "(shared, noisy machine: compare the two, not across runs)\n",
         on.p50_ms, on.p95_ms, off.p50_ms, off.p95_ms);
     std::printf("most contacts in a frame: %u\n", on.max_contacts);
+    // Frame profile: where the time of the run with self-collision went.
+    double total = 0;
+    for (double ms : on.stage_ms) total += ms;
+    std::printf("frame profile, share of stage time over the run with self-collision:");
+    for (int s = 0; s < CLOTH_MAX_STAGES; ++s) {
+        if (on.stage_ms[s] > 0)
+            std::printf(" %s %.0f%%", cloth_stage_name(cloth_stage(s)), 100.0 * on.stage_ms[s] / total);
+    }
+    std::printf("\n");
     std::printf(
         "pairs more than 3 grid steps apart and closer than thickness / 2 at the end: %u with, %u "
         "without self-collision\n",

@@ -244,3 +244,36 @@ TEST(SelfCollisionApi, ResultsAreBitIdenticalForEveryWorkerCount) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(SelfCollisionApi, FrameProfileShowsTheSelfCollisionStagesOnlyWhenEnabled) {
+    ClothWorld w;  // 16x16, 4 substeps, serial: one particle group
+    ASSERT_EQ(cloth_world_set_profiling(w.world, 1024), CLOTH_OK);
+    ASSERT_EQ(cloth_step(w.world, 1.0f / 60.0f), CLOTH_OK);
+    cloth_frame_profile profile{};
+    profile.struct_size = sizeof profile;
+    ASSERT_EQ(cloth_world_get_frame_profile(w.world, &profile), CLOTH_OK);
+    for (int stage = CLOTH_STAGE_SELF_COLLISION; stage <= CLOTH_STAGE_SELF_RESPOND; ++stage) {
+        EXPECT_EQ(profile.stage_tasks[stage], 0u)
+            << "off adds no pass: " << cloth_stage_name(cloth_stage(stage));
+    }
+    cloth_self_collision_desc d = cloth_default_self_collision_desc();
+    d.enabled = true;
+    d.thickness = 0.05f;
+    ASSERT_EQ(cloth_set_self_collision(w.cloth, &d), CLOTH_OK);
+    ASSERT_EQ(cloth_step(w.world, 1.0f / 60.0f), CLOTH_OK);
+    ASSERT_EQ(cloth_world_get_frame_profile(w.world, &profile), CLOTH_OK);
+    EXPECT_EQ(profile.stage_tasks[CLOTH_STAGE_SELF_COLLISION], 4u) << "one group, four substeps";
+    EXPECT_EQ(profile.stage_tasks[CLOTH_STAGE_SELF_SORT], 4u);
+    EXPECT_EQ(profile.stage_tasks[CLOTH_STAGE_SELF_CONTACTS], 4u);
+    EXPECT_GE(profile.stage_tasks[CLOTH_STAGE_SELF_PROJECT], 4u);
+    EXPECT_EQ(profile.stage_tasks[CLOTH_STAGE_SELF_RESPOND], 4u);
+    EXPECT_STREQ(cloth_stage_name(CLOTH_STAGE_SELF_COLLISION), "self_hash");
+    EXPECT_STREQ(cloth_stage_name(CLOTH_STAGE_SELF_SORT), "self_sort");
+    EXPECT_STREQ(cloth_stage_name(CLOTH_STAGE_SELF_CONTACTS), "self_contacts");
+    EXPECT_STREQ(cloth_stage_name(CLOTH_STAGE_SELF_PROJECT), "self_project");
+    EXPECT_STREQ(cloth_stage_name(CLOTH_STAGE_SELF_RESPOND), "self_respond");
+}
+
+}  // namespace
