@@ -75,6 +75,8 @@ SelfCollision::SelfCollision(const HostMemory* memory, const Fabric& fabric,
       region_outline_(HostAllocator<uint32_t>(memory)),
       region_usable_(HostAllocator<uint8_t>(memory)),
       region_valid_(HostAllocator<uint8_t>(memory)),
+      outline_u_(HostAllocator<float>(memory)),
+      outline_v_(HostAllocator<float>(memory)),
       hash_(memory),
       contact_count_(HostAllocator<uint32_t>(memory)),
       contact_other_(HostAllocator<uint32_t>(memory)),
@@ -93,6 +95,8 @@ SelfCollision::SelfCollision(const HostMemory* memory, const Fabric& fabric,
     outline_epsilon_ = 1e-4f * edge * edge;
     build_rest_neighbours(fabric);
     build_regions(fabric);
+    outline_u_.assign(region_outline_.size(), 0.0f);
+    outline_v_.assign(region_outline_.size(), 0.0f);
     hash_.reserve(n);
     contact_count_.assign(n, 0);
     contact_other_.assign(static_cast<size_t>(n) * kMaxContacts, 0);
@@ -231,7 +235,7 @@ bool SelfCollision::is_rest_neighbour(uint32_t i, uint32_t j) const {
     return std::binary_search(first, last, j);
 }
 
-bool SelfCollision::region_is_collision_free(const Vec3Soa& x, uint32_t r) const {
+bool SelfCollision::region_is_collision_free(const Vec3Soa& x, uint32_t r) {
     if (!region_usable_[r]) return false;
     const uint32_t* tri = region_triangle_.data();
     // (a) Normal cone: every triangle normal within acos(kConeCos) of the mean.
@@ -252,18 +256,32 @@ bool SelfCollision::region_is_collision_free(const Vec3Soa& x, uint32_t r) const
     // cross itself (edges sharing a corner are neighbours on the outline).
     const Vec3 helper = std::fabs(axis.x()) < 0.6f ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
     const Vec3 e1 = axis.cross(helper).normalized(), e2 = axis.cross(e1);
+    // Each region projects its outline endpoints into its own slice of the
+    // scratch arrays (so regions may run in parallel), then tests the edge
+    // pairs, rejecting most by their 2D bounding boxes.
     const uint32_t* outline = region_outline_.data();
     const uint32_t first = region_outline_offset_[r], last = region_outline_offset_[r + 1];
+    float* u = outline_u_.data();
+    float* v = outline_v_.data();
+    for (uint32_t k = first; k < last; ++k) {
+        const Vec3 p = x.get(outline[k]);
+        u[k] = p.dot(e1);
+        v[k] = p.dot(e2);
+    }
     for (uint32_t a = first; a < last; a += 2) {
-        const Vec3 p1 = x.get(outline[a]), p2 = x.get(outline[a + 1]);
-        const float ax = p1.dot(e1), ay = p1.dot(e2), bx = p2.dot(e1), by = p2.dot(e2);
+        const float ax = u[a], ay = v[a], bx = u[a + 1], by = v[a + 1];
+        const float min_x = std::min(ax, bx), max_x = std::max(ax, bx);
+        const float min_y = std::min(ay, by), max_y = std::max(ay, by);
         for (uint32_t b = a + 2; b < last; b += 2) {
+            const float cx = u[b], cy = v[b], dx = u[b + 1], dy = v[b + 1];
+            if (std::max(cx, dx) < min_x || std::min(cx, dx) > max_x || std::max(cy, dy) < min_y ||
+                std::min(cy, dy) > max_y) {
+                continue;
+            }
             if (outline[b] == outline[a] || outline[b] == outline[a + 1] || outline[b + 1] == outline[a] ||
                 outline[b + 1] == outline[a + 1]) {
                 continue;
             }
-            const Vec3 q1 = x.get(outline[b]), q2 = x.get(outline[b + 1]);
-            const float cx = q1.dot(e1), cy = q1.dot(e2), dx = q2.dot(e1), dy = q2.dot(e2);
             const int s1 = sign_beyond(orientation(ax, ay, bx, by, cx, cy), outline_epsilon_);
             const int s2 = sign_beyond(orientation(ax, ay, bx, by, dx, dy), outline_epsilon_);
             const int s3 = sign_beyond(orientation(cx, cy, dx, dy, ax, ay), outline_epsilon_);

@@ -129,7 +129,7 @@ class SelfCollision {
   private:
     void build_rest_neighbours(const Fabric& fabric);
     void build_regions(const Fabric& fabric);
-    bool region_is_collision_free(const Vec3Soa& x, uint32_t region) const;
+    bool region_is_collision_free(const Vec3Soa& x, uint32_t region);
     // Unit direction from j to i, also for coincident particles (then from
     // their rest positions, antisymmetric by construction).
     Vec3 contact_normal(uint32_t i, uint32_t j, const Vec3& d, float length) const;
@@ -150,6 +150,7 @@ class SelfCollision {
     HostVector<uint32_t> region_outline_offset_, region_outline_;    // 2 indices per edge
     HostVector<uint8_t> region_usable_;                              // every particle on a region triangle
     HostVector<uint8_t> region_valid_;                               // result of the last check
+    HostVector<float> outline_u_, outline_v_;  // projected outline endpoints, same layout as region_outline_
 
     SpatialHash hash_;
 
