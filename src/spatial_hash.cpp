@@ -56,8 +56,8 @@ void SpatialHash::reserve(uint32_t particle_count) {
 }
 
 void SpatialHash::compute_keys(const Vec3Soa& x, float radius, uint32_t begin, uint32_t end) {
-    cell_size_ = 2.0f * radius;
-    const float inverse = 1.0f / cell_size_;
+    // Tasks of one build run this concurrently: it writes only entries of its own range.
+    const float inverse = 1.0f / (2.0f * radius);
     for (uint32_t i = begin; i < end; ++i) {
         const float sx = x.x[i] * inverse, sy = x.y[i] * inverse, sz = x.z[i] * inverse;
         cell_x_[i] = cell_of(sx);

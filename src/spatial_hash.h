@@ -51,7 +51,6 @@ class SpatialHash {
 
     uint32_t particle_count() const { return static_cast<uint32_t>(bucket_of_.size()); }
     uint32_t bucket_count() const { return bucket_mask_ + 1; }
-    float cell_size() const { return cell_size_; }
 
     // Pass 1 for particles [begin, end): cell of x_i (cells of 2 * radius,
     // radius > 0), its bucket, and the first cell of its 2x2x2 query block.
@@ -77,7 +76,6 @@ class SpatialHash {
     }
 
   private:
-    float cell_size_ = 1.0f;
     uint32_t bucket_mask_ = 0;
     HostVector<int32_t> cell_x_, cell_y_, cell_z_;     // per particle
     HostVector<int32_t> block_x_, block_y_, block_z_;  // per particle: first cell of its query block
