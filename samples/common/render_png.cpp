@@ -80,9 +80,8 @@ struct Target {
     std::vector<uint8_t> rgb;
 };
 
-bool validate(const std::string& path, const Camera& camera, const RenderMesh* meshes, size_t mesh_count,
-              const RenderOptions& options, std::string* error) {
-    if (path.empty()) return fail(error, "output path is empty");
+bool validate(const Camera& camera, const RenderMesh* meshes, size_t mesh_count, const RenderOptions& options,
+              std::string* error) {
     if (options.width < 1 || options.width > kMaxSize || options.height < 1 || options.height > kMaxSize) {
         return fail(error, "image size must be in 1.." + std::to_string(kMaxSize) + ", got " +
                                std::to_string(options.width) + "x" + std::to_string(options.height));
@@ -265,7 +264,19 @@ void draw_mesh(const View& view, const RenderMesh& mesh, Vec3 light, Target* tar
 
 bool render_png(const std::string& path, const Camera& camera, const RenderMesh* meshes, size_t mesh_count,
                 const RenderOptions& options, std::string* error) {
-    if (!validate(path, camera, meshes, mesh_count, options, error)) return false;
+    if (path.empty()) return fail(error, "output path is empty");
+    std::vector<uint8_t> image;
+    if (!render_rgb(camera, meshes, mesh_count, options, &image, error)) return false;
+    if (!stbi_write_png(path.c_str(), options.width, options.height, 3, image.data(), options.width * 3)) {
+        return fail(error, "cannot write '" + path + "'");
+    }
+    return true;
+}
+
+bool render_rgb(const Camera& camera, const RenderMesh* meshes, size_t mesh_count,
+                const RenderOptions& options, std::vector<uint8_t>* rgb, std::string* error) {
+    if (rgb == nullptr) return fail(error, "rgb is null");
+    if (!validate(camera, meshes, mesh_count, options, error)) return false;
 
     const int ss = static_cast<size_t>(options.width) * options.height <= kMaxSupersampledPixels ? 2 : 1;
     View view;
@@ -313,9 +324,7 @@ bool render_png(const std::string& path, const Camera& camera, const RenderMesh*
         }
     }
 
-    if (!stbi_write_png(path.c_str(), options.width, options.height, 3, image.data(), options.width * 3)) {
-        return fail(error, "cannot write '" + path + "'");
-    }
+    rgb->swap(image);
     return true;
 }
 

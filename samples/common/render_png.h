@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace cloth_samples {
 
@@ -45,5 +46,11 @@ struct RenderOptions {
 // camera) or the file cannot be written. Invalid input never creates a file.
 bool render_png(const std::string& path, const Camera& camera, const RenderMesh* meshes, size_t mesh_count,
                 const RenderOptions& options, std::string* error);
+
+// Same rendering into memory: on success *rgb holds options.width x
+// options.height RGB pixels, rows top to bottom (for composing several views
+// into one picture). Same validation as render_png; on failure *rgb is unchanged.
+bool render_rgb(const Camera& camera, const RenderMesh* meshes, size_t mesh_count,
+                const RenderOptions& options, std::vector<uint8_t>* rgb, std::string* error);
 
 }  // namespace cloth_samples

@@ -1,0 +1,268 @@
+// vehicle_flag: the project's main job. A Bullet world with uneven terrain and
+// a btRaycastVehicle driving a scripted course (accelerate to 30 m/s, slalom,
+// hard brake, a jump off a kicker, one teleport back to the start) with a flag
+// on a pole on its chassis, in wind. Headless. Each frame it checks the flag
+// (attached particles on their targets, no particle inside the chassis, the
+// pole or the terrain, strain and speed bounded); at the end it prints the
+// frame timings and the checks, and writes a picture of a few moments.
+// Exit status 0 only when every check held.
+#include <cloth/cloth.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "course.h"
+#include "course_checks.h"
+#include "flag_rig.h"
+#include "scene_render.h"
+
+using namespace vehicle_flag;
+
+namespace {
+
+constexpr float kDt = 1.0f / 60.0f;
+
+struct Options {
+    int frames = 0;  // 0: the whole course
+    uint32_t columns = 48, rows = 32;
+    std::string solver = "jacobi";
+    uint32_t iterations = 1;
+    uint32_t substeps = 1;
+    float stiffness = 1000.0f;
+    double budget_ms = 2.0;
+    std::string png = "vehicle_flag.png";
+    std::string obj_dir;
+    int obj_every = 10;
+    float max_attach_error = 1e-5f;
+    float tolerance = 1e-3f;
+    float max_strain = 1.0f;
+    float max_speed = 120.0f;
+};
+
+struct Timings {
+    std::vector<double> bullet, cloth, frame;
+};
+
+double percentile(std::vector<double> values, double p) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    return values[static_cast<size_t>(std::lround(p * static_cast<double>(values.size() - 1)))];
+}
+
+void print_timing_row(const char* name, const std::vector<double>& ms, double budget_ms) {
+    const auto overruns = std::count_if(ms.begin(), ms.end(), [&](double v) { return v > budget_ms; });
+    std::printf("%-14s %9.3f %9.3f %9.3f %9.3f %9ld\n", name, percentile(ms, 0.5), percentile(ms, 0.95),
+                percentile(ms, 0.99), percentile(ms, 1.0), static_cast<long>(overruns));
+}
+
+bool write_obj(const std::string& path, const std::vector<float>& positions,
+               const std::vector<uint32_t>& triangles) {
+    std::ofstream out(path);
+    if (!out) return false;
+    for (size_t i = 0; i < positions.size(); i += 3) {
+        out << "v " << positions[i] << ' ' << positions[i + 1] << ' ' << positions[i + 2] << '\n';
+    }
+    for (size_t t = 0; t < triangles.size(); t += 3) {
+        out << "f " << triangles[t] + 1 << ' ' << triangles[t + 1] + 1 << ' ' << triangles[t + 2] + 1 << '\n';
+    }
+    return static_cast<bool>(out);
+}
+
+cloth_solver_kind solver_kind(const std::string& name) {
+    if (name == "cg") return CLOTH_SOLVER_CG;
+    if (name == "explicit") return CLOTH_SOLVER_EXPLICIT;
+    return CLOTH_SOLVER_JACOBI;
+}
+
+// The moments shown in the picture: a phase and how long into it.
+struct MomentPlan {
+    Phase phase;
+    float after;
+    const char* label;
+};
+constexpr MomentPlan kMoments[] = {{Phase::kSlalom, 1.5f, "slalom at 30 m/s"},
+                                   {Phase::kBrake, 0.6f, "hard brake"},
+                                   {Phase::kAirborne, 0.25f, "jump"},
+                                   {Phase::kRestart, 1.0f, "after the teleport"}};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    CLI::App app{
+        "A flag on a Bullet raycast vehicle driving a scripted course; checks, timings and a picture"};
+    app.add_option("--frames", o.frames, "frames at 60 Hz (0: the whole course)")
+        ->check(CLI::Range(0, 1000000));
+    app.add_option("--columns", o.columns, "flag particles along the flag")->check(CLI::Range(2, 1024));
+    app.add_option("--rows", o.rows, "flag particles up the pole")->check(CLI::Range(2, 1024));
+    app.add_option("--solver", o.solver, "jacobi, cg or explicit")
+        ->check(CLI::IsMember({"jacobi", "cg", "explicit"}));
+    app.add_option("--iterations", o.iterations, "Jacobi iterations per substep")->check(CLI::Range(1, 256));
+    app.add_option("--substeps", o.substeps, "cloth substeps per frame")->check(CLI::Range(1, 64));
+    app.add_option("--stiffness", o.stiffness, "structural stiffness, N/m")->check(CLI::PositiveNumber);
+    app.add_option("--budget", o.budget_ms, "frame budget for the cloth step, ms (counts overruns)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--png", o.png, "picture of a few moments of the course (empty: none)");
+    app.add_option("--obj-dir", o.obj_dir, "write the flag as OBJ files into this directory (empty: none)");
+    app.add_option("--obj-every", o.obj_every, "write every Nth frame as OBJ")->check(CLI::Range(1, 1000000));
+    app.add_option("--max-attach-error", o.max_attach_error,
+                   "check: attached particles within this of targets, m");
+    app.add_option("--tolerance", o.tolerance, "check: penetration depth tolerated, m");
+    app.add_option("--max-strain", o.max_strain, "check: bound on the flag's max structural strain");
+    app.add_option("--max-speed", o.max_speed, "check: bound on the flag's max particle speed, m/s");
+    CLI11_PARSE(app, argc, argv);
+
+    const Terrain terrain;
+    VehicleWorld vehicle(terrain);
+    CourseDriver driver(terrain.layout().ramp_start_z);
+
+    FlagSettings flag_settings;
+    flag_settings.columns = o.columns;
+    flag_settings.rows = o.rows;
+    flag_settings.stiffness = o.stiffness;
+    flag_settings.solver.kind = solver_kind(o.solver);
+    flag_settings.solver.iterations = o.iterations;
+    flag_settings.solver.substeps = o.substeps;
+    FlagRig flag(flag_settings, vehicle.layout(), vehicle.chassis_pose());
+    if (!flag.ok()) {
+        std::fprintf(stderr, "%s\n", flag.error().c_str());
+        return 1;
+    }
+    std::vector<bool> skip(flag.particle_count(), false);
+    for (uint32_t index : flag.attached()) skip[index] = true;
+
+    std::printf(
+        "vehicle_flag: flag %ux%u (%u particles), solver %s, iterations %u, substeps %u, k %.0f N/m\n",
+        o.columns, o.rows, flag.particle_count(), o.solver.c_str(), o.iterations, o.substeps, o.stiffness);
+    std::printf("%6s %7s %-15s %8s %8s %7s %10s %9s %10s\n", "frame", "time_s", "phase", "speed", "z_m",
+                "wheels", "max_strain", "max_speed", "attach_err");
+
+    Timings timings;
+    Penetrations penetrations;
+    std::vector<Moment> moments;
+    size_t next_moment = 0;
+    float worst_attach = 0.0f, worst_strain = 0.0f, worst_speed = 0.0f;
+    int failed_steps = 0, frames_run = 0, bad_frames = 0;
+    Phase last_phase = driver.phase();
+
+    for (int frame = 0; o.frames == 0 || frame < o.frames; ++frame) {
+        if (o.frames == 0 && driver.done()) break;
+        const float time = frame * kDt;
+        const auto frame_start = std::chrono::steady_clock::now();
+
+        const Controls controls = driver.drive(time, vehicle);
+        if (controls.teleport) {
+            const btTransform from = vehicle.chassis_pose();
+            vehicle.teleport(vehicle.start_pose());
+            if (flag.teleport(from, vehicle.start_pose()) != CLOTH_OK) ++failed_steps;
+        }
+        vehicle.set_controls(controls.engine, controls.brake, controls.steering);
+        auto t0 = std::chrono::steady_clock::now();
+        vehicle.step(kDt);
+        timings.bullet.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+
+        // Gusty wind from ahead-left of the course.
+        const float wind[3] = {3.0f + 1.5f * std::sin(0.8f * time), 0.0f,
+                               -4.0f + 2.0f * std::sin(1.7f * time + 1.0f)};
+        flag.set_wind(wind);
+        if (flag.follow(vehicle.chassis_pose()) != CLOTH_OK) ++failed_steps;
+        t0 = std::chrono::steady_clock::now();
+        const cloth_result step = flag.step(kDt);
+        timings.cloth.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        timings.frame.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame_start)
+                .count());
+        if (step != CLOTH_OK) {
+            ++failed_steps;
+            std::fprintf(stderr, "frame %d: cloth_step: %s (%s)\n", frame, cloth_result_name(step),
+                         cloth_get_last_error());
+        }
+
+        // Checks on the state at the end of the frame.
+        const float attach = flag.attachment_error(vehicle.chassis_pose());
+        const Penetrations p = count_penetrations(flag.positions(), skip, vehicle.chassis_pose(),
+                                                  vehicle.layout(), terrain, o.tolerance);
+        cloth_stats stats{};
+        stats.struct_size = sizeof stats;
+        cloth_get_stats(flag.cloth(), &stats);
+        const bool finite = std::isfinite(stats.max_strain) && std::isfinite(stats.max_speed);
+        const bool bad = !finite || attach > o.max_attach_error || p.total() > 0 ||
+                         stats.max_strain > o.max_strain || stats.max_speed > o.max_speed;
+        bad_frames += bad;
+        penetrations.add(p);
+        worst_attach = std::max(worst_attach, attach);
+        worst_strain = finite ? std::max(worst_strain, stats.max_strain) : INFINITY;
+        worst_speed = finite ? std::max(worst_speed, stats.max_speed) : INFINITY;
+        ++frames_run;
+
+        if (frame % 60 == 0 || driver.phase() != last_phase || (bad && bad_frames <= 5)) {
+            const btVector3 origin = vehicle.chassis_pose().getOrigin();
+            std::printf("%6d %7.2f %-15s %8.2f %8.1f %7d %10.3f %9.2f %10.2e%s\n", frame, time,
+                        phase_name(driver.phase()), vehicle.forward_speed(), origin.z(),
+                        vehicle.wheels_in_contact(), stats.max_strain, stats.max_speed, attach,
+                        bad ? "  CHECK FAILED" : "");
+        }
+        last_phase = driver.phase();
+
+        if (next_moment < std::size(kMoments) && driver.phase() == kMoments[next_moment].phase &&
+            driver.phase_time(time) >= kMoments[next_moment].after) {
+            moments.push_back(
+                capture_moment(kMoments[next_moment].label, time, vehicle, flag.positions(), flag.normals()));
+            ++next_moment;
+        }
+        if (!o.obj_dir.empty() && frame % o.obj_every == 0) {
+            char name[64];
+            std::snprintf(name, sizeof name, "/flag_%05d.obj", frame);
+            if (!write_obj(o.obj_dir + name, flag.positions(), flag.triangles())) {
+                std::fprintf(stderr, "cannot write %s%s\n", o.obj_dir.c_str(), name);
+                return 1;
+            }
+        }
+    }
+
+    std::printf(
+        "\ncourse: %d frames (%.1f s), top speed %.1f m/s, longest airtime %.2f s, %d teleport(s), %s\n",
+        frames_run, frames_run * kDt, driver.top_speed(), driver.longest_airtime(), driver.teleports(),
+        driver.done() ? "course complete" : "course cut short by --frames");
+    std::printf("\nframe timings, ms (shared machine: noisy); budget %.2f ms\n", o.budget_ms);
+    std::printf("%-14s %9s %9s %9s %9s %9s\n", "stage", "p50", "p95", "p99", "max", "overruns");
+    print_timing_row("bullet step", timings.bullet, o.budget_ms);
+    print_timing_row("cloth step", timings.cloth, o.budget_ms);
+    print_timing_row("frame", timings.frame, o.budget_ms);
+
+    std::printf("\nchecks over %d frames:\n", frames_run);
+    std::printf("  attached particles: worst distance to target %.3g m (limit %.3g)\n", worst_attach,
+                o.max_attach_error);
+    std::printf("  particles inside (deeper than %.3g m): chassis %d, pole %d, terrain %d (deepest %.3g m)\n",
+                o.tolerance, penetrations.chassis, penetrations.pole, penetrations.terrain,
+                penetrations.deepest);
+    std::printf("  max strain %.3f (limit %.3g), max speed %.2f m/s (limit %.3g)\n", worst_strain,
+                o.max_strain, worst_speed, o.max_speed);
+    std::printf("  cloth calls that failed: %d; frames failing a check: %d\n", failed_steps, bad_frames);
+    int status = failed_steps == 0 && bad_frames == 0 ? 0 : 1;
+
+    if (!o.png.empty()) {
+        std::string error;
+        if (moments.empty())
+            moments.push_back(
+                capture_moment("last frame", frames_run * kDt, vehicle, flag.positions(), flag.normals()));
+        if (render_moments(o.png, moments, terrain, vehicle.layout(), flag.triangles(), 480, 360, &error)) {
+            std::printf("wrote %s:", o.png.c_str());
+            for (const Moment& m : moments) std::printf(" [%s, t=%.2f s]", m.label.c_str(), m.time);
+            std::printf("\n");
+        } else {
+            std::fprintf(stderr, "%s\n", error.c_str());
+            status = 1;
+        }
+    }
+    std::printf("%s\n", status == 0 ? "all checks passed" : "CHECKS FAILED");
+    return status;
+}
