@@ -4,6 +4,7 @@ namespace vehicle_flag {
 
 FlagRig::FlagRig(const FlagSettings& s, const VehicleLayout& vehicle, const btTransform& chassis_pose) {
     cloth_world_desc world_desc = cloth_default_world_desc();
+    world_desc.worker_count = s.threads;
     if (!check(cloth_world_create(&world_desc, &world_), "cloth_world_create")) return;
 
     // The flag in the chassis frame: its pole edge runs down the rear of the

@@ -21,6 +21,7 @@
 #include "course_checks.h"
 #include "flag_rig.h"
 #include "scene_render.h"
+#include "trace_writer.h"
 
 using namespace vehicle_flag;
 
@@ -36,6 +37,8 @@ struct Options {
     uint32_t substeps = 1;
     float stiffness = 1000.0f;
     double budget_ms = 2.0;
+    uint32_t threads = 1;
+    std::string trace;
     std::string png = "vehicle_flag.png";
     std::string obj_dir;
     int obj_every = 10;
@@ -108,6 +111,9 @@ int main(int argc, char** argv) {
     app.add_option("--stiffness", o.stiffness, "structural stiffness, N/m")->check(CLI::PositiveNumber);
     app.add_option("--budget", o.budget_ms, "frame budget for the cloth step, ms (counts overruns)")
         ->check(CLI::PositiveNumber);
+    app.add_option("--threads", o.threads, "cloth worker threads (1: the calling thread only)")
+        ->check(CLI::Range(1, 256));
+    app.add_option("--trace", o.trace, "Chrome trace-event JSON of the run (empty: none)");
     app.add_option("--png", o.png, "picture of a few moments of the course (empty: none)");
     app.add_option("--obj-dir", o.obj_dir, "write the flag as OBJ files into this directory (empty: none)");
     app.add_option("--obj-every", o.obj_every, "write every Nth frame as OBJ")->check(CLI::Range(1, 1000000));
@@ -129,6 +135,7 @@ int main(int argc, char** argv) {
     flag_settings.solver.kind = solver_kind(o.solver);
     flag_settings.solver.iterations = o.iterations;
     flag_settings.solver.substeps = o.substeps;
+    flag_settings.threads = o.threads;
     FlagRig flag(flag_settings, vehicle.layout(), vehicle.chassis_pose());
     if (!flag.ok()) {
         std::fprintf(stderr, "%s\n", flag.error().c_str());
@@ -143,6 +150,9 @@ int main(int argc, char** argv) {
     std::printf("%6s %7s %-15s %8s %8s %7s %10s %9s %10s\n", "frame", "time_s", "phase", "speed", "z_m",
                 "wheels", "max_strain", "max_speed", "attach_err");
 
+    TraceWriter trace;
+    const int frame_track = trace.track("frame"), bullet_track = trace.track("bullet"),
+              cloth_track = trace.track("cloth"), check_track = trace.track("checks");
     Timings timings;
     Penetrations penetrations;
     std::vector<Moment> moments;
@@ -154,7 +164,7 @@ int main(int argc, char** argv) {
     for (int frame = 0; o.frames == 0 || frame < o.frames; ++frame) {
         if (o.frames == 0 && driver.done()) break;
         const float time = frame * kDt;
-        const auto frame_start = std::chrono::steady_clock::now();
+        const double frame_start_us = trace.now_us();
 
         const Controls controls = driver.drive(time, vehicle);
         if (controls.teleport) {
@@ -163,30 +173,32 @@ int main(int argc, char** argv) {
             if (flag.teleport(from, vehicle.start_pose()) != CLOTH_OK) ++failed_steps;
         }
         vehicle.set_controls(controls.engine, controls.brake, controls.steering);
-        auto t0 = std::chrono::steady_clock::now();
+        double start_us = trace.now_us();
         vehicle.step(kDt);
-        timings.bullet.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        double end_us = trace.now_us();
+        timings.bullet.push_back((end_us - start_us) * 1e-3);
+        trace.add("bullet step", bullet_track, start_us, end_us - start_us);
 
         // Gusty wind from ahead-left of the course.
         const float wind[3] = {3.0f + 1.5f * std::sin(0.8f * time), 0.0f,
                                -4.0f + 2.0f * std::sin(1.7f * time + 1.0f)};
         flag.set_wind(wind);
         if (flag.follow(vehicle.chassis_pose()) != CLOTH_OK) ++failed_steps;
-        t0 = std::chrono::steady_clock::now();
+        start_us = trace.now_us();
         const cloth_result step = flag.step(kDt);
-        timings.cloth.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-        timings.frame.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame_start)
-                .count());
+        end_us = trace.now_us();
+        timings.cloth.push_back((end_us - start_us) * 1e-3);
+        timings.frame.push_back((end_us - frame_start_us) * 1e-3);
+        trace.add("cloth_step", cloth_track, start_us, end_us - start_us);
+        trace.add("frame", frame_track, frame_start_us, end_us - frame_start_us);
         if (step != CLOTH_OK) {
             ++failed_steps;
             std::fprintf(stderr, "frame %d: cloth_step: %s (%s)\n", frame, cloth_result_name(step),
                          cloth_get_last_error());
         }
 
-        // Checks on the state at the end of the frame.
+        // Checks on the state at the end of the frame (outside the frame's timing).
+        start_us = trace.now_us();
         const float attach = flag.attachment_error(vehicle.chassis_pose());
         const Penetrations p = count_penetrations(flag.positions(), skip, vehicle.chassis_pose(),
                                                   vehicle.layout(), terrain, o.tolerance);
@@ -202,6 +214,7 @@ int main(int argc, char** argv) {
         worst_strain = finite ? std::max(worst_strain, stats.max_strain) : INFINITY;
         worst_speed = finite ? std::max(worst_speed, stats.max_speed) : INFINITY;
         ++frames_run;
+        trace.add("checks", check_track, start_us, trace.now_us() - start_us);
 
         if (frame % 60 == 0 || driver.phase() != last_phase || (bad && bad_frames <= 5)) {
             const btVector3 origin = vehicle.chassis_pose().getOrigin();
@@ -249,6 +262,14 @@ int main(int argc, char** argv) {
     std::printf("  cloth calls that failed: %d; frames failing a check: %d\n", failed_steps, bad_frames);
     int status = failed_steps == 0 && bad_frames == 0 ? 0 : 1;
 
+    if (!o.trace.empty()) {
+        if (trace.write(o.trace)) {
+            std::printf("wrote %s (%zu events)\n", o.trace.c_str(), trace.event_count());
+        } else {
+            std::fprintf(stderr, "cannot write %s\n", o.trace.c_str());
+            status = 1;
+        }
+    }
     if (!o.png.empty()) {
         std::string error;
         if (moments.empty())
