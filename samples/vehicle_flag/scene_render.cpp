@@ -99,7 +99,7 @@ bool render_moments(const std::string& path, const std::vector<Moment>& moments,
         const Moment& m = moments[i];
         const btVector3 origin = m.chassis.getOrigin();
         Mesh ground, body, pole, wheels;
-        terrain.patch_mesh(origin.x(), origin.z(), 18.0f, &ground.positions, &ground.indices);
+        terrain.patch_mesh(origin.x(), origin.z(), 40.0f, &ground.positions, &ground.indices);
         append_box(m.chassis, btVector3(v.box_center[0], v.box_center[1], v.box_center[2]),
                    btVector3(v.box_half_extents[0], v.box_half_extents[1], v.box_half_extents[2]), &body);
         append_cylinder(m.chassis,
@@ -119,7 +119,7 @@ bool render_moments(const std::string& path, const std::vector<Moment>& moments,
             as_render_mesh(flag, m.flag_normals.data(), 215, 40, 45),
         };
         // Chase camera behind and to the side of the vehicle, level with the world's up.
-        const btVector3 eye = m.chassis * btVector3(5.5f, 3.5f, -8.0f);
+        const btVector3 eye = m.chassis * btVector3(4.5f, 3.4f, -6.5f);
         const btVector3 target = m.chassis * btVector3(0.0f, 2.0f, -1.5f);
         const cloth_samples::Camera camera{
             {eye.x(), eye.y(), eye.z()}, {target.x(), target.y(), target.z()}, {0, 1, 0}, 40.0f};
