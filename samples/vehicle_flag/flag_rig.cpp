@@ -6,6 +6,9 @@ FlagRig::FlagRig(const FlagSettings& s, const VehicleLayout& vehicle, const btTr
     cloth_world_desc world_desc = cloth_default_world_desc();
     world_desc.worker_count = s.threads;
     if (!check(cloth_world_create(&world_desc, &world_), "cloth_world_create")) return;
+    if (s.profile_tasks > 0 &&
+        !check(cloth_world_set_profiling(world_, s.profile_tasks), "cloth_world_set_profiling"))
+        return;
 
     // The flag in the chassis frame: its pole edge runs down the rear of the
     // pole from the top, and it streams backwards (-z), hanging in a vertical plane.

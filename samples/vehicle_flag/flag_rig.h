@@ -20,7 +20,8 @@ struct FlagSettings {
     float area_density = 0.25f;
     float stiffness = 1000.0f;  // structural N/m; shear 0.2x, bend 0.02x
     cloth_solver_settings solver = cloth_default_solver_settings();
-    uint32_t threads = 1;  // workers of the cloth world (1: the calling thread only)
+    uint32_t threads = 1;        // workers of the cloth world (1: the calling thread only)
+    uint32_t profile_tasks = 0;  // task records kept per frame (0: profiling off)
 };
 
 class FlagRig {

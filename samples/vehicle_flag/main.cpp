@@ -28,6 +28,7 @@ using namespace vehicle_flag;
 namespace {
 
 constexpr float kDt = 1.0f / 60.0f;
+constexpr uint32_t kProfileTasks = 8192;  // task records per frame, for the stage table and the trace
 
 struct Options {
     int frames = 0;  // 0: the whole course
@@ -50,6 +51,7 @@ struct Options {
 
 struct Timings {
     std::vector<double> bullet, cloth, frame;
+    std::vector<double> stages[CLOTH_MAX_STAGES];  // per cloth_stage, frames where it ran
 };
 
 double percentile(std::vector<double> values, double p) {
@@ -75,6 +77,31 @@ bool write_obj(const std::string& path, const std::vector<float>& positions,
         out << "f " << triangles[t] + 1 << ' ' << triangles[t + 1] + 1 << ' ' << triangles[t + 2] + 1 << '\n';
     }
     return static_cast<bool>(out);
+}
+
+// The cloth world's profile of the frame just stepped: per-stage times for
+// the table, and every task as a trace event on its worker's track.
+void record_profile(cloth_world_id world, double world_zero_us, Timings* timings, TraceWriter* trace,
+                    std::vector<int>* worker_tracks, std::vector<cloth_task_record>* tasks) {
+    cloth_frame_profile profile{};
+    profile.struct_size = sizeof profile;
+    if (cloth_world_get_frame_profile(world, &profile) != CLOTH_OK) return;
+    for (int stage = 0; stage < CLOTH_MAX_STAGES; ++stage) {
+        if (profile.stage_tasks[stage] > 0) timings->stages[stage].push_back(profile.stage_ms[stage]);
+    }
+    uint32_t count = 0;
+    if (cloth_world_read_task_records(world, tasks->data(), static_cast<uint32_t>(tasks->size()), &count) !=
+        CLOTH_OK) {
+        return;
+    }
+    for (uint32_t i = 0; i < count; ++i) {
+        const cloth_task_record& task = (*tasks)[i];
+        while (worker_tracks->size() <= task.worker) {
+            worker_tracks->push_back(trace->track("cloth worker " + std::to_string(worker_tracks->size())));
+        }
+        trace->add(cloth_stage_name(task.stage), (*worker_tracks)[task.worker], world_zero_us + task.start_us,
+                   task.end_us - task.start_us);
+    }
 }
 
 cloth_solver_kind solver_kind(const std::string& name) {
@@ -136,6 +163,10 @@ int main(int argc, char** argv) {
     flag_settings.solver.iterations = o.iterations;
     flag_settings.solver.substeps = o.substeps;
     flag_settings.threads = o.threads;
+    flag_settings.profile_tasks = kProfileTasks;
+    TraceWriter trace;
+    // Task records count from the cloth world's creation, the first thing FlagRig does.
+    const double world_zero_us = trace.now_us();
     FlagRig flag(flag_settings, vehicle.layout(), vehicle.chassis_pose());
     if (!flag.ok()) {
         std::fprintf(stderr, "%s\n", flag.error().c_str());
@@ -150,10 +181,11 @@ int main(int argc, char** argv) {
     std::printf("%6s %7s %-15s %8s %8s %7s %10s %9s %10s\n", "frame", "time_s", "phase", "speed", "z_m",
                 "wheels", "max_strain", "max_speed", "attach_err");
 
-    TraceWriter trace;
     const int frame_track = trace.track("frame"), bullet_track = trace.track("bullet"),
               cloth_track = trace.track("cloth"), check_track = trace.track("checks");
     Timings timings;
+    std::vector<int> worker_tracks;
+    std::vector<cloth_task_record> tasks(kProfileTasks);
     Penetrations penetrations;
     std::vector<Moment> moments;
     size_t next_moment = 0;
@@ -190,6 +222,7 @@ int main(int argc, char** argv) {
         timings.cloth.push_back((end_us - start_us) * 1e-3);
         timings.frame.push_back((end_us - frame_start_us) * 1e-3);
         trace.add("cloth_step", cloth_track, start_us, end_us - start_us);
+        record_profile(flag.world(), world_zero_us, &timings, &trace, &worker_tracks, &tasks);
         trace.add("frame", frame_track, frame_start_us, end_us - frame_start_us);
         if (step != CLOTH_OK) {
             ++failed_steps;
@@ -248,6 +281,11 @@ int main(int argc, char** argv) {
     std::printf("\nframe timings, ms (shared machine: noisy); budget %.2f ms\n", o.budget_ms);
     std::printf("%-14s %9s %9s %9s %9s %9s\n", "stage", "p50", "p95", "p99", "max", "overruns");
     print_timing_row("bullet step", timings.bullet, o.budget_ms);
+    for (int stage = 0; stage < CLOTH_MAX_STAGES; ++stage) {
+        if (timings.stages[stage].empty()) continue;
+        const std::string name = std::string("  ") + cloth_stage_name(static_cast<cloth_stage>(stage));
+        print_timing_row(name.c_str(), timings.stages[stage], o.budget_ms);
+    }
     print_timing_row("cloth step", timings.cloth, o.budget_ms);
     print_timing_row("frame", timings.frame, o.budget_ms);
 
