@@ -230,6 +230,7 @@ CLOTH_API cloth_result cloth_set_solver(cloth_id id, const cloth_solver_settings
         s = check_solver(*settings);
         if (!s.ok()) return s;
         cloth->solver() = to_core(*settings);
+        cloth->wake();
         return {};
     });
 }
@@ -281,6 +282,7 @@ CLOTH_API cloth_result cloth_set_aero(cloth_id id, const cloth_aero_params* para
         s = check_aero(*params);
         if (!s.ok()) return s;
         cloth->aero() = to_core(*params);
+        cloth->wake();
         return {};
     });
 }
@@ -293,6 +295,7 @@ CLOTH_API cloth_result cloth_set_wind(cloth_id id, const float wind[3]) {
         if (!wind) return null_error("wind");
         if (!finite3(wind)) return Status::error(CLOTH_ERROR_NOT_FINITE, "wind is not finite");
         cloth->aero().wind = Vec3(wind[0], wind[1], wind[2]);
+        cloth->wake();
         return {};
     });
 }

@@ -115,6 +115,7 @@ CLOTH_API cloth_result cloth_world_set_gravity(cloth_world_id id, const float gr
         if (!gravity) return null_error("gravity");
         if (!finite3(gravity)) return Status::error(CLOTH_ERROR_NOT_FINITE, "gravity is not finite");
         world->gravity = Vec3(gravity[0], gravity[1], gravity[2]);
+        world->wake_all();
         return {};
     });
 }

@@ -46,7 +46,8 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       normals_(memory),
       backup_x_(memory),
       backup_v_(memory),
-      group_finite_(HostAllocator<uint8_t>(memory)) {
+      group_finite_(HostAllocator<uint8_t>(memory)),
+      group_speed_squared_(HostAllocator<float>(memory)) {
     const Fabric& f = *fabric_;
     const uint32_t n = f.particle_count();
     for (Vec3Soa* a : {&x_, &v_, &pin_target_, &pin_start_, &external_force_, &rhs_, &dv_, &dv_scratch_,
@@ -63,10 +64,12 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     diagonal_inverse_.resize(n);
     group_count_ = (n + kGroupSize - 1) / kGroupSize;
     group_finite_.assign(group_count_, 1);
+    group_speed_squared_.assign(group_count_, 0.0f);
     set_material(material);
 }
 
 void ClothInstance::set_material(const Material& material) {
+    wake();
     material_ = material;
     const Fabric& f = *fabric_;
     for (uint32_t i = 0; i < f.particle_count(); ++i) {
@@ -77,6 +80,7 @@ void ClothInstance::set_material(const Material& material) {
 }
 
 void ClothInstance::set_pinned(const uint32_t* particles, uint32_t count, bool pinned) {
+    wake();
     for (uint32_t k = 0; k < count; ++k) {
         const uint32_t i = particles[k];
         if (pinned) pin_target_.set(i, x_.get(i));
@@ -89,12 +93,14 @@ void ClothInstance::set_pinned(const uint32_t* particles, uint32_t count, bool p
 }
 
 void ClothInstance::set_position(uint32_t particle, const Vec3& x) {
+    wake();
     x_.set(particle, x);
     v_.set(particle, Vec3::Zero());
     pin_target_.set(particle, x);
 }
 
 void ClothInstance::set_self_collision(const SelfCollisionSettings* settings) {
+    wake();
     if (!settings) {
         self_collision_.reset();
         return;
@@ -129,6 +135,14 @@ CLOTH_HOT_LOOP bool range_is_finite(const Vec3Soa& x, const Vec3Soa& v, uint32_t
     return std::isfinite(total);
 }
 
+// Largest squared speed on [begin, end).
+float range_max_speed_squared(const Vec3Soa& v, uint32_t begin, uint32_t end) {
+    float m = 0;
+    for (uint32_t i = begin; i < end; ++i)
+        m = std::max(m, v.x[i] * v.x[i] + v.y[i] * v.y[i] + v.z[i] * v.z[i]);
+    return m;
+}
+
 }  // namespace
 
 bool ClothInstance::state_is_finite() const {
@@ -142,6 +156,38 @@ void ClothInstance::check_finite(uint32_t group) {
     // Self-collision's response is the last stage; its velocities become v_ after the barrier.
     const Vec3Soa& v = cursor_.stage == Stage::kSelfRespond ? self_collision_->next_velocities() : v_;
     group_finite_[group] = range_is_finite(x_, v, group_begin(group), group_end(group)) ? 1 : 0;
+    group_speed_squared_[group] = range_max_speed_squared(v, group_begin(group), group_end(group));
+}
+
+void ClothInstance::set_quality_policy(const QualityPolicy& policy) {
+    quality_ = policy;
+    if (!policy.enabled) return;
+    solver_.iterations = std::clamp(solver_.iterations, policy.min_iterations, policy.max_iterations);
+    solver_.substeps = std::clamp(solver_.substeps, policy.min_substeps, policy.max_substeps);
+    wake();
+}
+
+// ---------------------------------------------------------------- sleep
+
+void ClothInstance::set_sleep(const SleepSettings& settings) {
+    sleep_ = settings;
+    wake();
+}
+
+void ClothInstance::wake() {
+    sleeping_ = false;
+    rest_frames_ = 0;
+}
+
+void ClothInstance::update_sleep() {
+    float speed_squared = 0;
+    for (float s : group_speed_squared_) speed_squared = std::max(speed_squared, s);
+    rest_frames_ = speed_squared <= sleep_.max_speed * sleep_.max_speed ? rest_frames_ + 1 : 0;
+    if (sleep_.enabled && rest_frames_ >= sleep_.frames) {
+        // At rest: stop, and cost nothing until something changes.
+        sleeping_ = true;
+        v_.fill(Vec3::Zero());
+    }
 }
 
 // ---------------------------------------------------------------- frame
@@ -149,6 +195,7 @@ void ClothInstance::check_finite(uint32_t group) {
 Status ClothInstance::step(float dt, const Vec3& gravity, TaskSystem* tasks) {
     SerialTasks serial;
     TaskSystem& runner = tasks ? *tasks : serial;
+    if (sleeping_) return {};
     begin_frame(dt, gravity);
     while (!frame_done()) {
         prepare_stage();
@@ -351,6 +398,7 @@ Status ClothInstance::end_frame() {
             "the step (lower dt, raise substeps or iterations, or use a sturdier solver)");
     }
     last_step_result_ = frame_converged_ ? CLOTH_OK : CLOTH_ERROR_SOLVER_FAILED;
+    update_sleep();
     if (!frame_converged_) {
         return Status::error(CLOTH_ERROR_SOLVER_FAILED,
                              "conjugate gradient stopped at its iteration limit (residual %g)",

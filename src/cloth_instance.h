@@ -26,6 +26,21 @@ class SpringTerms;
 class SelfCollision;
 struct SelfCollisionSettings;
 
+// When a cloth at rest goes to sleep (ClothInstance::set_sleep).
+struct SleepSettings {
+    bool enabled = true;
+    float max_speed = 1e-3f;  // m/s: every particle slower than this...
+    uint32_t frames = 60;     // ...for this many consecutive frames
+};
+
+// Bounds within which a world's frame budget may change a cloth's solver
+// iterations and substeps (budget_policy.h). Off by default.
+struct QualityPolicy {
+    bool enabled = false;
+    uint32_t min_iterations = 1, max_iterations = 8;
+    uint32_t min_substeps = 1, max_substeps = 4;
+};
+
 class ClothInstance {
   public:
     ClothInstance(const HostMemory* memory, std::shared_ptr<const Fabric> fabric, const Material& material,
@@ -60,6 +75,27 @@ class ClothInstance {
     void finish_stage();
     Status end_frame();
 
+    // Sleep: a cloth whose particles all stay below sleep().max_speed for
+    // sleep().frames frames stops (velocities zero) and is skipped by the
+    // step until wake(). Everything that changes what the cloth would do
+    // wakes it: pins and their targets, positions, material, and (through
+    // the C API) solver, air and wind, gravity, self-collision; contact
+    // features call wake() when their colliders or attachments move.
+    void set_sleep(const SleepSettings& settings);
+    const SleepSettings& sleep() const { return sleep_; }
+    bool sleeping() const { return sleeping_; }
+    void wake();
+
+    // Frame-budget policy bounds; enabling clamps the solver into them.
+    void set_quality_policy(const QualityPolicy& policy);
+    const QualityPolicy& quality_policy() const { return quality_; }
+
+    // Snapshots (cloth_snapshot.cpp): the dynamic state in a flat buffer.
+    size_t snapshot_size() const;
+    void save_snapshot(void* out) const;
+    // Validates everything before changing anything.
+    Status restore_snapshot(const void* in, size_t size);
+
     // Particle groups: [group * kGroupSize, min(n, (group + 1) * kGroupSize)).
     // Every per-particle stage runs one task per group, so tasks carry about
     // the same work; a group is a row band on grids (row-major order).
@@ -79,7 +115,10 @@ class ClothInstance {
     void pin(uint32_t particle) { set_pinned(&particle, 1, true); }
     void unpin(uint32_t particle) { set_pinned(&particle, 1, false); }
     bool is_pinned(uint32_t particle) const { return pinned_[particle] != 0.0f; }
-    void set_pin_target(uint32_t particle, const Vec3& target) { pin_target_.set(particle, target); }
+    void set_pin_target(uint32_t particle, const Vec3& target) {
+        pin_target_.set(particle, target);
+        wake();
+    }
     // Teleport a particle: new position, zero velocity (and pin target).
     void set_position(uint32_t particle, const Vec3& x);
 
@@ -165,10 +204,17 @@ class ClothInstance {
     uint32_t substeps_ = 1;
     Vec3 gravity_ = Vec3::Zero();
     bool frame_converged_ = true;
-    bool frame_out_of_memory_ = false;  // set by the serial solve task
-    Vec3Soa* sweep_current_ = nullptr;  // Jacobi: the iterate being read
-    Vec3Soa* sweep_next_ = nullptr;     // and the one being written
-    HostVector<uint8_t> group_finite_;  // per group, written by the last stage of a frame
+    bool frame_out_of_memory_ = false;       // set by the serial solve task
+    Vec3Soa* sweep_current_ = nullptr;       // Jacobi: the iterate being read
+    Vec3Soa* sweep_next_ = nullptr;          // and the one being written
+    HostVector<uint8_t> group_finite_;       // per group, written by the last stage of a frame
+    HostVector<float> group_speed_squared_;  // per group: largest |v|^2, written with group_finite_
+
+    void update_sleep();  // end of a successful frame
+    SleepSettings sleep_;
+    QualityPolicy quality_;
+    bool sleeping_ = false;
+    uint32_t rest_frames_ = 0;  // consecutive frames below sleep_.max_speed
 };
 
 }  // namespace cloth

@@ -43,11 +43,13 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       round_(HostAllocator<RoundTask>(&memory_)),
       round_times_(HostAllocator<TaskTime>(&memory_)),
       cloth_cost_ns_(HostAllocator<int64_t>(&memory_)),
-      profile_(&memory_) {
+      profile_(&memory_),
+      budget_cloths_(HostAllocator<BudgetCloth>(&memory_)) {
     fabrics_.resize(desc.max_fabrics);
     cloths_.resize(desc.max_cloths);
     stepping_.reserve(desc.max_cloths);
     cloth_cost_ns_.assign(desc.max_cloths, 0);
+    budget_cloths_.reserve(desc.max_cloths);
     profile_.origin_ns = now_ns();
     if (desc.enqueue_task) {
         tasks_ = &host_tasks_;
@@ -203,6 +205,11 @@ Status World::step(float dt) {
     for (uint32_t s = 0; s < cloths_.size(); ++s) {
         ClothInstance* cloth = cloths_[s].object.get();
         if (!cloth) continue;
+        cloth_cost_ns_[s] = 0;
+        if (cloth->sleeping()) {
+            ++profile_.sleeping_cloths;
+            continue;
+        }
         cloth->begin_frame(dt, gravity);
         cloth_cost_ns_[s] = 0;
         stepping_.push_back(s);
@@ -233,9 +240,8 @@ Status World::step(float dt) {
     }
 
     Status first_failure;
-    for (uint32_t s = 0; s < cloths_.size(); ++s) {
+    for (uint32_t s : stepping_) {
         ClothInstance* cloth = cloths_[s].object.get();
-        if (!cloth) continue;
         Status status = cloth->end_frame();
         if (status.ok()) continue;
         // A cloth that had to be restored outranks a solver warning.
@@ -247,7 +253,16 @@ Status World::step(float dt) {
         }
     }
     profile_.end_ns = now_ns();
-    if (budget_ms_ > 0) profile_.overrun = profile_.step_ms() > budget_ms_;
+    if (budget_ms_ > 0) {
+        // An overrun is reported in the profile, not as a failed step.
+        profile_.overrun = profile_.step_ms() > budget_ms_;
+        if (profile_.overrun) ++overrun_frames_;
+        budget_cloths_.clear();
+        for (uint32_t s : stepping_)
+            budget_cloths_.push_back(BudgetCloth{cloths_[s].object.get(), cloth_cost_ns_[s]});
+        budget_policy_.after_frame(budget_ms_, profile_.step_ms(), budget_cloths_.data(),
+                                   static_cast<uint32_t>(budget_cloths_.size()));
+    }
     if (zone_end_) zone_end_("cloth_step", 0, zone_user_);
     return first_failure;
 }

@@ -10,6 +10,7 @@
 
 #include <memory>
 
+#include "budget_policy.h"
 #include "cloth_instance.h"
 #include "fabric.h"
 #include "frame_profile.h"
@@ -47,6 +48,12 @@ class World {
                         const SolverSettings& solver, const AeroParams& aero, const float* initial_positions,
                         cloth_id* out);
     ClothInstance* find_cloth(cloth_id id) const;
+    // Wake every cloth (gravity changed).
+    void wake_all() {
+        for (Slot<ClothInstance>& slot : cloths_) {
+            if (slot.object) slot.object->wake();
+        }
+    }
     Status destroy_cloth(cloth_id id);
 
     // Step every cloth; a cloth that goes non-finite is restored and
@@ -62,6 +69,10 @@ class World {
     // records per frame (0: off, frees them).
     void set_profiling(uint32_t max_tasks);
     const FrameProfile& frame_profile() const { return profile_; }
+    // Per-frame CPU budget in milliseconds (0: none); with one, every frame
+    // reports overrun and the budget policy adjusts policy-enabled cloths.
+    void set_frame_budget(double ms) { budget_ms_ = ms; }
+    uint64_t overrun_frames() const { return overrun_frames_; }
     void set_zone_callbacks(cloth_zone_begin_fn* begin, cloth_zone_end_fn* end, void* user);
     // The id of the cloth in `slot` (for task records).
     cloth_id cloth_id_of(uint32_t slot, uint16_t generation) const {
@@ -109,6 +120,9 @@ class World {
     FrameProfile profile_;
     uint64_t frame_ = 0;
     double budget_ms_ = 0;
+    uint64_t overrun_frames_ = 0;
+    BudgetPolicy budget_policy_;
+    HostVector<BudgetCloth> budget_cloths_;  // reserved for every cloth slot
     cloth_zone_begin_fn* zone_begin_ = nullptr;
     cloth_zone_end_fn* zone_end_ = nullptr;
     void* zone_user_ = nullptr;

@@ -470,8 +470,9 @@ typedef struct cloth_frame_profile {
     uint32_t stage_tasks[CLOTH_MAX_STAGES];    ///< per cloth_stage: tasks run
     double worker_busy_ms[CLOTH_MAX_WORKERS];  ///< per worker: time inside tasks
     double worker_idle_ms[CLOTH_MAX_WORKERS];  ///< per worker: step_ms - busy
-    uint32_t task_count;     ///< task records kept for this frame (cloth_world_read_task_records)
-    uint32_t tasks_dropped;  ///< tasks beyond the profiling capacity, not recorded
+    uint32_t task_count;      ///< task records kept for this frame (cloth_world_read_task_records)
+    uint32_t tasks_dropped;   ///< tasks beyond the profiling capacity, not recorded
+    uint64_t overrun_frames;  ///< frames over budget since the world was created
 } cloth_frame_profile;
 
 /// One task of a frame: a group of one cloth's particles in one stage.
@@ -518,9 +519,72 @@ typedef void cloth_zone_end_fn(const char* name, uint32_t worker, void* user);
 CLOTH_API cloth_result cloth_world_set_zone_callbacks(cloth_world_id world, cloth_zone_begin_fn* begin,
                                                       cloth_zone_end_fn* end, void* user);
 
+/* Frame budget. A world may have a per-frame budget for cloth_step in
+ * milliseconds of wall time. Every frame then reports in its profile
+ * whether it overran (an overrun is not an error: cloth_step still returns
+ * CLOTH_OK). Cloths with an enabled quality policy have their Jacobi
+ * iterations and substeps lowered after a frame over budget and raised
+ * again after several frames well under it (below 70%), within the
+ * policy's bounds, from the measured cost of the frames before. */
+
+/// Set the world's frame budget in milliseconds, >= 0 (0: no budget, the default).
+CLOTH_API cloth_result cloth_world_set_frame_budget(cloth_world_id world, float milliseconds);
+
+typedef struct cloth_quality_policy {
+    uint32_t struct_size;     ///< sizeof(cloth_quality_policy)
+    bool enabled;             ///< default false
+    uint32_t min_iterations;  ///< 1..max_iterations; default 1
+    uint32_t max_iterations;  ///< ..256; default 8
+    uint32_t min_substeps;    ///< 1..max_substeps; default 1
+    uint32_t max_substeps;    ///< ..64; default 4
+} cloth_quality_policy;
+
+CLOTH_API cloth_quality_policy cloth_default_quality_policy(void);
+/// Let the world's budget change this cloth's iterations and substeps within
+/// the bounds (enabling clamps the current settings into them; the current
+/// values are read back with cloth_get_solver).
+CLOTH_API cloth_result cloth_set_quality_policy(cloth_id cloth, const cloth_quality_policy* policy);
+
+/* Sleep. A cloth whose particles all move slower than max_speed for
+ * `frames` consecutive frames goes to sleep: its velocities become zero and
+ * cloth_step skips it (it costs nothing) until something that changes its
+ * motion wakes it: pinning, unpinning, pin targets, cloth_set_positions,
+ * solver, spring, air or wind settings, gravity, self-collision settings,
+ * colliders and attachments, restoring a snapshot of an awake cloth, or
+ * cloth_wake. */
+typedef struct cloth_sleep_params {
+    uint32_t struct_size;  ///< sizeof(cloth_sleep_params)
+    bool enabled;          ///< default true
+    float max_speed;       ///< m/s, >= 0; default 0.001
+    uint32_t frames;       ///< >= 1; default 60
+} cloth_sleep_params;
+
+CLOTH_API cloth_sleep_params cloth_default_sleep_params(void);
+/// Change when the cloth sleeps (wakes it).
+CLOTH_API cloth_result cloth_set_sleep(cloth_id cloth, const cloth_sleep_params* params);
+CLOTH_API cloth_result cloth_wake(cloth_id cloth);
+CLOTH_API cloth_result cloth_is_sleeping(cloth_id cloth, bool* out_sleeping);
+
 /* ------------------------------------------------------------------ */
 /* Snapshots                                                          */
 /* ------------------------------------------------------------------ */
+
+/* A snapshot is a cloth's dynamic state in a caller's buffer: positions,
+ * velocities, pins and pin targets, solver kind, iterations and substeps,
+ * air and wind, and the sleep state. Restoring it into a cloth of the same
+ * fabric and stepping again reproduces the same bits (replays, rollback
+ * networking). Material, spring settings and feature settings are not in
+ * it. The bytes are native-endian: for this library build and machine. */
+
+/// Bytes a snapshot of this cloth needs.
+CLOTH_API cloth_result cloth_get_snapshot_size(cloth_id cloth, size_t* out_size);
+/// Write a snapshot into `buffer` of `capacity` bytes (at least the snapshot size).
+CLOTH_API cloth_result cloth_save_snapshot(cloth_id cloth, void* buffer, size_t capacity);
+/// Restore a snapshot of `size` bytes. A buffer that is not a snapshot of
+/// this version, of another particle count, or holds non-finite values is
+/// rejected (CLOTH_ERROR_INVALID_VALUE, _INVALID_COUNT or _NOT_FINITE) and
+/// the cloth is unchanged.
+CLOTH_API cloth_result cloth_restore_snapshot(cloth_id cloth, const void* buffer, size_t size);
 
 /* ------------------------------------------------------------------ */
 /* Bodies, colliders and attachments                                  */

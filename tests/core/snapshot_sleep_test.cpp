@@ -1,0 +1,182 @@
+// Snapshots reproduce a run bit for bit; bad snapshots change nothing. A
+// cloth at rest goes to sleep (and stays exactly where it is, skipped by
+// the step) and wakes when its pins, wind or gravity change.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "scenes.h"
+
+namespace {
+
+using cloth_samples::Scene;
+using cloth_samples::SceneConfig;
+using cloth_samples::SceneKind;
+
+std::vector<float> state_of(cloth_id cloth, uint32_t n) {
+    std::vector<float> state(6 * static_cast<size_t>(n));
+    EXPECT_EQ(cloth_read_positions(cloth, state.data(), 3 * n), CLOTH_OK);
+    EXPECT_EQ(cloth_read_velocities(cloth, state.data() + 3 * n, 3 * n), CLOTH_OK);
+    return state;
+}
+
+bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+SceneConfig flag() {
+    SceneConfig config;
+    config.kind = SceneKind::kFlagInWind;
+    config.resolution = 24;
+    config.solver.iterations = 2;
+    config.world.worker_count = 2;
+    return config;
+}
+
+TEST(Snapshot, RestoringAndSteppingAgainReproducesTheSameBits) {
+    Scene scene(flag());
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    const cloth_id cloth = scene.cloth();
+    const uint32_t n = scene.particle_count();
+    for (int i = 0; i < 30; ++i) ASSERT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
+    size_t size = 0;
+    ASSERT_EQ(cloth_get_snapshot_size(cloth, &size), CLOTH_OK);
+    std::vector<unsigned char> snapshot(size);
+    ASSERT_EQ(cloth_save_snapshot(cloth, snapshot.data(), size), CLOTH_OK);
+    const std::vector<float> saved = state_of(cloth, n);
+
+    for (int i = 0; i < 100; ++i) ASSERT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
+    const std::vector<float> first = state_of(cloth, n);
+    ASSERT_FALSE(same_bits(first, saved)) << "the flag moved";
+
+    // Something a replay must undo: other wind and solver settings.
+    const float calm[3] = {0.0f, 0.0f, 0.0f};
+    ASSERT_EQ(cloth_set_wind(cloth, calm), CLOTH_OK);
+    ASSERT_EQ(cloth_restore_snapshot(cloth, snapshot.data(), size), CLOTH_OK);
+    EXPECT_TRUE(same_bits(state_of(cloth, n), saved));
+    for (int i = 0; i < 100; ++i) ASSERT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
+    EXPECT_TRUE(same_bits(state_of(cloth, n), first)) << "the replay ends in the same bits";
+}
+
+TEST(Snapshot, ABadSnapshotIsRejectedAndChangesNothing) {
+    Scene scene(flag());
+    ASSERT_TRUE(scene.ok());
+    const cloth_id cloth = scene.cloth();
+    for (int i = 0; i < 10; ++i) ASSERT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
+    size_t size = 0;
+    ASSERT_EQ(cloth_get_snapshot_size(cloth, &size), CLOTH_OK);
+    std::vector<unsigned char> snapshot(size);
+    EXPECT_EQ(cloth_save_snapshot(cloth, snapshot.data(), size - 1), CLOTH_ERROR_INVALID_COUNT);
+    ASSERT_EQ(cloth_save_snapshot(cloth, snapshot.data(), size), CLOTH_OK);
+    for (int i = 0; i < 10; ++i) ASSERT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
+    const std::vector<float> before = state_of(cloth, scene.particle_count());
+
+    EXPECT_EQ(cloth_restore_snapshot(cloth, snapshot.data(), size - 4), CLOTH_ERROR_INVALID_COUNT);
+    EXPECT_EQ(cloth_restore_snapshot(cloth, nullptr, size), CLOTH_ERROR_NULL_POINTER);
+    std::vector<unsigned char> broken = snapshot;
+    broken[0] ^= 0xFF;
+    EXPECT_EQ(cloth_restore_snapshot(cloth, broken.data(), size), CLOTH_ERROR_INVALID_VALUE)
+        << "not a snapshot";
+    broken = snapshot;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    std::memcpy(broken.data() + size - 40 * sizeof(float) * 10, &nan, sizeof nan);
+    EXPECT_EQ(cloth_restore_snapshot(cloth, broken.data(), size), CLOTH_ERROR_NOT_FINITE);
+    broken = snapshot;
+    const float half = 0.5f;
+    std::memcpy(broken.data() + size - sizeof(float), &half, sizeof half);  // last pinned flag
+    EXPECT_EQ(cloth_restore_snapshot(cloth, broken.data(), size), CLOTH_ERROR_INVALID_VALUE);
+    EXPECT_TRUE(same_bits(state_of(cloth, scene.particle_count()), before)) << "nothing changed";
+}
+
+// A small, well-damped hanging cloth that settles quickly.
+SceneConfig settling() {
+    SceneConfig config;
+    config.kind = SceneKind::kHanging;
+    config.resolution = 8;
+    config.damping = 2.0f;
+    config.solver.iterations = 4;
+    return config;
+}
+
+bool sleeping(cloth_id cloth) {
+    bool s = false;
+    EXPECT_EQ(cloth_is_sleeping(cloth, &s), CLOTH_OK);
+    return s;
+}
+
+void step_until_asleep(Scene& scene) {
+    cloth_sleep_params sleep = cloth_default_sleep_params();
+    sleep.max_speed = 0.01f;
+    sleep.frames = 10;
+    ASSERT_EQ(cloth_set_sleep(scene.cloth(), &sleep), CLOTH_OK);
+    for (int i = 0; i < 3000 && !sleeping(scene.cloth()); ++i) ASSERT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
+    ASSERT_TRUE(sleeping(scene.cloth())) << "the damped cloth came to rest";
+}
+
+TEST(Sleep, AClothAtRestSleepsStaysPutAndIsSkipped) {
+    Scene scene(settling());
+    ASSERT_TRUE(scene.ok());
+    step_until_asleep(scene);
+    const std::vector<float> rest = state_of(scene.cloth(), scene.particle_count());
+    for (size_t i = 3 * scene.particle_count(); i < rest.size(); ++i)
+        ASSERT_EQ(rest[i], 0.0f) << "no velocity";
+    ASSERT_EQ(cloth_world_set_profiling(scene.world(), 100), CLOTH_OK);
+    for (int i = 0; i < 5; ++i) ASSERT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
+    EXPECT_TRUE(same_bits(state_of(scene.cloth(), scene.particle_count()), rest));
+    cloth_frame_profile p{};
+    p.struct_size = sizeof p;
+    ASSERT_EQ(cloth_world_get_frame_profile(scene.world(), &p), CLOTH_OK);
+    EXPECT_EQ(p.sleeping_cloths, 1u);
+    EXPECT_EQ(p.awake_cloths, 0u);
+    EXPECT_EQ(p.task_count, 0u) << "a sleeping cloth runs no task";
+}
+
+TEST(Sleep, PinTargetsWindAndGravityWakeTheCloth) {
+    Scene scene(settling());
+    ASSERT_TRUE(scene.ok());
+    const cloth_id cloth = scene.cloth();
+    step_until_asleep(scene);
+    const uint32_t corner = 0;
+    std::vector<float> positions = state_of(cloth, scene.particle_count());
+    const float target[3] = {positions[0] + 0.1f, positions[1], positions[2]};
+    ASSERT_EQ(cloth_set_pin_targets(cloth, &corner, target, 1), CLOTH_OK);
+    EXPECT_FALSE(sleeping(cloth)) << "a moved pin wakes it";
+    const std::vector<float> before = state_of(cloth, scene.particle_count());
+    ASSERT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
+    EXPECT_FALSE(same_bits(state_of(cloth, scene.particle_count()), before)) << "and it moves";
+
+    step_until_asleep(scene);
+    const float wind[3] = {3.0f, 0.0f, 1.0f};
+    ASSERT_EQ(cloth_set_wind(cloth, wind), CLOTH_OK);
+    EXPECT_FALSE(sleeping(cloth)) << "wind wakes it";
+
+    const float calm[3] = {0.0f, 0.0f, 0.0f};
+    ASSERT_EQ(cloth_set_wind(cloth, calm), CLOTH_OK);
+    step_until_asleep(scene);
+    const float sideways[3] = {2.0f, -9.81f, 0.0f};
+    ASSERT_EQ(cloth_world_set_gravity(scene.world(), sideways), CLOTH_OK);
+    EXPECT_FALSE(sleeping(cloth)) << "gravity wakes it";
+    ASSERT_EQ(cloth_wake(cloth), CLOTH_OK);
+}
+
+TEST(Sleep, ADisabledSleepNeverSleeps) {
+    Scene scene(settling());
+    ASSERT_TRUE(scene.ok());
+    cloth_sleep_params sleep = cloth_default_sleep_params();
+    sleep.enabled = false;
+    sleep.max_speed = 1.0f;
+    sleep.frames = 1;
+    ASSERT_EQ(cloth_set_sleep(scene.cloth(), &sleep), CLOTH_OK);
+    for (int i = 0; i < 50; ++i) ASSERT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
+    EXPECT_FALSE(sleeping(scene.cloth()));
+    sleep.frames = 0;
+    EXPECT_EQ(cloth_set_sleep(scene.cloth(), &sleep), CLOTH_ERROR_INVALID_VALUE);
+    sleep.frames = 1;
+    sleep.max_speed = -1.0f;
+    EXPECT_EQ(cloth_set_sleep(scene.cloth(), &sleep), CLOTH_ERROR_INVALID_VALUE);
+}
+
+}  // namespace
