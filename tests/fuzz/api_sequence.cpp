@@ -145,11 +145,47 @@ void host_log(cloth_log_level level, cloth_result code, const char* message, voi
     static_cast<Host*>(user)->last_logged = code;
 }
 
+// A host job system that defers each task to its finish call and runs the
+// ranges there in reverse order, as worker 0 (results must not depend on
+// the split or the order). The world calls enqueue and finish from the
+// thread that steps it, so one pending task per world suffices.
+struct HostTask {
+    cloth_task_fn* task = nullptr;
+    uint32_t item_count = 0;
+    uint32_t min_range = 0;
+    void* context = nullptr;
+    bool pending = false;
+};
+
+void* host_enqueue(cloth_task_fn* task, uint32_t item_count, uint32_t min_range, void* context, void* user) {
+    HostTask* t = static_cast<HostTask*>(user);
+    if (t->pending) broken("enqueue_task before the previous task was finished");
+    if (!task) broken("enqueue_task without a task");
+    if (item_count == 0) {
+        return nullptr;
+    }
+    *t = HostTask{task, item_count, min_range, context, true};
+    return t;
+}
+
+void host_finish(void* handle, void* user) {
+    HostTask* t = static_cast<HostTask*>(user);
+    if (handle != t || !t->pending) broken("finish_task with a handle enqueue_task did not return");
+    const uint32_t range = std::max(t->min_range, 1u);
+    for (uint32_t end = t->item_count; end > 0;) {
+        const uint32_t begin = end > range ? end - range : 0;
+        t->task(begin, end, 0, t->context);
+        end = begin;
+    }
+    t->pending = false;
+}
+
 // ---------------------------------------------------------------- state
 
 struct WorldSlot {
     cloth_world_id id{};
     Host host;
+    HostTask tasks;
     bool live = false;
     bool counted = false;  // uses the counting allocator
 };
@@ -323,6 +359,22 @@ void Harness::world_create() {
     } else {
         desc.max_cloths = 8;
         desc.max_fabrics = 6;
+    }
+    // Jobs: the world's own threads (a few), or the host job system above.
+    const uint8_t jobs = in_.u8();
+    static const uint32_t kBadWorkers[] = {257, 1000, 0xFFFFFFFFu, 0x80000000u};
+    desc.worker_count = jobs < 240 ? jobs % 4 : kBadWorkers[jobs % 4];
+    if (jobs & 4) {
+        w.tasks = HostTask{};
+        desc.enqueue_task = host_enqueue;
+        desc.finish_task = host_finish;
+        desc.task_user = &w.tasks;
+        if (jobs & 8) {  // only one of the two: rejected
+            if (jobs & 16)
+                desc.enqueue_task = nullptr;
+            else
+                desc.finish_task = nullptr;
+        }
     }
     if (flags & 32) desc.struct_size = in_.u8();
     if (flags & 64) desc.internal_cookie ^= in_.u32() | 1;
