@@ -227,6 +227,7 @@ class Harness {
     void stats();
     void allocator_schedule();
     void null_arguments();
+    void self_collision();
 
     void add_fabric(cloth_fabric_id id) { fabrics_[next_fabric_++ % kFabricSlots] = id; }
     void add_cloth(cloth_id id) { cloths_[next_cloth_++ % kClothSlots] = id; }
@@ -590,7 +591,10 @@ void Harness::step() {
         cloth_solver_settings s{};
         uint32_t n = 0;
         if (cloth_get_particle_count(c, &n) != CLOTH_OK || cloth_get_solver(c, &s) != CLOTH_OK) continue;
-        const uint64_t per_substep = s.kind == CLOTH_SOLVER_CG ? s.cg_max_iterations + 1 : s.iterations + 1;
+        uint64_t per_substep = s.kind == CLOTH_SOLVER_CG ? s.cg_max_iterations + 1 : s.iterations + 1;
+        cloth_self_collision_desc sc{};
+        sc.struct_size = sizeof sc;
+        if (cloth_get_self_collision(c, &sc) == CLOTH_OK && sc.enabled) per_substep += 4 + sc.passes;
         work += uint64_t{n} * s.substeps * per_substep;
     }
     if (work > kStepWorkBudget || work_ + work > kInputWorkBudget) return;
@@ -766,6 +770,38 @@ void Harness::null_arguments() {
             break;
         default:
             check(cloth_set_solver(cloth, nullptr), "cloth_set_solver");
+    }
+}
+
+void Harness::self_collision() {
+    const cloth_id id = pick_cloth();
+    const uint8_t what = in_.u8();
+    switch (what % 3) {
+        case 0: {
+            cloth_self_collision_desc d = cloth_default_self_collision_desc();
+            const uint8_t flags = in_.u8();
+            d.enabled = flags & 1;
+            if (flags & 2) d.thickness = in_.any_float();
+            if (flags & 4) d.friction = in_.any_float();
+            if (flags & 8) d.use_regions = !d.use_regions;
+            if (flags & 16) d.passes = in_.count(16, 16);
+            if (flags & 32) d.struct_size = in_.u8();
+            if (flags & 64) d.internal_cookie = in_.u32();
+            check(cloth_set_self_collision(id, &d), "cloth_set_self_collision");
+            break;
+        }
+        case 1: {
+            cloth_self_collision_desc d{};
+            d.struct_size = sizeof d;
+            check(cloth_get_self_collision(id, (what & 0x80) ? nullptr : &d), "cloth_get_self_collision");
+            break;
+        }
+        default: {
+            cloth_self_collision_stats st{};
+            st.struct_size = in_.u8() < 224 ? sizeof st : in_.u8();
+            check(cloth_get_self_collision_stats(id, (what & 0x80) ? nullptr : &st),
+                  "cloth_get_self_collision_stats");
+        }
     }
 }
 

@@ -111,6 +111,14 @@ std::vector<std::vector<uint8_t>> seed_inputs() {
     stale.op(kClothDestroy).u8(250).u8(1).u16(1).u16(1).u16(1);
     seeds.push_back(stale.bytes);
 
+    // Self-collision on a flag, stepped, then its stats read and turned off.
+    Encoder self;
+    self.world(0).grid(0, 12, 12).cloth(0, 0).pin2(0, 0, 11);
+    self.op(kSelfCollision).slot(0).u8(0).u8(1).step(0, 4);
+    self.op(kSelfCollision).slot(0).u8(2).u8(0).op(kSelfCollision).slot(0).u8(1);
+    self.op(kSelfCollision).slot(0).u8(0).u8(0).step(0, 1);
+    seeds.push_back(self.bytes);
+
     return seeds;
 }
 
