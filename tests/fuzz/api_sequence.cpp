@@ -228,6 +228,7 @@ class Harness {
     void allocator_schedule();
     void null_arguments();
     void self_collision();
+    void profiling();
 
     void add_fabric(cloth_fabric_id id) { fabrics_[next_fabric_++ % kFabricSlots] = id; }
     void add_cloth(cloth_id id) { cloths_[next_cloth_++ % kClothSlots] = id; }
@@ -801,6 +802,68 @@ void Harness::self_collision() {
             st.struct_size = in_.u8() < 224 ? sizeof st : in_.u8();
             check(cloth_get_self_collision_stats(id, (what & 0x80) ? nullptr : &st),
                   "cloth_get_self_collision_stats");
+        }
+    }
+}
+
+// Zone callbacks may run on several workers at once: they only check their
+// arguments.
+void zone_check(const char* name, uint32_t worker, void*) {
+    if (!name || !*name) broken("a profiler zone without a name");
+    if (worker >= CLOTH_MAX_WORKERS) broken("a profiler zone with a worker index out of range");
+}
+
+void Harness::profiling() {
+    const cloth_world_id world = pick_world();
+    const uint8_t what = in_.u8();
+    switch (what % 5) {
+        case 0: {
+            // Small capacities, or ones the library must refuse (> 2^24).
+            const uint8_t b = in_.u8();
+            static const uint32_t kBig[] = {(1u << 24) + 1, 0xFFFFFFFFu, 4096, 0x80000000u};
+            const uint32_t max_tasks = b < 224 ? b % 65 : kBig[b % 4];
+            check(cloth_world_set_profiling(world, max_tasks), "cloth_world_set_profiling");
+            break;
+        }
+        case 1: {
+            cloth_frame_profile p{};
+            p.struct_size = in_.u8() < 224 ? sizeof p : in_.u8();
+            check(cloth_world_get_frame_profile(world, (what & 0x80) ? nullptr : &p),
+                  "cloth_world_get_frame_profile");
+            break;
+        }
+        case 2: {
+            const uint32_t capacity = in_.u8() % 80;  // the buffer is exactly this long
+            std::vector<cloth_task_record> records(std::max(capacity, 1u));
+            uint32_t count = 0;
+            const cloth_result r = check(cloth_world_read_task_records(world, records.data(), capacity,
+                                                                       (what & 0x80) ? nullptr : &count),
+                                         "cloth_world_read_task_records");
+            if (r == CLOTH_OK && count > capacity)
+                broken("cloth_world_read_task_records reported more than capacity");
+            break;
+        }
+        case 3: {
+            // Size query, then a buffer of exactly the capacity claimed (maybe short).
+            size_t size = 0;
+            if (check(cloth_world_write_trace_json(world, nullptr, 0, &size),
+                      "cloth_world_write_trace_json") != CLOTH_OK)
+                break;
+            const size_t capacity = in_.u8() < 192 ? size : size / 2;
+            std::vector<char> text(std::max<size_t>(capacity, 1), '\x7f');
+            const cloth_result r = check(cloth_world_write_trace_json(world, text.data(), capacity, &size),
+                                         "cloth_world_write_trace_json");
+            if (r == CLOTH_OK && (capacity == 0 || std::memchr(text.data(), '\0', capacity) == nullptr))
+                broken("cloth_world_write_trace_json wrote no terminating NUL");
+            break;
+        }
+        default: {
+            const bool on = what & 0x40;
+            check(cloth_world_set_zone_callbacks(world, on ? zone_check : nullptr,
+                                                 (on || (what & 0x20)) ? zone_check : nullptr, nullptr),
+                  "cloth_world_set_zone_callbacks");
+            if (!cloth_stage_name(static_cast<cloth_stage>(in_.u32())))
+                broken("cloth_stage_name returned NULL");
         }
     }
 }

@@ -36,6 +36,7 @@ enum Op : uint8_t {
     kAllocatorSchedule,  // make a world's allocator fail after n more allocations
     kNullArguments,      // a function called with a NULL pointer argument
     kSelfCollision,      // set/get self-collision, its stats
+    kProfiling,          // profiling, frame profile, task records, trace JSON, zone callbacks
     kOpCount
 };
 

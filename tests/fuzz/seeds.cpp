@@ -19,6 +19,7 @@ struct Encoder {
         return *this;
     }
     Encoder& u16(uint16_t v) { return u8(v & 0xFF).u8(v >> 8); }
+    Encoder& u32(uint32_t v) { return u16(v & 0xFFFF).u16(v >> 16); }
     Encoder& op(Op o) { return u8(o); }
     // Edge values, by their index in Bytes::any_float's table.
     Encoder& edge(uint8_t index) { return u8(index); }
@@ -118,6 +119,15 @@ std::vector<std::vector<uint8_t>> seed_inputs() {
     self.op(kSelfCollision).slot(0).u8(2).u8(0).op(kSelfCollision).slot(0).u8(1);
     self.op(kSelfCollision).slot(0).u8(0).u8(0).step(0, 1);
     seeds.push_back(self.bytes);
+
+    // Profiling on a world with two workers: records, profile, trace JSON, zones.
+    Encoder profile;
+    profile.world(0, 2).grid(0, 8, 8).cloth(0, 0);
+    profile.op(kProfiling).slot(0).u8(0).u8(32).op(kProfiling).slot(0).u8(4 | 0x40).u32(3).step(0, 2);
+    profile.op(kProfiling).slot(0).u8(1).u8(0).op(kProfiling).slot(0).u8(2).u8(40);
+    profile.op(kProfiling).slot(0).u8(3).u8(0).op(kProfiling).slot(0).u8(3).u8(255);
+    profile.op(kProfiling).slot(0).u8(0).u8(0);
+    seeds.push_back(profile.bytes);
 
     return seeds;
 }
