@@ -870,7 +870,8 @@ void Harness::profiling() {
 
 RunStats Harness::run() {
     for (size_t calls = 0; calls < kMaxCalls && !in_.empty(); ++calls) {
-        switch (in_.u8() % kOpCount) {
+        // -Werror=switch (CMakeLists.txt): every opcode must have its case.
+        switch (static_cast<Op>(in_.u8() % kOpCount)) {
             case kWorldCreate:
                 world_create();
                 break;
@@ -928,7 +929,13 @@ RunStats Harness::run() {
             case kNullArguments:
                 null_arguments();
                 break;
-            default:
+            case kSelfCollision:
+                self_collision();
+                break;
+            case kProfiling:
+                profiling();
+                break;
+            case kOpCount:
                 break;
         }
     }

@@ -123,7 +123,8 @@ std::vector<std::vector<uint8_t>> seed_inputs() {
     // Profiling on a world with two workers: records, profile, trace JSON, zones.
     Encoder profile;
     profile.world(0, 2).grid(0, 8, 8).cloth(0, 0);
-    profile.op(kProfiling).slot(0).u8(0).u8(32).op(kProfiling).slot(0).u8(4 | 0x40).u32(3).step(0, 2);
+    profile.op(kProfiling).slot(0).u8(0).u8(32).op(kProfiling).slot(0).u8(0x40).u32(3).step(0, 2);  // zones
+                                                                                                    // on
     profile.op(kProfiling).slot(0).u8(1).u8(0).op(kProfiling).slot(0).u8(2).u8(40);
     profile.op(kProfiling).slot(0).u8(3).u8(0).op(kProfiling).slot(0).u8(3).u8(255);
     profile.op(kProfiling).slot(0).u8(0).u8(0);
