@@ -145,11 +145,47 @@ void host_log(cloth_log_level level, cloth_result code, const char* message, voi
     static_cast<Host*>(user)->last_logged = code;
 }
 
+// A host job system that defers each task to its finish call and runs the
+// ranges there in reverse order, as worker 0 (results must not depend on
+// the split or the order). The world calls enqueue and finish from the
+// thread that steps it, so one pending task per world suffices.
+struct HostTask {
+    cloth_task_fn* task = nullptr;
+    uint32_t item_count = 0;
+    uint32_t min_range = 0;
+    void* context = nullptr;
+    bool pending = false;
+};
+
+void* host_enqueue(cloth_task_fn* task, uint32_t item_count, uint32_t min_range, void* context, void* user) {
+    HostTask* t = static_cast<HostTask*>(user);
+    if (t->pending) broken("enqueue_task before the previous task was finished");
+    if (!task) broken("enqueue_task without a task");
+    if (item_count == 0) {
+        return nullptr;
+    }
+    *t = HostTask{task, item_count, min_range, context, true};
+    return t;
+}
+
+void host_finish(void* handle, void* user) {
+    HostTask* t = static_cast<HostTask*>(user);
+    if (handle != t || !t->pending) broken("finish_task with a handle enqueue_task did not return");
+    const uint32_t range = std::max(t->min_range, 1u);
+    for (uint32_t end = t->item_count; end > 0;) {
+        const uint32_t begin = end > range ? end - range : 0;
+        t->task(begin, end, 0, t->context);
+        end = begin;
+    }
+    t->pending = false;
+}
+
 // ---------------------------------------------------------------- state
 
 struct WorldSlot {
     cloth_world_id id{};
     Host host;
+    HostTask tasks;
     bool live = false;
     bool counted = false;  // uses the counting allocator
 };
@@ -191,6 +227,8 @@ class Harness {
     void stats();
     void allocator_schedule();
     void null_arguments();
+    void self_collision();
+    void profiling();
 
     void add_fabric(cloth_fabric_id id) { fabrics_[next_fabric_++ % kFabricSlots] = id; }
     void add_cloth(cloth_id id) { cloths_[next_cloth_++ % kClothSlots] = id; }
@@ -323,6 +361,22 @@ void Harness::world_create() {
     } else {
         desc.max_cloths = 8;
         desc.max_fabrics = 6;
+    }
+    // Jobs: the world's own threads (a few), or the host job system above.
+    const uint8_t jobs = in_.u8();
+    static const uint32_t kBadWorkers[] = {257, 1000, 0xFFFFFFFFu, 0x80000000u};
+    desc.worker_count = jobs < 240 ? jobs % 4 : kBadWorkers[jobs % 4];
+    if (jobs & 4) {
+        w.tasks = HostTask{};
+        desc.enqueue_task = host_enqueue;
+        desc.finish_task = host_finish;
+        desc.task_user = &w.tasks;
+        if (jobs & 8) {  // only one of the two: rejected
+            if (jobs & 16)
+                desc.enqueue_task = nullptr;
+            else
+                desc.finish_task = nullptr;
+        }
     }
     if (flags & 32) desc.struct_size = in_.u8();
     if (flags & 64) desc.internal_cookie ^= in_.u32() | 1;
@@ -538,7 +592,10 @@ void Harness::step() {
         cloth_solver_settings s{};
         uint32_t n = 0;
         if (cloth_get_particle_count(c, &n) != CLOTH_OK || cloth_get_solver(c, &s) != CLOTH_OK) continue;
-        const uint64_t per_substep = s.kind == CLOTH_SOLVER_CG ? s.cg_max_iterations + 1 : s.iterations + 1;
+        uint64_t per_substep = s.kind == CLOTH_SOLVER_CG ? s.cg_max_iterations + 1 : s.iterations + 1;
+        cloth_self_collision_desc sc{};
+        sc.struct_size = sizeof sc;
+        if (cloth_get_self_collision(c, &sc) == CLOTH_OK && sc.enabled) per_substep += 4 + sc.passes;
         work += uint64_t{n} * s.substeps * per_substep;
     }
     if (work > kStepWorkBudget || work_ + work > kInputWorkBudget) return;
@@ -717,9 +774,104 @@ void Harness::null_arguments() {
     }
 }
 
+void Harness::self_collision() {
+    const cloth_id id = pick_cloth();
+    const uint8_t what = in_.u8();
+    switch (what % 3) {
+        case 0: {
+            cloth_self_collision_desc d = cloth_default_self_collision_desc();
+            const uint8_t flags = in_.u8();
+            d.enabled = flags & 1;
+            if (flags & 2) d.thickness = in_.any_float();
+            if (flags & 4) d.friction = in_.any_float();
+            if (flags & 8) d.use_regions = !d.use_regions;
+            if (flags & 16) d.passes = in_.count(16, 16);
+            if (flags & 32) d.struct_size = in_.u8();
+            if (flags & 64) d.internal_cookie = in_.u32();
+            check(cloth_set_self_collision(id, &d), "cloth_set_self_collision");
+            break;
+        }
+        case 1: {
+            cloth_self_collision_desc d{};
+            d.struct_size = sizeof d;
+            check(cloth_get_self_collision(id, (what & 0x80) ? nullptr : &d), "cloth_get_self_collision");
+            break;
+        }
+        default: {
+            cloth_self_collision_stats st{};
+            st.struct_size = in_.u8() < 224 ? sizeof st : in_.u8();
+            check(cloth_get_self_collision_stats(id, (what & 0x80) ? nullptr : &st),
+                  "cloth_get_self_collision_stats");
+        }
+    }
+}
+
+// Zone callbacks may run on several workers at once: they only check their
+// arguments.
+void zone_check(const char* name, uint32_t worker, void*) {
+    if (!name || !*name) broken("a profiler zone without a name");
+    if (worker >= CLOTH_MAX_WORKERS) broken("a profiler zone with a worker index out of range");
+}
+
+void Harness::profiling() {
+    const cloth_world_id world = pick_world();
+    const uint8_t what = in_.u8();
+    switch (what % 5) {
+        case 0: {
+            // Small capacities, or ones the library must refuse (> 2^24).
+            const uint8_t b = in_.u8();
+            static const uint32_t kBig[] = {(1u << 24) + 1, 0xFFFFFFFFu, 4096, 0x80000000u};
+            const uint32_t max_tasks = b < 224 ? b % 65 : kBig[b % 4];
+            check(cloth_world_set_profiling(world, max_tasks), "cloth_world_set_profiling");
+            break;
+        }
+        case 1: {
+            cloth_frame_profile p{};
+            p.struct_size = in_.u8() < 224 ? sizeof p : in_.u8();
+            check(cloth_world_get_frame_profile(world, (what & 0x80) ? nullptr : &p),
+                  "cloth_world_get_frame_profile");
+            break;
+        }
+        case 2: {
+            const uint32_t capacity = in_.u8() % 80;  // the buffer is exactly this long
+            std::vector<cloth_task_record> records(std::max(capacity, 1u));
+            uint32_t count = 0;
+            const cloth_result r = check(cloth_world_read_task_records(world, records.data(), capacity,
+                                                                       (what & 0x80) ? nullptr : &count),
+                                         "cloth_world_read_task_records");
+            if (r == CLOTH_OK && count > capacity)
+                broken("cloth_world_read_task_records reported more than capacity");
+            break;
+        }
+        case 3: {
+            // Size query, then a buffer of exactly the capacity claimed (maybe short).
+            size_t size = 0;
+            if (check(cloth_world_write_trace_json(world, nullptr, 0, &size),
+                      "cloth_world_write_trace_json") != CLOTH_OK)
+                break;
+            const size_t capacity = in_.u8() < 192 ? size : size / 2;
+            std::vector<char> text(std::max<size_t>(capacity, 1), '\x7f');
+            const cloth_result r = check(cloth_world_write_trace_json(world, text.data(), capacity, &size),
+                                         "cloth_world_write_trace_json");
+            if (r == CLOTH_OK && (capacity == 0 || std::memchr(text.data(), '\0', capacity) == nullptr))
+                broken("cloth_world_write_trace_json wrote no terminating NUL");
+            break;
+        }
+        default: {
+            const bool on = what & 0x40;
+            check(cloth_world_set_zone_callbacks(world, on ? zone_check : nullptr,
+                                                 (on || (what & 0x20)) ? zone_check : nullptr, nullptr),
+                  "cloth_world_set_zone_callbacks");
+            if (!cloth_stage_name(static_cast<cloth_stage>(in_.u32())))
+                broken("cloth_stage_name returned NULL");
+        }
+    }
+}
+
 RunStats Harness::run() {
     for (size_t calls = 0; calls < kMaxCalls && !in_.empty(); ++calls) {
-        switch (in_.u8() % kOpCount) {
+        // -Werror=switch (CMakeLists.txt): every opcode must have its case.
+        switch (static_cast<Op>(in_.u8() % kOpCount)) {
             case kWorldCreate:
                 world_create();
                 break;
@@ -777,7 +929,13 @@ RunStats Harness::run() {
             case kNullArguments:
                 null_arguments();
                 break;
-            default:
+            case kSelfCollision:
+                self_collision();
+                break;
+            case kProfiling:
+                profiling();
+                break;
+            case kOpCount:
                 break;
         }
     }

@@ -35,6 +35,8 @@ enum Op : uint8_t {
     kStats,
     kAllocatorSchedule,  // make a world's allocator fail after n more allocations
     kNullArguments,      // a function called with a NULL pointer argument
+    kSelfCollision,      // set/get self-collision, its stats
+    kProfiling,          // profiling, frame profile, task records, trace JSON, zone callbacks
     kOpCount
 };
 

@@ -16,7 +16,8 @@ unsigned long long g_inputs = 0;
 void print_totals() {
     std::printf("cloth fuzz: %llu inputs, %llu C API calls, %llu rejected with an error code, %llu steps\n",
                 g_inputs, static_cast<unsigned long long>(g_total.calls),
-                static_cast<unsigned long long>(g_total.rejected), static_cast<unsigned long long>(g_total.steps));
+                static_cast<unsigned long long>(g_total.rejected),
+                static_cast<unsigned long long>(g_total.steps));
 }
 }  // namespace
 

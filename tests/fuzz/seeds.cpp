@@ -19,6 +19,7 @@ struct Encoder {
         return *this;
     }
     Encoder& u16(uint16_t v) { return u8(v & 0xFF).u8(v >> 8); }
+    Encoder& u32(uint32_t v) { return u16(v & 0xFFFF).u16(v >> 16); }
     Encoder& op(Op o) { return u8(o); }
     // Edge values, by their index in Bytes::any_float's table.
     Encoder& edge(uint8_t index) { return u8(index); }
@@ -26,7 +27,8 @@ struct Encoder {
     Encoder& small(float v) { return u8(100).u8(static_cast<uint8_t>(v * 16.0f + 128.0f)); }
     Encoder& slot(uint8_t s) { return u8(s); }
 
-    Encoder& world(uint8_t flags) { return op(kWorldCreate).u8(flags); }
+    // A world; `jobs`: worker_count in bits 0-1, bit 2 the host job system.
+    Encoder& world(uint8_t flags, uint8_t jobs = 0) { return op(kWorldCreate).u8(flags).u8(jobs); }
     Encoder& grid(uint8_t world, uint8_t columns, uint8_t rows) {
         return op(kFabricGrid).slot(world).u8(0).u8(columns).u8(rows);
     }
@@ -52,9 +54,10 @@ struct Encoder {
 std::vector<std::vector<uint8_t>> seed_inputs() {
     std::vector<std::vector<uint8_t>> seeds;
 
-    // A pinned flag in wind on the default heap, stepped and read back.
+    // A pinned flag in wind on the default heap and two worker threads,
+    // stepped and read back.
     Encoder flag;
-    flag.world(0).grid(0, 16, 12).cloth(0, 0).pin2(0, 0, 15).wind(0, 6.0f, 1.0f).step(0, 12);
+    flag.world(0, 2).grid(0, 16, 12).cloth(0, 0).pin2(0, 0, 15).wind(0, 6.0f, 1.0f).step(0, 12);
     flag.read(0, 0).read(0, 1).read(0, 2).op(kStats).slot(0).u8(0);
     seeds.push_back(flag.bytes);
 
@@ -94,9 +97,9 @@ std::vector<std::vector<uint8_t>> seed_inputs() {
     blow_up.step(0, 3);
     seeds.push_back(blow_up.bytes);
 
-    // The CG reference solver on a small grid.
+    // The CG reference solver on a small grid, on the host job system.
     Encoder cg;
-    cg.world(0).grid(0, 6, 6).cloth(0, 0);
+    cg.world(0, 4 | 1).grid(0, 6, 6).cloth(0, 0);
     cg.op(kSolver).slot(0).u8(2).u8(2).u8(1).u8(1).small(0.0625f).u8(40);
     cg.step(0, 2);
     seeds.push_back(cg.bytes);
@@ -108,6 +111,24 @@ std::vector<std::vector<uint8_t>> seed_inputs() {
     for (uint8_t k = 0; k < 12; ++k) stale.op(kNullArguments).slot(0).slot(0).slot(0).u8(k);
     stale.op(kClothDestroy).u8(250).u8(1).u16(1).u16(1).u16(1);
     seeds.push_back(stale.bytes);
+
+    // Self-collision on a flag, stepped, then its stats read and turned off.
+    Encoder self;
+    self.world(0).grid(0, 12, 12).cloth(0, 0).pin2(0, 0, 11);
+    self.op(kSelfCollision).slot(0).u8(0).u8(1).step(0, 4);
+    self.op(kSelfCollision).slot(0).u8(2).u8(0).op(kSelfCollision).slot(0).u8(1);
+    self.op(kSelfCollision).slot(0).u8(0).u8(0).step(0, 1);
+    seeds.push_back(self.bytes);
+
+    // Profiling on a world with two workers: records, profile, trace JSON, zones.
+    Encoder profile;
+    profile.world(0, 2).grid(0, 8, 8).cloth(0, 0);
+    profile.op(kProfiling).slot(0).u8(0).u8(32).op(kProfiling).slot(0).u8(0x40).u32(3).step(0, 2);  // zones
+                                                                                                    // on
+    profile.op(kProfiling).slot(0).u8(1).u8(0).op(kProfiling).slot(0).u8(2).u8(40);
+    profile.op(kProfiling).slot(0).u8(3).u8(0).op(kProfiling).slot(0).u8(3).u8(255);
+    profile.op(kProfiling).slot(0).u8(0).u8(0);
+    seeds.push_back(profile.bytes);
 
     return seeds;
 }
