@@ -229,7 +229,9 @@ CLOTH_API cloth_result cloth_set_solver(cloth_id id, const cloth_solver_settings
         if (!settings) return null_error("settings");
         s = check_solver(*settings);
         if (!s.ok()) return s;
-        cloth->solver() = to_core(*settings);
+        SolverSettings core = to_core(*settings);
+        core.strain_limit = cloth->solver().strain_limit;
+        cloth->solver() = core;
         return {};
     });
 }
