@@ -39,7 +39,10 @@ struct StrainLimit {
 };
 
 struct SolverSettings {
-    cloth_solver_kind kind = CLOTH_SOLVER_DEFAULT;  // resolved per step (solver_default.h)
+    // The core's own default is the paper's method, which internal tests
+    // build on; the public default (cloth_default_solver_settings) is
+    // CLOTH_SOLVER_DEFAULT, resolved per frame (solver_default.h).
+    cloth_solver_kind kind = CLOTH_SOLVER_JACOBI;
     uint32_t iterations = 1;
     uint32_t substeps = 1;
     float cg_tolerance = 1e-6f;
