@@ -200,38 +200,23 @@ Stage ClothInstance::next_stage(Stage current) const {
         case Stage::kAssemble:
             // Solver dispatch: the stages that turn the assembled system into dv.
             if (frame_solver_.kind == CLOTH_SOLVER_CG) return Stage::kSerialSolve;
-            if (frame_solver_.kind == CLOTH_SOLVER_PCG) return Stage::kPcgStart;
-            if (frame_solver_.kind == CLOTH_SOLVER_CHEBYSHEV) return Stage::kChebyshevBound;
+            if (frame_solver_.kind == CLOTH_SOLVER_PCG || frame_solver_.kind == CLOTH_SOLVER_CHEBYSHEV)
+                return Stage::kIterativeSolve;
             return Stage::kJacobiSweep;
         case Stage::kJacobiSweep:
             return cursor_.sweep + 1 < frame_solver_.iterations ? Stage::kJacobiSweep : Stage::kIntegrate;
         case Stage::kSerialSolve:
             return Stage::kIntegrate;
-        case Stage::kPcgStart:
-            return iterative_.go_on ? Stage::kPcgProduct : Stage::kIntegrate;
-        case Stage::kPcgProduct:
-            return iterative_.go_on ? Stage::kPcgUpdate : Stage::kIntegrate;
-        case Stage::kPcgUpdate:
-            return iterative_.go_on ? Stage::kPcgDirection : Stage::kIntegrate;
-        case Stage::kPcgDirection:
-            return Stage::kPcgProduct;
-        case Stage::kChebyshevBound:
-            return Stage::kChebyshevStart;
-        case Stage::kChebyshevStart:
-            return Stage::kChebyshevProduct;
-        case Stage::kChebyshevProduct:
-            return iterative_.go_on ? Stage::kChebyshevDirection : Stage::kIntegrate;
-        case Stage::kChebyshevDirection:
-            return Stage::kChebyshevProduct;
+        case Stage::kIterativeSolve:
+            return iterative_.go_on ? Stage::kIterativeSolve : Stage::kIntegrate;
         case Stage::kIntegrate:
         case Stage::kExplicit:
             if (frame_solver_.strain_limit.max_strain > 0) return Stage::kStrainLimit;
             return stage_after_solve();
         case Stage::kStrainLimit:
-            return Stage::kStrainApply;
-        case Stage::kStrainApply:
-            return cursor_.sweep + 1 < frame_solver_.strain_limit.iterations ? Stage::kStrainLimit
-                                                                             : stage_after_solve();
+            // Rounds alternate corrections (even) and their application (odd).
+            return cursor_.sweep + 1 < 2 * frame_solver_.strain_limit.iterations ? Stage::kStrainLimit
+                                                                                 : stage_after_solve();
         case Stage::kCollisions:
             return self_collision_ ? Stage::kSelfCollision : Stage::kCount;
         case Stage::kSelfCollision:
@@ -299,19 +284,21 @@ void ClothInstance::finish_stage() {
         case Stage::kSelfRespond:
             self_collision_->apply_velocities(v_);
             break;
-        case Stage::kPcgStart:
-        case Stage::kPcgProduct:
-        case Stage::kPcgUpdate:
-        case Stage::kChebyshevBound:
-        case Stage::kChebyshevStart:
-        case Stage::kChebyshevProduct:
+        case Stage::kAssemble:
+            iterative_.phase = frame_solver_.kind == CLOTH_SOLVER_PCG
+                                   ? IterativeSolve::Phase::kPcgStart
+                                   : IterativeSolve::Phase::kChebyshevBound;
+            break;
+        case Stage::kIterativeSolve:
             finish_iterative_stage();
             break;
         default:
             break;
     }
     Stage next = next_stage(cursor_.stage);
-    if (cursor_.stage == Stage::kStrainApply)
+    if (cursor_.stage == Stage::kIterativeSolve && next == Stage::kIterativeSolve)
+        iterative_.phase = iterative_.next;
+    if (cursor_.stage == Stage::kStrainLimit)
         cursor_.sweep = next == Stage::kStrainLimit ? cursor_.sweep + 1 : 0;
     if (cursor_.stage == Stage::kSelfProject)
         cursor_.sweep = next == Stage::kSelfProject ? cursor_.sweep + 1 : 0;
@@ -352,18 +339,10 @@ void ClothInstance::run_task(uint32_t task, uint32_t) {
         case Stage::kSerialSolve:
             run_serial_solve();
             return;
-        case Stage::kPcgStart:
-        case Stage::kPcgProduct:
-        case Stage::kPcgUpdate:
-        case Stage::kPcgDirection:
-        case Stage::kChebyshevBound:
-        case Stage::kChebyshevStart:
-        case Stage::kChebyshevProduct:
-        case Stage::kChebyshevDirection:
+        case Stage::kIterativeSolve:
             run_iterative_solver(task);
             break;
         case Stage::kStrainLimit:
-        case Stage::kStrainApply:
             run_strain_limit(task);
             break;
         case Stage::kIntegrate:
@@ -501,41 +480,39 @@ LinearSystem ClothInstance::system() const {
 void ClothInstance::run_iterative_solver(uint32_t group) {
     const LinearSystem sys = system();
     const uint32_t begin = group_begin(group), end = group_end(group);
-    switch (cursor_.stage) {
-        case Stage::kPcgStart:
+    switch (iterative_.phase) {
+        case IterativeSolve::Phase::kPcgStart:
             pcg_start(sys, dv_, begin, end, solver_work_);
             break;
-        case Stage::kPcgProduct:
+        case IterativeSolve::Phase::kPcgProduct:
             pcg_product(sys, begin, end, solver_work_);
             break;
-        case Stage::kPcgUpdate:
+        case IterativeSolve::Phase::kPcgUpdate:
             pcg_update(sys, iterative_.alpha, begin, end, dv_, solver_work_);
             break;
-        case Stage::kPcgDirection:
+        case IterativeSolve::Phase::kPcgDirection:
             pcg_direction(iterative_.beta, begin, end, solver_work_);
             break;
-        case Stage::kChebyshevBound: {
+        case IterativeSolve::Phase::kChebyshevBound: {
             const AssemblyPass assembly{springs_.get(),   &external_force_, mass_.data(), pinned_.data(), h_,
                                         aero_.linear_drag};
             solver_work_.partial[group] = chebyshev_lower_bound(sys, assembly, begin, end);
             break;
         }
-        case Stage::kChebyshevStart:
+        case IterativeSolve::Phase::kChebyshevStart:
             chebyshev_start(sys, dv_, static_cast<float>(1.0 / (iterative_.sigma * iterative_.delta)), begin,
                             end, solver_work_);
             break;
-        case Stage::kChebyshevProduct:
+        case IterativeSolve::Phase::kChebyshevProduct:
             chebyshev_product(sys, begin, end, dv_, solver_work_);
             break;
-        case Stage::kChebyshevDirection: {
+        case IterativeSolve::Phase::kChebyshevDirection: {
             const double rho_next = 1.0 / (2.0 * iterative_.sigma - iterative_.rho);
             chebyshev_direction(sys, static_cast<float>(rho_next * iterative_.rho),
                                 static_cast<float>(2.0 * rho_next / iterative_.delta), begin, end,
                                 solver_work_);
             break;
         }
-        default:
-            break;
     }
 }
 
@@ -545,27 +522,30 @@ void ClothInstance::finish_iterative_stage() {
     IterativeSolve& it = iterative_;
     const uint32_t budget = frame_solver_.iterations;
     const double tolerance = frame_solver_.cg_tolerance;
-    switch (cursor_.stage) {
-        case Stage::kPcgStart:
+    switch (iterative_.phase) {
+        case IterativeSolve::Phase::kPcgStart:
             it.rz0 = it.rz = sum_partials(solver_work_);
             cursor_.sweep = 0;
             it.go_on = budget > 0 && it.rz > 0 && it.rz > tolerance * tolerance * it.rz0;
+            it.next = IterativeSolve::Phase::kPcgProduct;
             break;
-        case Stage::kPcgProduct: {
+        case IterativeSolve::Phase::kPcgProduct: {
             const double pq = sum_partials(solver_work_);
             it.go_on = pq > 0;  // W is positive definite; pq <= 0 only from round-off at convergence
             if (it.go_on) it.alpha = it.rz / pq;
+            it.next = IterativeSolve::Phase::kPcgUpdate;
             break;
         }
-        case Stage::kPcgUpdate: {
+        case IterativeSolve::Phase::kPcgUpdate: {
             const double rz_next = sum_partials(solver_work_);
             ++cursor_.sweep;
             it.go_on = cursor_.sweep < budget && rz_next > tolerance * tolerance * it.rz0;
             it.beta = rz_next / it.rz;
             it.rz = rz_next;
+            it.next = IterativeSolve::Phase::kPcgDirection;
             break;
         }
-        case Stage::kChebyshevBound: {
+        case IterativeSolve::Phase::kChebyshevBound: {
             double a = 1.0;
             for (double partial : solver_work_.partial) a = std::min(a, partial);
             const double theta = 0.5 * (2.0 + a);
@@ -573,20 +553,30 @@ void ClothInstance::finish_iterative_stage() {
             it.sigma = theta / it.delta;
             it.rho = 1.0 / it.sigma;
             cursor_.sweep = 0;
+            it.go_on = true;
+            it.next = IterativeSolve::Phase::kChebyshevStart;
             break;
         }
-        case Stage::kChebyshevStart:
+        case IterativeSolve::Phase::kChebyshevStart:
+            it.go_on = true;
+            it.next = IterativeSolve::Phase::kChebyshevProduct;
             break;
-        case Stage::kChebyshevProduct:
+        case IterativeSolve::Phase::kChebyshevProduct:
             ++cursor_.sweep;
             it.go_on = cursor_.sweep < budget;
             if (it.go_on && cursor_.sweep > 1) it.rho = 1.0 / (2.0 * it.sigma - it.rho);
+            it.next = IterativeSolve::Phase::kChebyshevDirection;
             break;
-        default:
+        case IterativeSolve::Phase::kPcgDirection:
+            it.go_on = true;
+            it.next = IterativeSolve::Phase::kPcgProduct;
+            break;
+        case IterativeSolve::Phase::kChebyshevDirection:
+            it.go_on = true;
+            it.next = IterativeSolve::Phase::kChebyshevProduct;
             break;
     }
-    if (!it.go_on && (cursor_.stage == Stage::kPcgStart || cursor_.stage == Stage::kPcgProduct ||
-                      cursor_.stage == Stage::kPcgUpdate || cursor_.stage == Stage::kChebyshevProduct)) {
+    if (!it.go_on) {
         last_solve_ = SolveReport{};
         last_solve_.iterations = cursor_.sweep;
         if (frame_solver_.kind == CLOTH_SOLVER_PCG && it.rz0 > 0) {
@@ -600,7 +590,7 @@ void ClothInstance::run_strain_limit(uint32_t group) {
     const StrainLimitPass pass{fabric_.get(), mass_.data(), pinned_.data(),
                                frame_solver_.strain_limit.max_strain};
     const uint32_t begin = group_begin(group), end = group_end(group);
-    if (cursor_.stage == Stage::kStrainLimit) {
+    if (cursor_.sweep % 2 == 0) {
         strain_limit_corrections(pass, x_, begin, end, solver_work_.r);
     } else {
         strain_limit_apply(solver_work_.r, h_, begin, end, x_, v_);

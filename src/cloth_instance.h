@@ -105,8 +105,8 @@ class ClothInstance {
     void run_assemble(uint32_t group);
     void run_jacobi_sweep(uint32_t group);
     void run_serial_solve();
-    void run_iterative_solver(uint32_t group);  // the kPcg* and kChebyshev* stages
-    void run_strain_limit(uint32_t group);      // kStrainLimit, kStrainApply
+    void run_iterative_solver(uint32_t group);  // kIterativeSolve, in its current phase
+    void run_strain_limit(uint32_t group);      // kStrainLimit
     // Serial bookkeeping of the iterative solvers after their stages' barrier.
     void finish_iterative_stage();
     Stage stage_after_solve() const;
@@ -169,6 +169,18 @@ class ClothInstance {
     };
     // Scalars of the iterative solve in progress (set after each barrier).
     struct IterativeSolve {
+        enum class Phase : uint8_t {
+            kPcgStart,
+            kPcgProduct,
+            kPcgUpdate,
+            kPcgDirection,
+            kChebyshevBound,
+            kChebyshevStart,
+            kChebyshevProduct,
+            kChebyshevDirection
+        };
+        Phase phase = Phase::kPcgStart;
+        Phase next = Phase::kPcgStart;
         double rz0 = 0, rz = 0, alpha = 0, beta = 0;  // PCG
         double sigma = 0, delta = 0, rho = 0;         // Chebyshev
         bool go_on = false;                           // another iteration follows

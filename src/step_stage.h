@@ -16,19 +16,18 @@
 //   kAssemble       per particle: W_ii, W_ii^-1, b_i, p_i (paper Code 1)
 //   kJacobiSweep    JACOBI: one sweep per iteration (paper Code 2/3)
 //   kSerialSolve    CG reference: one task for the whole cloth
-//   kPcgStart       PCG (solvers.h): r = b - W dv, z = P r, p = z, partial r.z
-//   kPcgProduct     PCG: q = W p, partial p.q          } repeated while the
-//   kPcgUpdate      PCG: dv += a p, r -= a q, z = P r  } iteration budget
-//   kPcgDirection   PCG: p = z + beta p                } lasts and r.z is large
-//   kChebyshevBound CHEBYSHEV: per group, the lower eigenvalue bound (min)
-//   kChebyshevStart CHEBYSHEV: r = b - W dv, p = P r / theta
-//   kChebyshevProduct   CHEBYSHEV: q = W p, dv += p    } `iterations` times
-//   kChebyshevDirection CHEBYSHEV: r -= q, p = c1 p + c2 P r
+//   kIterativeSolve PCG and CHEBYSHEV (solvers.h): a sequence of per-group
+//                   passes, one round each, chosen after each barrier
+//                   (ClothInstance::IterativeSolve::Phase):
+//                     PCG: start (r = b - W dv, z = P r, p = z), then per
+//                     iteration product (q = W p), update (dv, r, z) and
+//                     direction (p = z + beta p), dot products per group;
+//                     CHEBYSHEV: bound, start, then product / direction
 //   kIntegrate      per particle: v += dv, x += h v; pins land
 //   kExplicit       EXPLICIT (replaces kAssemble..kIntegrate): gather, Euler
 //   -- after integration, where contact plugs in:
-//   kStrainLimit    per particle: strain-limit corrections (strain_limit.h), when enabled
-//   kStrainApply    per particle: x += c, v += c / h; both repeated `iterations` times
+//   kStrainLimit    per particle, when enabled (strain_limit.h): rounds alternate
+//                   corrections and x += c, v += c / h, `iterations` times each
 //   kCollisions     colliders and attachments (issue 6)
 //   kSelfCollision  self-collision (issue 5, self_collision.h), in five stages:
 //                   per group: region checks and hash keys;
@@ -55,24 +54,16 @@ enum class Stage : uint8_t {
     kAssemble,
     kJacobiSweep,
     kSerialSolve,
-    kPcgStart,
-    kPcgProduct,
-    kPcgUpdate,
-    kPcgDirection,
-    kChebyshevBound,
-    kChebyshevStart,
-    kChebyshevProduct,
-    kChebyshevDirection,
     kIntegrate,
     kExplicit,
-    kStrainLimit,
-    kStrainApply,
     kCollisions,
     kSelfCollision,
     kSelfSort,
     kSelfContacts,
     kSelfProject,
     kSelfRespond,
+    kIterativeSolve,
+    kStrainLimit,
     kCount
 };
 
@@ -91,26 +82,10 @@ inline const char* stage_name(Stage stage) {
             return "jacobi_sweep";
         case Stage::kSerialSolve:
             return "serial_solve";
-        case Stage::kPcgStart:
-            return "pcg_start";
-        case Stage::kPcgProduct:
-            return "pcg_product";
-        case Stage::kPcgUpdate:
-            return "pcg_update";
-        case Stage::kPcgDirection:
-            return "pcg_direction";
-        case Stage::kChebyshevBound:
-            return "chebyshev_bound";
-        case Stage::kChebyshevStart:
-            return "chebyshev_start";
-        case Stage::kChebyshevProduct:
-            return "chebyshev_product";
-        case Stage::kChebyshevDirection:
-            return "chebyshev_direction";
+        case Stage::kIterativeSolve:
+            return "iterative_solve";
         case Stage::kStrainLimit:
             return "strain_limit";
-        case Stage::kStrainApply:
-            return "strain_apply";
         case Stage::kIntegrate:
             return "integrate";
         case Stage::kExplicit:

@@ -467,6 +467,8 @@ typedef enum cloth_stage {
     CLOTH_STAGE_SELF_CONTACTS = 10,  ///< self-collision: each particle's contact list
     CLOTH_STAGE_SELF_PROJECT = 11,   ///< self-collision: one projection pass (repeated while overlaps remain)
     CLOTH_STAGE_SELF_RESPOND = 12,   ///< self-collision: velocity response (paper eq. 13) and friction
+    CLOTH_STAGE_ITERATIVE_SOLVE = 13,  ///< PCG / Chebyshev passes (each iteration is several rounds)
+    CLOTH_STAGE_STRAIN_LIMIT = 14,     ///< strain-limiting passes (when a limit is set)
     CLOTH_STAGE_FORCE_U32 = 0x7FFFFFFF
 } cloth_stage;
 
