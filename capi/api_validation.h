@@ -53,7 +53,7 @@ inline Status check_solver(const cloth_solver_settings& s) {
                              sizeof(cloth_solver_settings));
     }
     if (s.kind != CLOTH_SOLVER_DEFAULT && s.kind != CLOTH_SOLVER_JACOBI && s.kind != CLOTH_SOLVER_CG &&
-        s.kind != CLOTH_SOLVER_EXPLICIT) {
+        s.kind != CLOTH_SOLVER_EXPLICIT && s.kind != CLOTH_SOLVER_PCG && s.kind != CLOTH_SOLVER_CHEBYSHEV) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown solver kind %d", int(s.kind));
     }
     if (s.iterations < 1 || s.iterations > 256) {
@@ -71,6 +71,20 @@ inline Status check_solver(const cloth_solver_settings& s) {
     if (s.cg_max_iterations < 1 || s.cg_max_iterations > 100000) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "cg_max_iterations %u is not in 1..100000",
                              s.cg_max_iterations);
+    }
+    return {};
+}
+
+inline Status check_strain_limit(const cloth_strain_limit& l) {
+    if (l.struct_size != sizeof(cloth_strain_limit)) {
+        return Status::error(CLOTH_ERROR_INVALID_DESC, "cloth_strain_limit.struct_size is %u, expected %zu",
+                             l.struct_size, sizeof(cloth_strain_limit));
+    }
+    Status s = check_non_negative(l.max_strain, "max_strain");
+    if (!s.ok()) return s;
+    if (l.iterations < 1 || l.iterations > 64) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "strain limit iterations %u is not in 1..64",
+                             l.iterations);
     }
     return {};
 }
@@ -117,9 +131,12 @@ inline Status check_capacity(const void* out, uint32_t capacity, size_t needed) 
     return {};
 }
 
+// CLOTH_SOLVER_DEFAULT stays as it is: the core resolves it per step from
+// gamma (src/solver_default.h). The strain limit is not part of
+// cloth_solver_settings; callers keep the cloth's own.
 inline SolverSettings to_core(const cloth_solver_settings& s) {
     SolverSettings out;
-    out.kind = s.kind == CLOTH_SOLVER_DEFAULT ? CLOTH_SOLVER_JACOBI : s.kind;
+    out.kind = s.kind;
     out.iterations = s.iterations;
     out.substeps = s.substeps;
     out.cg_tolerance = s.cg_tolerance;

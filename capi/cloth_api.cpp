@@ -19,7 +19,7 @@ CLOTH_API cloth_solver_settings cloth_default_solver_settings(void) {
     const SolverSettings core;
     cloth_solver_settings s{};
     s.struct_size = sizeof(cloth_solver_settings);
-    s.kind = core.kind;
+    s.kind = CLOTH_SOLVER_DEFAULT;  // resolved per frame from gamma (src/solver_default.h)
     s.iterations = core.iterations;
     s.substeps = core.substeps;
     s.cg_tolerance = core.cg_tolerance;
@@ -229,7 +229,9 @@ CLOTH_API cloth_result cloth_set_solver(cloth_id id, const cloth_solver_settings
         if (!settings) return null_error("settings");
         s = check_solver(*settings);
         if (!s.ok()) return s;
-        cloth->solver() = to_core(*settings);
+        SolverSettings core = to_core(*settings);
+        core.strain_limit = cloth->solver().strain_limit;
+        cloth->solver() = core;
         cloth->wake();
         return {};
     });

@@ -16,9 +16,11 @@
 #include "integrator_explicit.h"
 #include "lanes.h"
 #include "self_collision.h"
+#include "solver_default.h"
 #include "solvers.h"
 #include "spring_terms.h"
 #include "springs.h"
+#include "strain_limit.h"
 
 namespace cloth {
 
@@ -43,6 +45,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       rhs_(memory),
       dv_(memory),
       dv_scratch_(memory),
+      solver_work_(memory),
       normals_(memory),
       backup_x_(memory),
       backup_v_(memory),
@@ -62,6 +65,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     triangle_force_.resize(air_storage_size(f));
     diagonal_.resize(n);
     diagonal_inverse_.resize(n);
+    solver_work_.resize(n);
     group_count_ = (n + kGroupSize - 1) / kGroupSize;
     group_finite_.assign(group_count_, 1);
     group_speed_squared_.assign(group_count_, 0.0f);
@@ -216,7 +220,9 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     backup_x_ = x_;
     backup_v_ = v_;
     for (uint32_t i : pinned_list_) pin_start_.set(i, x_.get(i));
-    substeps_ = solver_.substeps;
+    frame_solver_ = resolve_solver(
+        solver_, dt, stiffness_over_mass(material_, mass_.data(), pinned_.data(), particle_count()));
+    substeps_ = frame_solver_.substeps;
     h_ = dt / static_cast<float>(substeps_);
     gravity_ = gravity;
     frame_converged_ = true;
@@ -237,20 +243,27 @@ Stage ClothInstance::next_stage(Stage current) const {
             return Stage::kForces;
         case Stage::kForces:
             // Solver dispatch: the explicit baseline needs no system.
-            return solver_.kind == CLOTH_SOLVER_EXPLICIT ? Stage::kExplicit : Stage::kAssemble;
+            return frame_solver_.kind == CLOTH_SOLVER_EXPLICIT ? Stage::kExplicit : Stage::kAssemble;
         case Stage::kAssemble:
             // Solver dispatch: the stages that turn the assembled system into dv.
-            if (solver_.kind == CLOTH_SOLVER_CG) return Stage::kSerialSolve;
+            if (frame_solver_.kind == CLOTH_SOLVER_CG) return Stage::kSerialSolve;
+            if (frame_solver_.kind == CLOTH_SOLVER_PCG || frame_solver_.kind == CLOTH_SOLVER_CHEBYSHEV)
+                return Stage::kIterativeSolve;
             return Stage::kJacobiSweep;
         case Stage::kJacobiSweep:
-            return cursor_.sweep + 1 < solver_.iterations ? Stage::kJacobiSweep : Stage::kIntegrate;
+            return cursor_.sweep + 1 < frame_solver_.iterations ? Stage::kJacobiSweep : Stage::kIntegrate;
         case Stage::kSerialSolve:
             return Stage::kIntegrate;
+        case Stage::kIterativeSolve:
+            return iterative_.go_on ? Stage::kIterativeSolve : Stage::kIntegrate;
         case Stage::kIntegrate:
         case Stage::kExplicit:
-            // Post-integration passes plug in here, each behind its feature:
-            //   if (colliders enabled) return Stage::kCollisions;      (issue 6)
-            return self_collision_ ? Stage::kSelfCollision : Stage::kCount;
+            if (frame_solver_.strain_limit.max_strain > 0) return Stage::kStrainLimit;
+            return stage_after_solve();
+        case Stage::kStrainLimit:
+            // Rounds alternate corrections (even) and their application (odd).
+            return cursor_.sweep + 1 < 2 * frame_solver_.strain_limit.iterations ? Stage::kStrainLimit
+                                                                                 : stage_after_solve();
         case Stage::kCollisions:
             return self_collision_ ? Stage::kSelfCollision : Stage::kCount;
         case Stage::kSelfCollision:
@@ -269,6 +282,13 @@ Stage ClothInstance::next_stage(Stage current) const {
             break;
     }
     return Stage::kCount;  // kCount: the substep is over
+}
+
+// Where a substep goes once dv is integrated (and strain is limited).
+// Post-integration passes plug in here, each behind its feature:
+Stage ClothInstance::stage_after_solve() const {
+    //   if (colliders enabled) return Stage::kCollisions;      (issue 6)
+    return self_collision_ ? Stage::kSelfCollision : Stage::kCount;
 }
 
 void ClothInstance::prepare_stage() {
@@ -311,10 +331,22 @@ void ClothInstance::finish_stage() {
         case Stage::kSelfRespond:
             self_collision_->apply_velocities(v_);
             break;
+        case Stage::kAssemble:
+            iterative_.phase = frame_solver_.kind == CLOTH_SOLVER_PCG
+                                   ? IterativeSolve::Phase::kPcgStart
+                                   : IterativeSolve::Phase::kChebyshevBound;
+            break;
+        case Stage::kIterativeSolve:
+            finish_iterative_stage();
+            break;
         default:
             break;
     }
     Stage next = next_stage(cursor_.stage);
+    if (cursor_.stage == Stage::kIterativeSolve && next == Stage::kIterativeSolve)
+        iterative_.phase = iterative_.next;
+    if (cursor_.stage == Stage::kStrainLimit)
+        cursor_.sweep = next == Stage::kStrainLimit ? cursor_.sweep + 1 : 0;
     if (cursor_.stage == Stage::kSelfProject)
         cursor_.sweep = next == Stage::kSelfProject ? cursor_.sweep + 1 : 0;
     if (cursor_.stage == Stage::kJacobiSweep) {
@@ -322,7 +354,7 @@ void ClothInstance::finish_stage() {
             ++cursor_.sweep;
         } else {
             last_solve_ = SolveReport{};
-            last_solve_.iterations = solver_.iterations;
+            last_solve_.iterations = frame_solver_.iterations;
             cursor_.sweep = 0;
         }
     }
@@ -354,6 +386,12 @@ void ClothInstance::run_task(uint32_t task, uint32_t) {
         case Stage::kSerialSolve:
             run_serial_solve();
             return;
+        case Stage::kIterativeSolve:
+            run_iterative_solver(task);
+            break;
+        case Stage::kStrainLimit:
+            run_strain_limit(task);
+            break;
         case Stage::kIntegrate:
             run_integrate(task);
             break;
@@ -449,8 +487,8 @@ CLOTH_HOT_LOOP void ClothInstance::run_forces(uint32_t group) {
     // Springs: each spring (grid: each first particle) belongs to one group.
     uint32_t spring_begin, spring_end;
     group_items(group, springs_->item_count(), spring_begin, spring_end);
-    const float h = solver_.kind == CLOTH_SOLVER_EXPLICIT ? 0.0f : h_;  // h = 0: plain forces
-    springs_->evaluate(x_, v_, h, JacobianClamp::make(solver_.compression_safe_jacobian), spring_begin,
+    const float h = frame_solver_.kind == CLOTH_SOLVER_EXPLICIT ? 0.0f : h_;  // h = 0: plain forces
+    springs_->evaluate(x_, v_, h, JacobianClamp::make(frame_solver_.compression_safe_jacobian), spring_begin,
                        spring_end);
 }
 
@@ -472,9 +510,138 @@ void ClothInstance::run_serial_solve() {
     const LinearSystem system{springs_.get(), particle_count(), &diagonal_, &diagonal_inverse_,
                               &rhs_,          pinned_.data()};
     try {
-        last_solve_ = solve_cg(system, solver_.cg_tolerance, solver_.cg_max_iterations, *sweep_current_);
+        last_solve_ =
+            solve_cg(system, frame_solver_.cg_tolerance, frame_solver_.cg_max_iterations, *sweep_current_);
     } catch (const std::bad_alloc&) {
         frame_out_of_memory_ = true;  // end_frame restores the cloth
+    }
+}
+
+LinearSystem ClothInstance::system() const {
+    return LinearSystem{springs_.get(), particle_count(), &diagonal_, &diagonal_inverse_,
+                        &rhs_,          pinned_.data()};
+}
+
+// One group of a PCG or Chebyshev stage (solvers.h). Groups are the
+// reduction blocks (kGroupSize == kReductionBlock), so each group writes its
+// own partial sum and the sums do not depend on the workers.
+void ClothInstance::run_iterative_solver(uint32_t group) {
+    const LinearSystem sys = system();
+    const uint32_t begin = group_begin(group), end = group_end(group);
+    switch (iterative_.phase) {
+        case IterativeSolve::Phase::kPcgStart:
+            pcg_start(sys, dv_, begin, end, solver_work_);
+            break;
+        case IterativeSolve::Phase::kPcgProduct:
+            pcg_product(sys, begin, end, solver_work_);
+            break;
+        case IterativeSolve::Phase::kPcgUpdate:
+            pcg_update(sys, iterative_.alpha, begin, end, dv_, solver_work_);
+            break;
+        case IterativeSolve::Phase::kPcgDirection:
+            pcg_direction(iterative_.beta, begin, end, solver_work_);
+            break;
+        case IterativeSolve::Phase::kChebyshevBound: {
+            const AssemblyPass assembly{springs_.get(),   &external_force_, mass_.data(), pinned_.data(), h_,
+                                        aero_.linear_drag};
+            solver_work_.partial[group] = chebyshev_lower_bound(sys, assembly, begin, end);
+            break;
+        }
+        case IterativeSolve::Phase::kChebyshevStart:
+            chebyshev_start(sys, dv_, static_cast<float>(1.0 / (iterative_.sigma * iterative_.delta)), begin,
+                            end, solver_work_);
+            break;
+        case IterativeSolve::Phase::kChebyshevProduct:
+            chebyshev_product(sys, begin, end, dv_, solver_work_);
+            break;
+        case IterativeSolve::Phase::kChebyshevDirection: {
+            const double rho_next = 1.0 / (2.0 * iterative_.sigma - iterative_.rho);
+            chebyshev_direction(sys, static_cast<float>(rho_next * iterative_.rho),
+                                static_cast<float>(2.0 * rho_next / iterative_.delta), begin, end,
+                                solver_work_);
+            break;
+        }
+    }
+}
+
+// After the barrier of an iterative solver's stage: the scalars of the
+// next stage (the same sequence solve_pcg / solve_chebyshev run).
+void ClothInstance::finish_iterative_stage() {
+    IterativeSolve& it = iterative_;
+    const uint32_t budget = frame_solver_.iterations;
+    const double tolerance = frame_solver_.cg_tolerance;
+    switch (iterative_.phase) {
+        case IterativeSolve::Phase::kPcgStart:
+            it.rz0 = it.rz = sum_partials(solver_work_);
+            cursor_.sweep = 0;
+            it.go_on = budget > 0 && it.rz > 0 && it.rz > tolerance * tolerance * it.rz0;
+            it.next = IterativeSolve::Phase::kPcgProduct;
+            break;
+        case IterativeSolve::Phase::kPcgProduct: {
+            const double pq = sum_partials(solver_work_);
+            it.go_on = pq > 0;  // W is positive definite; pq <= 0 only from round-off at convergence
+            if (it.go_on) it.alpha = it.rz / pq;
+            it.next = IterativeSolve::Phase::kPcgUpdate;
+            break;
+        }
+        case IterativeSolve::Phase::kPcgUpdate: {
+            const double rz_next = sum_partials(solver_work_);
+            ++cursor_.sweep;
+            it.go_on = cursor_.sweep < budget && rz_next > tolerance * tolerance * it.rz0;
+            it.beta = rz_next / it.rz;
+            it.rz = rz_next;
+            it.next = IterativeSolve::Phase::kPcgDirection;
+            break;
+        }
+        case IterativeSolve::Phase::kChebyshevBound: {
+            double a = 1.0;
+            for (double partial : solver_work_.partial) a = std::min(a, partial);
+            const double theta = 0.5 * (2.0 + a);
+            it.delta = 0.5 * (2.0 - a);
+            it.sigma = theta / it.delta;
+            it.rho = 1.0 / it.sigma;
+            cursor_.sweep = 0;
+            it.go_on = true;
+            it.next = IterativeSolve::Phase::kChebyshevStart;
+            break;
+        }
+        case IterativeSolve::Phase::kChebyshevStart:
+            it.go_on = true;
+            it.next = IterativeSolve::Phase::kChebyshevProduct;
+            break;
+        case IterativeSolve::Phase::kChebyshevProduct:
+            ++cursor_.sweep;
+            it.go_on = cursor_.sweep < budget;
+            if (it.go_on && cursor_.sweep > 1) it.rho = 1.0 / (2.0 * it.sigma - it.rho);
+            it.next = IterativeSolve::Phase::kChebyshevDirection;
+            break;
+        case IterativeSolve::Phase::kPcgDirection:
+            it.go_on = true;
+            it.next = IterativeSolve::Phase::kPcgProduct;
+            break;
+        case IterativeSolve::Phase::kChebyshevDirection:
+            it.go_on = true;
+            it.next = IterativeSolve::Phase::kChebyshevProduct;
+            break;
+    }
+    if (!it.go_on) {
+        last_solve_ = SolveReport{};
+        last_solve_.iterations = cursor_.sweep;
+        if (frame_solver_.kind == CLOTH_SOLVER_PCG && it.rz0 > 0) {
+            last_solve_.residual = static_cast<float>(std::sqrt(std::max(it.rz, 0.0) / it.rz0));
+        }
+        cursor_.sweep = 0;
+    }
+}
+
+void ClothInstance::run_strain_limit(uint32_t group) {
+    const StrainLimitPass pass{fabric_.get(), mass_.data(), pinned_.data(),
+                               frame_solver_.strain_limit.max_strain};
+    const uint32_t begin = group_begin(group), end = group_end(group);
+    if (cursor_.sweep % 2 == 0) {
+        strain_limit_corrections(pass, x_, begin, end, solver_work_.r);
+    } else {
+        strain_limit_apply(solver_work_.r, h_, begin, end, x_, v_);
     }
 }
 

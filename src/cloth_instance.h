@@ -16,6 +16,7 @@
 #include "math.h"
 #include "settings.h"
 #include "soa.h"
+#include "solvers.h"
 #include "status.h"
 #include "step_stage.h"
 #include "task_system.h"
@@ -143,6 +144,12 @@ class ClothInstance {
     void run_assemble(uint32_t group);
     void run_jacobi_sweep(uint32_t group);
     void run_serial_solve();
+    void run_iterative_solver(uint32_t group);  // kIterativeSolve, in its current phase
+    void run_strain_limit(uint32_t group);      // kStrainLimit
+    // Serial bookkeeping of the iterative solvers after their stages' barrier.
+    void finish_iterative_stage();
+    Stage stage_after_solve() const;
+    LinearSystem system() const;
     void run_integrate(uint32_t group);
     void run_explicit(uint32_t group);
     void run_self_collision(uint32_t group);  // the kSelf* stages
@@ -164,6 +171,7 @@ class ClothInstance {
     std::shared_ptr<const Fabric> fabric_;
     Material material_;
     SolverSettings solver_;
+    SolverSettings frame_solver_;  // what this frame runs: solver_ with CLOTH_SOLVER_DEFAULT resolved
     AeroParams aero_;
 
     // State.
@@ -182,7 +190,8 @@ class ClothInstance {
     Sym3Soa diagonal_inverse_;              // per particle: W_ii^-1 (zero if pinned)
     Vec3Soa rhs_;                           // per particle: b_i = h f~_i
     Vec3Soa dv_, dv_scratch_;               // per particle
-    mutable Vec3Soa normals_;               // per particle, filled by normals()
+    SolverWorkspace solver_work_;  // PCG / Chebyshev vectors and block partials, strain-limit scratch
+    mutable Vec3Soa normals_;      // per particle, filled by normals()
     Vec3Soa backup_x_, backup_v_;
 
     std::shared_ptr<SelfCollision> self_collision_;  // null while off
@@ -195,8 +204,27 @@ class ClothInstance {
     struct Cursor {
         Stage stage = Stage::kForces;
         uint32_t substep = 0;
-        uint32_t sweep = 0;  // Jacobi sweep within the solve
+        uint32_t sweep = 0;  // Jacobi sweep / PCG or Chebyshev iteration / strain-limit pass
     };
+    // Scalars of the iterative solve in progress (set after each barrier).
+    struct IterativeSolve {
+        enum class Phase : uint8_t {
+            kPcgStart,
+            kPcgProduct,
+            kPcgUpdate,
+            kPcgDirection,
+            kChebyshevBound,
+            kChebyshevStart,
+            kChebyshevProduct,
+            kChebyshevDirection
+        };
+        Phase phase = Phase::kPcgStart;
+        Phase next = Phase::kPcgStart;
+        double rz0 = 0, rz = 0, alpha = 0, beta = 0;  // PCG
+        double sigma = 0, delta = 0, rho = 0;         // Chebyshev
+        bool go_on = false;                           // another iteration follows
+    };
+    IterativeSolve iterative_;
     uint32_t group_count_ = 0;
     Cursor cursor_;
     bool frame_done_ = true;

@@ -53,11 +53,20 @@ CLOTH_HOT_LOOP void jacobi_sweep(const LinearSystem& system, const Vec3Soa& curr
     });
 }
 
-void multiply_system(const LinearSystem& system, const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& y) {
+CLOTH_HOT_LOOP void multiply_system(const LinearSystem& system, const Vec3Soa& x, uint32_t begin,
+                                    uint32_t end, Vec3Soa& y) {
     system.springs->neighbour_sums(x, begin, end, y);
-    for (uint32_t i = begin; i < end; ++i) {
-        y.set(i, system.pinned[i] ? Vec3::Zero() : Vec3(system.diagonal->get(i) * x.get(i) - y.get(i)));
-    }
+    const Sym3Soa& w = *system.diagonal;
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        using T = typename L::type;
+        const T free = 1.0f - L::load(&system.pinned[i]);
+        const T px = L::load(&x.x[i]), py = L::load(&x.y[i]), pz = L::load(&x.z[i]);
+        const T xy = L::load(&w.xy[i]), xz = L::load(&w.xz[i]), yz = L::load(&w.yz[i]);
+        store_vec3<L>(y, i, (L::load(&w.xx[i]) * px + xy * py + xz * pz - L::load(&y.x[i])) * free,
+                      (xy * px + L::load(&w.yy[i]) * py + yz * pz - L::load(&y.y[i])) * free,
+                      (xz * px + yz * py + L::load(&w.zz[i]) * pz - L::load(&y.z[i])) * free);
+    });
 }
 
 }  // namespace cloth

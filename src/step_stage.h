@@ -16,9 +16,18 @@
 //   kAssemble       per particle: W_ii, W_ii^-1, b_i, p_i (paper Code 1)
 //   kJacobiSweep    JACOBI: one sweep per iteration (paper Code 2/3)
 //   kSerialSolve    CG reference: one task for the whole cloth
+//   kIterativeSolve PCG and CHEBYSHEV (solvers.h): a sequence of per-group
+//                   passes, one round each, chosen after each barrier
+//                   (ClothInstance::IterativeSolve::Phase):
+//                     PCG: start (r = b - W dv, z = P r, p = z), then per
+//                     iteration product (q = W p), update (dv, r, z) and
+//                     direction (p = z + beta p), dot products per group;
+//                     CHEBYSHEV: bound, start, then product / direction
 //   kIntegrate      per particle: v += dv, x += h v; pins land
 //   kExplicit       EXPLICIT (replaces kAssemble..kIntegrate): gather, Euler
 //   -- after integration, where contact plugs in:
+//   kStrainLimit    per particle, when enabled (strain_limit.h): rounds alternate
+//                   corrections and x += c, v += c / h, `iterations` times each
 //   kCollisions     colliders and attachments (issue 6)
 //   kSelfCollision  self-collision (issue 5, self_collision.h), in five stages:
 //                   per group: region checks and hash keys;
@@ -53,6 +62,8 @@ enum class Stage : uint8_t {
     kSelfContacts,
     kSelfProject,
     kSelfRespond,
+    kIterativeSolve,
+    kStrainLimit,
     kCount
 };
 
@@ -71,6 +82,10 @@ inline const char* stage_name(Stage stage) {
             return "jacobi_sweep";
         case Stage::kSerialSolve:
             return "serial_solve";
+        case Stage::kIterativeSolve:
+            return "iterative_solve";
+        case Stage::kStrainLimit:
+            return "strain_limit";
         case Stage::kIntegrate:
             return "integrate";
         case Stage::kExplicit:

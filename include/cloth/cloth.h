@@ -302,11 +302,16 @@ CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id fabric, uint3
 /* ------------------------------------------------------------------ */
 
 typedef enum cloth_solver_kind {
-    CLOTH_SOLVER_DEFAULT = 0,  ///< the library's choice (currently JACOBI)
+    CLOTH_SOLVER_DEFAULT = 0,  ///< the library's choice: PCG, 16 iterations, substeps picked per step
+                               ///< from gamma = dt^2 k_max / m_min (docs/accuracy.md)
     CLOTH_SOLVER_JACOBI =
         1,                ///< linearized backward Euler, `iterations` Jacobi sweeps (1 = the paper's method)
     CLOTH_SOLVER_CG = 2,  ///< the same system solved with conjugate gradient to `cg_tolerance` (reference)
     CLOTH_SOLVER_EXPLICIT = 3,  ///< symplectic Euler (baseline; needs tiny steps for stiff cloth)
+    CLOTH_SOLVER_PCG = 4,       ///< block-Jacobi-preconditioned CG on the library's own parallel passes:
+                                ///< at most `iterations` iterations, stops early at `cg_tolerance`
+    CLOTH_SOLVER_CHEBYSHEV =
+        5,  ///< Chebyshev-accelerated block Jacobi, `iterations` iterations, no dot products
     CLOTH_SOLVER_KIND_FORCE_U32 = 0x7FFFFFFF
 } cloth_solver_kind;
 
@@ -319,15 +324,31 @@ typedef struct cloth_spring_params {
 /// How a cloth advances.
 typedef struct cloth_solver_settings {
     uint32_t struct_size;            ///< sizeof(cloth_solver_settings)
-    cloth_solver_kind kind;          ///< default CLOTH_SOLVER_JACOBI
-    uint32_t iterations;             ///< Jacobi sweeps, 1..256; default 1
+    cloth_solver_kind kind;          ///< default CLOTH_SOLVER_DEFAULT
+    uint32_t iterations;             ///< Jacobi sweeps or PCG/Chebyshev iterations, 1..256; default 1
+                                     ///< (CLOTH_SOLVER_DEFAULT picks its own)
     uint32_t substeps;               ///< steps per cloth_step call, 1..64; default 1
+                                     ///< (CLOTH_SOLVER_DEFAULT may use more)
     float cg_tolerance;              ///< CG relative residual, (0, 1); default 1e-6
     uint32_t cg_max_iterations;      ///< 1..100000; default 1000
     bool compression_safe_jacobian;  ///< paper eq. 12 for compressed springs; default true
 } cloth_solver_settings;
 
 CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
+
+/// Strain limiting (Provot 1995) after every substep: structural and shear
+/// springs longer than (1 + max_strain) times their rest length are pulled
+/// back, `iterations` parallel passes per substep, moving positions and
+/// velocities together. Off by default (the default solver holds strain
+/// without it); applies to every solver kind once set. Set with
+/// cloth_set_strain_limit; cloth_set_solver keeps it.
+typedef struct cloth_strain_limit {
+    uint32_t struct_size;  ///< sizeof(cloth_strain_limit)
+    float max_strain;      ///< >= 0, finite; 0 turns limiting off; default 0
+    uint32_t iterations;   ///< 1..64; default 4
+} cloth_strain_limit;
+
+CLOTH_API cloth_strain_limit cloth_default_strain_limit(void);
 
 /// Aerodynamics: wind, drag and lift per triangle against the relative air
 /// velocity, plus linear air drag per particle.
@@ -391,6 +412,9 @@ CLOTH_API cloth_result cloth_is_pinned(cloth_id cloth, uint32_t index, bool* out
 CLOTH_API cloth_result cloth_set_solver(cloth_id cloth, const cloth_solver_settings* settings);
 /// Fills the whole struct, struct_size included.
 CLOTH_API cloth_result cloth_get_solver(cloth_id cloth, cloth_solver_settings* out_settings);
+CLOTH_API cloth_result cloth_set_strain_limit(cloth_id cloth, const cloth_strain_limit* limit);
+/// Fills the whole struct, struct_size included.
+CLOTH_API cloth_result cloth_get_strain_limit(cloth_id cloth, cloth_strain_limit* out_limit);
 /// Change one or more spring kinds (a bit set of cloth_spring_kind).
 CLOTH_API cloth_result cloth_set_spring_params(cloth_id cloth, uint32_t kinds, cloth_spring_params params);
 CLOTH_API cloth_result cloth_set_aero(cloth_id cloth, const cloth_aero_params* params);
@@ -443,6 +467,8 @@ typedef enum cloth_stage {
     CLOTH_STAGE_SELF_CONTACTS = 10,  ///< self-collision: each particle's contact list
     CLOTH_STAGE_SELF_PROJECT = 11,   ///< self-collision: one projection pass (repeated while overlaps remain)
     CLOTH_STAGE_SELF_RESPOND = 12,   ///< self-collision: velocity response (paper eq. 13) and friction
+    CLOTH_STAGE_ITERATIVE_SOLVE = 13,  ///< PCG / Chebyshev passes (each iteration is several rounds)
+    CLOTH_STAGE_STRAIN_LIMIT = 14,     ///< strain-limiting passes (when a limit is set)
     CLOTH_STAGE_FORCE_U32 = 0x7FFFFFFF
 } cloth_stage;
 

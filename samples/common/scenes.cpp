@@ -1,5 +1,7 @@
 #include "scenes.h"
 
+#include <cmath>
+
 namespace cloth_samples {
 
 const char* scene_name(SceneKind kind) {
@@ -10,11 +12,13 @@ const char* scene_name(SceneKind kind) {
             return "falling_flat";
         case SceneKind::kFlagInWind:
             return "flag_in_wind";
+        case SceneKind::kDrapedSphere:
+            return "draped_sphere";
     }
     return "unknown";
 }
 
-Scene::Scene(const SceneConfig& config) {
+Scene::Scene(const SceneConfig& config) : kind_(config.kind) {
     auto fail = [this](const char* what, cloth_result r) {
         error_ = std::string(what) + ": " + cloth_result_name(r) + " " + cloth_get_last_error();
     };
@@ -31,7 +35,8 @@ Scene::Scene(const SceneConfig& config) {
     grid.rows = n;
     grid.spring_kinds = config.spring_kinds;
     grid.origin[1] = 1.5f;
-    if (config.kind == SceneKind::kFallingFlat) {  // horizontal: rows run along +z
+    if (config.kind == SceneKind::kFallingFlat || config.kind == SceneKind::kDrapedSphere) {
+        // horizontal: rows run along +z
         grid.v[1] = 0.0f;
         grid.v[2] = 1.0f;
     }
@@ -68,11 +73,22 @@ Scene::Scene(const SceneConfig& config) {
             return;
         }
         cloths_.push_back(cloth);
+        if (config.strain_limit > 0) {
+            cloth_strain_limit limit = cloth_default_strain_limit();
+            limit.max_strain = config.strain_limit;
+            r = cloth_set_strain_limit(cloth, &limit);
+            if (r != CLOTH_OK) {
+                fail("cloth_set_strain_limit", r);
+                return;
+            }
+        }
     }
 
     std::vector<uint32_t> pins;
     if (config.kind == SceneKind::kFlagInWind) {
         for (uint32_t row = 0; row < n; ++row) pins.push_back(row * n);
+    } else if (config.kind == SceneKind::kDrapedSphere) {
+        return;  // free: it comes to rest on the sphere
     } else {
         pins = {0, n - 1};
     }
@@ -87,6 +103,33 @@ Scene::Scene(const SceneConfig& config) {
 
 Scene::~Scene() {
     if (world_.index1) cloth_world_destroy(world_);
+}
+
+cloth_result Scene::step(float dt) {
+    const cloth_result result = cloth_step(world_, dt);
+    if (kind_ != SceneKind::kDrapedSphere || result != CLOTH_OK) return result;
+    for (cloth_id cloth : cloths_) {
+        scratch_.resize(3 * static_cast<size_t>(particle_count_));
+        cloth_read_positions(cloth, scratch_.data(), static_cast<uint32_t>(scratch_.size()));
+        inside_.clear();
+        moved_.clear();
+        for (uint32_t i = 0; i < particle_count_; ++i) {
+            float d[3], length2 = 0;
+            for (int c = 0; c < 3; ++c) {
+                d[c] = scratch_[3 * i + c] - kSphereCenter[c];
+                length2 += d[c] * d[c];
+            }
+            if (length2 >= kSphereRadius * kSphereRadius || length2 == 0) continue;
+            const float scale = kSphereRadius / std::sqrt(length2);
+            inside_.push_back(i);
+            for (int c = 0; c < 3; ++c) moved_.push_back(kSphereCenter[c] + d[c] * scale);
+        }
+        if (inside_.empty()) continue;
+        const cloth_result r =
+            cloth_set_positions(cloth, inside_.data(), moved_.data(), static_cast<uint32_t>(inside_.size()));
+        if (r != CLOTH_OK) return r;
+    }
+    return result;
 }
 
 cloth_stats Scene::stats() const {

@@ -19,6 +19,7 @@ enum class SceneKind {
     kHanging,      // vertical, released from rest
     kFallingFlat,  // horizontal, falls and swings down about its pinned edge
     kFlagInWind,   // vertical, left column pinned, wind along the flag (+x) with a cross breeze
+    kDrapedSphere,  // horizontal, unpinned, falls onto a fixed sphere (contact applied by Scene::step)
 };
 
 const char* scene_name(SceneKind kind);
@@ -36,6 +37,7 @@ struct SceneConfig {
     cloth_world_desc world = cloth_default_world_desc();
     // Cloths of the same fabric in the world, 1.5 m apart along z.
     uint32_t copies = 1;
+    float strain_limit = 0;  // > 0: cloth_set_strain_limit with this max strain
 };
 
 // Owns a world with one fabric and its cloths; destroys them on scope exit.
@@ -55,11 +57,19 @@ class Scene {
     const std::vector<cloth_id>& cloths() const { return cloths_; }
     uint32_t particle_count() const { return particle_count_; }
 
-    cloth_result step(float dt) { return cloth_step(world_, dt); }
+    // One frame; in kDrapedSphere, particles that entered the sphere are put
+    // back on its surface at rest (sticky contact, through the public API).
+    cloth_result step(float dt);
     cloth_stats stats() const;
     std::vector<float> positions() const;  // of the first cloth
 
+    static constexpr float kSphereCenter[3] = {0.5f, 1.0f, 0.5f};
+    static constexpr float kSphereRadius = 0.3f;
+
   private:
+    SceneKind kind_ = SceneKind::kHanging;
+    std::vector<float> scratch_, moved_;
+    std::vector<uint32_t> inside_;
     cloth_world_id world_{};
     cloth_fabric_id fabric_{};
     std::vector<cloth_id> cloths_;

@@ -1308,7 +1308,7 @@ std::vector<std::tuple<std::string, std::function<void(cloth_solver_settings&)>,
     using S = cloth_solver_settings;
     std::vector<std::tuple<std::string, std::function<void(S&)>, cloth_result>> out;
     out.emplace_back(
-        "kind 4 (unknown)", [](S& s) { s.kind = static_cast<cloth_solver_kind>(4); },
+        "kind 6 (unknown)", [](S& s) { s.kind = static_cast<cloth_solver_kind>(6); },
         CLOTH_ERROR_INVALID_VALUE);
     out.emplace_back(
         "kind FORCE_U32", [](S& s) { s.kind = CLOTH_SOLVER_KIND_FORCE_U32; }, CLOTH_ERROR_INVALID_VALUE);

@@ -76,6 +76,10 @@ TEST(StepStages, AnyScheduleOfTheGroupsGivesTheSerialBits) {
         {"grid jacobi still air", false, CLOTH_SOLVER_JACOBI, 2, 1, false, 20},
         {"mesh jacobi k=3", true, CLOTH_SOLVER_JACOBI, 3, 2, true, 20},
         {"grid cg", false, CLOTH_SOLVER_CG, 1, 1, true, 2},
+        {"grid pcg k=8 substeps 2", false, CLOTH_SOLVER_PCG, 8, 2, true, 20},
+        {"mesh pcg k=6", true, CLOTH_SOLVER_PCG, 6, 1, true, 10},
+        {"grid chebyshev k=6 substeps 4", false, CLOTH_SOLVER_CHEBYSHEV, 6, 4, true, 10, 20.0f, 0.05f},
+        {"grid default (pcg, strain limit)", false, CLOTH_SOLVER_DEFAULT, 1, 1, true, 10, 3000.0f},
         // Explicit Euler needs small steps to stay finite at this stiffness.
         {"grid explicit", false, CLOTH_SOLVER_EXPLICIT, 1, 64, true, 5, 20.0f, 0.001f},
     };

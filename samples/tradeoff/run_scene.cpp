@@ -1,0 +1,90 @@
+#include "run_scene.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace tradeoff {
+
+const char* kind_name(cloth_solver_kind kind) {
+    switch (kind) {
+        case CLOTH_SOLVER_DEFAULT:
+            return "DEFAULT";
+        case CLOTH_SOLVER_JACOBI:
+            return "JACOBI";
+        case CLOTH_SOLVER_CG:
+            return "CG";
+        case CLOTH_SOLVER_EXPLICIT:
+            return "EXPLICIT";
+        case CLOTH_SOLVER_PCG:
+            return "PCG";
+        case CLOTH_SOLVER_CHEBYSHEV:
+            return "CHEBYSHEV";
+        default:
+            return "?";
+    }
+}
+
+RunResult run_scene(const cloth_samples::SceneConfig& config, float dt, uint32_t frames) {
+    RunResult out;
+    cloth_samples::Scene scene(config);
+    if (!scene.ok()) {
+        out.ok = false;
+        out.error = scene.error();
+        return out;
+    }
+    auto energy = [](const cloth_stats& s) { return s.kinetic_energy + s.gravity_energy + s.elastic_energy; };
+    const double e0 = energy(scene.stats());
+    double first_half_max = e0, second_half_max = -1e300, e = e0;
+    std::vector<double> ms;
+    ms.reserve(frames);
+    for (uint32_t f = 0; f < frames; ++f) {
+        const auto start = std::chrono::steady_clock::now();
+        const cloth_result r = scene.step(dt);
+        ms.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        if (r != CLOTH_OK && r != CLOTH_ERROR_SOLVER_FAILED) {
+            out.ok = false;
+            out.error = std::string(cloth_result_name(r)) + ": " + cloth_get_last_error();
+            break;
+        }
+        const cloth_stats s = scene.stats();
+        e = energy(s);
+        if (!std::isfinite(e)) {
+            out.ok = false;
+            out.error = "non-finite energy";
+            break;
+        }
+        out.max_strain = std::max(out.max_strain, static_cast<double>(s.max_strain));
+        out.mean_strain = std::max(out.mean_strain, static_cast<double>(s.mean_strain));
+        out.energy_gain = std::max(out.energy_gain, e - e0);
+        if (2 * f < frames) {
+            first_half_max = std::max(first_half_max, e);
+        } else {
+            second_half_max = std::max(second_half_max, e);
+        }
+        ++out.frames;
+    }
+    out.energy_change = e - e0;
+    out.late_energy_rise = second_half_max - first_half_max;
+    if (!ms.empty()) {
+        std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
+        out.ms_per_frame = ms[ms.size() / 2];
+    }
+    out.positions = scene.positions();
+    if (!out.ok) out.max_strain = std::max(out.max_strain, 1e9);
+    return out;
+}
+
+double rms_distance(const std::vector<float>& a, const std::vector<float>& b) {
+    if (a.size() != b.size() || a.empty()) return INFINITY;
+    double sum = 0;
+    for (size_t i = 0; i < a.size(); i += 3) {
+        double d2 = 0;
+        for (int c = 0; c < 3; ++c) d2 += (static_cast<double>(a[i + c]) - b[i + c]) * (a[i + c] - b[i + c]);
+        sum += d2;
+    }
+    return std::sqrt(sum / static_cast<double>(a.size() / 3));
+}
+
+}  // namespace tradeoff

@@ -1,0 +1,32 @@
+// Runs one standard scene (samples/common/scenes.h) with one solver setting
+// and measures what the study reports: time per frame, strain, energy.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scenes.h"
+
+namespace tradeoff {
+
+struct RunResult {
+    bool ok = true;               // every frame stepped without an error
+    std::string error;            // first error, if any
+    double ms_per_frame = 0;      // median wall time of cloth_step, ms
+    double max_strain = 0;        // max over frames of the structural max strain
+    double mean_strain = 0;       // max over frames of the structural mean |strain|
+    double energy_gain = 0;       // max over frames of E(t) - E(0), J (kinetic + gravity + elastic)
+    double energy_change = 0;     // E(end) - E(0), J
+    double late_energy_rise = 0;  // max E over the second half minus max E over the first half, J
+    uint32_t frames = 0;
+    std::vector<float> positions;  // at the end
+};
+
+RunResult run_scene(const cloth_samples::SceneConfig& config, float dt, uint32_t frames);
+
+// Root-mean-square distance between two position sets (same particle count).
+double rms_distance(const std::vector<float>& a, const std::vector<float>& b);
+
+const char* kind_name(cloth_solver_kind kind);
+
+}  // namespace tradeoff
