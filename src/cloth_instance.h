@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "cloth_contact.h"
 #include "fabric.h"
 #include "host_allocator.h"
 #include "math.h"
@@ -93,6 +94,9 @@ class ClothInstance {
     // enabled; `settings` null turns it off and frees it. Allocates when on.
     void set_self_collision(const SelfCollisionSettings* settings);
     const SelfCollision* self_collision() const { return self_collision_.get(); }
+    // Collision settings, attachments and carrier (cloth_contact.h).
+    ClothContact& contact() { return contact_; }
+    const ClothContact& contact() const { return contact_; }
 
     const SolveReport& last_solve() const { return last_solve_; }
     cloth_result last_step_result() const { return last_step_result_; }
@@ -107,6 +111,7 @@ class ClothInstance {
     void run_integrate(uint32_t group);
     void run_explicit(uint32_t group);
     void run_self_collision(uint32_t group);  // the kSelf* stages
+    void run_collisions(uint32_t group);
     void land_pins(uint32_t begin, uint32_t end);
     void check_finite(uint32_t group);
     // The stage after the current one (the plan of a frame).
@@ -169,6 +174,9 @@ class ClothInstance {
     Vec3Soa* sweep_current_ = nullptr;  // Jacobi: the iterate being read
     Vec3Soa* sweep_next_ = nullptr;     // and the one being written
     HostVector<uint8_t> group_finite_;  // per group, written by the last stage of a frame
+
+    ClothContact contact_;   // colliders, attachments, carrier
+    bool collides_ = false;  // this frame runs the collision stage
 };
 
 }  // namespace cloth
