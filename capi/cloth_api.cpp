@@ -197,6 +197,10 @@ CLOTH_API cloth_result cloth_set_pin_targets(cloth_id id, const uint32_t* indice
             if (!cloth->is_pinned(indices[k])) {
                 return Status::error(CLOTH_ERROR_INVALID_VALUE, "particle %u is not pinned", indices[k]);
             }
+            if (cloth->contact().is_attached(indices[k])) {
+                return Status::error(CLOTH_ERROR_INVALID_VALUE, "particle %u is attached to a body",
+                                     indices[k]);
+            }
         }
         for (uint32_t k = 0; k < count; ++k) {
             const float* p = targets_xyz + 3 * k;

@@ -50,7 +50,8 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       backup_x_(memory),
       backup_v_(memory),
       group_finite_(HostAllocator<uint8_t>(memory)),
-      group_speed_squared_(HostAllocator<float>(memory)) {
+      group_speed_squared_(HostAllocator<float>(memory)),
+      contact_(memory) {
     const Fabric& f = *fabric_;
     const uint32_t n = f.particle_count();
     for (Vec3Soa* a : {&x_, &v_, &pin_target_, &pin_start_, &external_force_, &rhs_, &dv_, &dv_scratch_,
@@ -89,6 +90,7 @@ void ClothInstance::set_pinned(const uint32_t* particles, uint32_t count, bool p
         const uint32_t i = particles[k];
         if (pinned) pin_target_.set(i, x_.get(i));
         pinned_[i] = pinned ? 1.0f : 0.0f;
+        if (!pinned) contact_.detach(i);
     }
     pinned_list_.clear();  // keeps its capacity of one entry per particle
     for (uint32_t i = 0; i < particle_count(); ++i) {
@@ -186,7 +188,8 @@ void ClothInstance::wake() {
 void ClothInstance::update_sleep() {
     float speed_squared = 0;
     for (float s : group_speed_squared_) speed_squared = std::max(speed_squared, s);
-    rest_frames_ = speed_squared <= sleep_.max_speed * sleep_.max_speed ? rest_frames_ + 1 : 0;
+    const bool at_rest = speed_squared <= sleep_.max_speed * sleep_.max_speed && !contact_.follows_bodies();
+    rest_frames_ = at_rest ? rest_frames_ + 1 : 0;
     if (sleep_.enabled && rest_frames_ >= sleep_.frames) {
         // At rest: stop, and cost nothing until something changes.
         sleeping_ = true;
@@ -199,6 +202,7 @@ void ClothInstance::update_sleep() {
 Status ClothInstance::step(float dt, const Vec3& gravity, TaskSystem* tasks) {
     SerialTasks serial;
     TaskSystem& runner = tasks ? *tasks : serial;
+    if (sleeping_ && contact_.follows_bodies()) wake();  // bodies move without a call on the cloth
     if (sleeping_) return {};
     begin_frame(dt, gravity);
     while (!frame_done()) {
@@ -219,6 +223,8 @@ bool ClothInstance::has_air() const {
 void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     backup_x_ = x_;
     backup_v_ = v_;
+    contact_.begin_step(dt, pinned_.data(), x_, v_);  // carrier (no pass without one)
+    collides_ = contact_.collides();
     for (uint32_t i : pinned_list_) pin_start_.set(i, x_.get(i));
     frame_solver_ = resolve_solver(
         solver_, dt, stiffness_over_mass(material_, mass_.data(), pinned_.data(), particle_count()));
@@ -287,7 +293,8 @@ Stage ClothInstance::next_stage(Stage current) const {
 // Where a substep goes once dv is integrated (and strain is limited).
 // Post-integration passes plug in here, each behind its feature:
 Stage ClothInstance::stage_after_solve() const {
-    //   if (colliders enabled) return Stage::kCollisions;      (issue 6)
+    // Post-integration passes plug in here, each behind its feature:
+    if (collides_) return Stage::kCollisions;  // issue 6
     return self_collision_ ? Stage::kSelfCollision : Stage::kCount;
 }
 
@@ -398,6 +405,9 @@ void ClothInstance::run_task(uint32_t task, uint32_t) {
         case Stage::kExplicit:
             run_explicit(task);
             break;
+        case Stage::kCollisions:
+            run_collisions(task);
+            break;
         case Stage::kSelfCollision:
         case Stage::kSelfSort:
         case Stage::kSelfContacts:
@@ -405,7 +415,6 @@ void ClothInstance::run_task(uint32_t task, uint32_t) {
         case Stage::kSelfRespond:
             run_self_collision(task);
             break;
-        case Stage::kCollisions:
         case Stage::kCount:
             break;
     }
@@ -446,6 +455,7 @@ Status ClothInstance::end_frame() {
 }
 
 Vec3 ClothInstance::pin_position(uint32_t i, float frame_fraction) const {
+    if (contact_.is_attached(i)) return contact_.attached_position(i, frame_fraction);
     return pin_start_.get(i) + (pin_target_.get(i) - pin_start_.get(i)) * frame_fraction;
 }
 
@@ -706,6 +716,13 @@ void ClothInstance::land_pins(uint32_t begin, uint32_t end) {
     for (auto it = first; it != pinned_list_.end() && *it < end; ++it) {
         x_.set(*it, pin_position(*it, fraction_end));
     }
+}
+
+void ClothInstance::run_collisions(uint32_t group) {
+    // Particles against the world's colliders over this substep (colliders.h).
+    const float from = static_cast<float>(cursor_.substep) / static_cast<float>(substeps_);
+    const float to = static_cast<float>(cursor_.substep + 1) / static_cast<float>(substeps_);
+    contact_.collide(h_, from, to, pinned_.data(), group_begin(group), group_end(group), x_, v_);
 }
 
 }  // namespace cloth

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "cloth_contact.h"
 #include "fabric.h"
 #include "host_allocator.h"
 #include "math.h"
@@ -133,6 +134,9 @@ class ClothInstance {
     // enabled; `settings` null turns it off and frees it. Allocates when on.
     void set_self_collision(const SelfCollisionSettings* settings);
     const SelfCollision* self_collision() const { return self_collision_.get(); }
+    // Collision settings, attachments and carrier (cloth_contact.h).
+    ClothContact& contact() { return contact_; }
+    const ClothContact& contact() const { return contact_; }
 
     const SolveReport& last_solve() const { return last_solve_; }
     cloth_result last_step_result() const { return last_step_result_; }
@@ -153,6 +157,7 @@ class ClothInstance {
     void run_integrate(uint32_t group);
     void run_explicit(uint32_t group);
     void run_self_collision(uint32_t group);  // the kSelf* stages
+    void run_collisions(uint32_t group);
     void land_pins(uint32_t begin, uint32_t end);
     void check_finite(uint32_t group);
     // The stage after the current one (the plan of a frame).
@@ -243,6 +248,9 @@ class ClothInstance {
     QualityPolicy quality_;
     bool sleeping_ = false;
     uint32_t rest_frames_ = 0;  // consecutive frames below sleep_.max_speed
+
+    ClothContact contact_;   // colliders, attachments, carrier
+    bool collides_ = false;  // this frame runs the collision stage
 };
 
 }  // namespace cloth

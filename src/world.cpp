@@ -36,6 +36,7 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       generation_(generation),
       fabrics_(HostAllocator<Slot<Fabric>>(&memory_)),
       cloths_(HostAllocator<Slot<ClothInstance>>(&memory_)),
+      contact_(&memory_),
       tasks_(&serial_tasks_),
       host_tasks_(desc.enqueue_task, desc.finish_task, desc.task_user, desc.worker_count),
       pool_(desc.enqueue_task ? 1 : desc.worker_count),
@@ -109,6 +110,7 @@ Status World::create_cloth(std::shared_ptr<const Fabric> fabric, const Material&
         }
     }
     reserve_round_tasks(cloth->group_count());
+    cloth->contact().bind(&contact_);
     cloths_[slot].object = std::move(cloth);
     *out = cloth_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1),
                     cloths_[slot].generation, generation_};
@@ -196,6 +198,19 @@ void World::account_round(uint32_t count) {
     }
 }
 
+void World::destroy_body(uint32_t body) {
+    for (const Slot<ClothInstance>& slot : cloths_) {
+        ClothInstance* cloth = slot.object.get();
+        if (!cloth) continue;
+        ClothContact& contact = cloth->contact();
+        if (contact.carrier().body() == body) contact.carrier().clear();
+        for (uint32_t i = 0; i < cloth->particle_count(); ++i) {
+            if (contact.is_attached(i) && contact.attached_body(i) == body) cloth->unpin(i);
+        }
+    }
+    contact_.destroy_body(body);
+}
+
 Status World::step(float dt) {
     const int64_t start = now_ns();
     if (zone_begin_) zone_begin_("cloth_step", 0, zone_user_);
@@ -206,6 +221,7 @@ Status World::step(float dt) {
         ClothInstance* cloth = cloths_[s].object.get();
         if (!cloth) continue;
         cloth_cost_ns_[s] = 0;
+        if (cloth->sleeping() && cloth->contact().follows_bodies()) cloth->wake();  // bodies move freely
         if (cloth->sleeping()) {
             ++profile_.sleeping_cloths;
             continue;
@@ -252,6 +268,7 @@ Status World::step(float dt) {
             first_failure = Status::error(status.code, "cloth slot %u: %.360s", s + 1, status.message);
         }
     }
+    contact_.end_step();  // bodies start the next step where they are now
     profile_.end_ns = now_ns();
     if (budget_ms_ > 0) {
         // An overrun is reported in the profile, not as a failed step.

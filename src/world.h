@@ -12,6 +12,7 @@
 
 #include "budget_policy.h"
 #include "cloth_instance.h"
+#include "contact_world.h"
 #include "fabric.h"
 #include "frame_profile.h"
 #include "host_allocator.h"
@@ -79,6 +80,11 @@ class World {
         return cloth_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1), generation,
                         generation_};
     }
+    // Bodies and colliders (contact_world.h). Destroying a body detaches
+    // every particle attached to it and removes it as a carrier first.
+    ContactWorld& contact() { return contact_; }
+    const ContactWorld& contact() const { return contact_; }
+    void destroy_body(uint32_t slot);
 
   private:
     // Whether tasks are timed this frame (profiling or a budget needs it).
@@ -98,6 +104,7 @@ class World {
     uint16_t generation_;
     HostVector<Slot<Fabric>> fabrics_;
     HostVector<Slot<ClothInstance>> cloths_;
+    ContactWorld contact_;
 
     // One task of a round: group `task` of `cloth`'s current stage.
     struct RoundTask {

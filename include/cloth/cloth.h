@@ -616,6 +616,228 @@ CLOTH_API cloth_result cloth_restore_snapshot(cloth_id cloth, const void* buffer
 /* Bodies, colliders and attachments                                  */
 /* ------------------------------------------------------------------ */
 
+/*
+ * Bodies are rigid frames the host moves (a vehicle chassis, a character
+ * bone). Each frame the host sets a body's pose (and velocities) before
+ * cloth_step; the step moves the body from the pose it had at the end of
+ * the previous step to the new one across the substeps (position linearly,
+ * rotation by slerp), so whatever rides on it follows without a one-frame
+ * lag. The cloth never pushes bodies back (one-way coupling).
+ *
+ * Colliders are shapes the cloth's particles stay out of (by the cloth's
+ * collision thickness). A collider is fixed to a body (it moves with it) or
+ * static (world frame). Any number of cloths collide with one collider; a
+ * cloth collides with the colliders whose `group_bits` meet its
+ * cloth_collision_params.collider_mask. A collider that moves fast is swept:
+ * a particle's path is tested in the collider's moving frame, so a collider
+ * passing through a cloth within one substep pushes it instead of tunneling.
+ *
+ * Attachments fix particles to a body at local offsets: they follow the
+ * body's pose exactly, every substep, and the solver treats them as
+ * kinematic (like pins).
+ *
+ * The carrier of a cloth is the body it travels with: the cloth simulates
+ * partly relative to it (inertia scales), with a speed limit and teleport
+ * handling. See cloth_carrier_desc.
+ *
+ * Rotations are unit quaternions (x, y, z, w); a rotation whose length is
+ * not within 1e-2 of 1 is CLOTH_ERROR_INVALID_VALUE, and it is normalised.
+ * Shapes are given in the collider's local frame; a collider's world pose
+ * is body pose * local pose (or the local pose alone if static).
+ */
+
+/// A rigid body (moving frame) of a world. All-zero is null. Same layout
+/// and rules as cloth_id.
+typedef struct cloth_body_id {
+    uint16_t index1;
+    uint16_t world1;
+    uint16_t generation;
+    uint16_t world_generation;
+} cloth_body_id;
+
+/// A collision shape of a world. All-zero is null. Same layout and rules
+/// as cloth_id.
+typedef struct cloth_collider_id {
+    uint16_t index1;
+    uint16_t world1;
+    uint16_t generation;
+    uint16_t world_generation;
+} cloth_collider_id;
+
+typedef struct cloth_body_desc {
+    uint32_t struct_size;       ///< sizeof(cloth_body_desc)
+    float position[3];          ///< m; default (0, 0, 0)
+    float rotation[4];          ///< unit quaternion (x, y, z, w); default (0, 0, 0, 1)
+    float linear_velocity[3];   ///< m/s of the body origin; default 0
+    float angular_velocity[3];  ///< rad/s, world frame; default 0
+    uint32_t internal_cookie;
+} cloth_body_desc;
+
+CLOTH_API cloth_body_desc cloth_default_body_desc(void);
+
+/// Create a body at the description's pose. At most 65535 bodies per world.
+CLOTH_API cloth_result cloth_body_create(cloth_world_id world, const cloth_body_desc* desc,
+                                         cloth_body_id* out_body);
+/// Destroy a body, the colliders fixed to it, every attachment to it (those
+/// particles become free, keeping their velocity) and every carrier link to it.
+CLOTH_API cloth_result cloth_body_destroy(cloth_body_id body);
+/// The pose the body reaches at the end of the next cloth_step; it moves
+/// there from its current pose across the step's substeps.
+CLOTH_API cloth_result cloth_body_set_pose(cloth_body_id body, const float position[3],
+                                           const float rotation[4]);
+/// Jump to a pose: the next step starts there (no sweep, no interpolation).
+/// Attachments jump with it; free particles stay where they are unless the
+/// cloth's carrier teleport handling moves them (cloth_carrier_desc).
+CLOTH_API cloth_result cloth_body_teleport(cloth_body_id body, const float position[3],
+                                           const float rotation[4]);
+/// Velocities of the body (origin velocity in m/s, angular velocity in rad/s,
+/// world frame). Used for friction against its colliders.
+CLOTH_API cloth_result cloth_body_set_velocity(cloth_body_id body, const float linear[3],
+                                               const float angular[3]);
+/// The pose set last (position, rotation quaternion x, y, z, w).
+CLOTH_API cloth_result cloth_body_get_pose(cloth_body_id body, float out_position[3], float out_rotation[4]);
+
+/// Common part of every collider.
+typedef struct cloth_collider_desc {
+    uint32_t struct_size;     ///< sizeof(cloth_collider_desc)
+    cloth_body_id body;       ///< the body it is fixed to; null (default): static, in the world frame
+    float local_position[3];  ///< m, in the body's frame (or world); default 0
+    float local_rotation[4];  ///< unit quaternion (x, y, z, w); default (0, 0, 0, 1)
+    uint32_t group_bits;      ///< collides with cloths whose collider_mask meets these bits; default 1
+    uint32_t internal_cookie;
+} cloth_collider_desc;
+
+CLOTH_API cloth_collider_desc cloth_default_collider_desc(void);
+
+/// A sphere of `radius` > 0 m centred on the local origin.
+CLOTH_API cloth_result cloth_collider_create_sphere(cloth_world_id world, const cloth_collider_desc* desc,
+                                                    float radius, cloth_collider_id* out_collider);
+/// A capsule along the local y axis: the segment from (0, -half_height, 0) to
+/// (0, half_height, 0), swept by `radius` > 0 (half_height >= 0), as
+/// btCapsuleShape (up axis y) with half_height = its getHalfHeight().
+CLOTH_API cloth_result cloth_collider_create_capsule(cloth_world_id world, const cloth_collider_desc* desc,
+                                                     float radius, float half_height,
+                                                     cloth_collider_id* out_collider);
+/// A box with the given half extents (each > 0) centred on the local origin.
+CLOTH_API cloth_result cloth_collider_create_box(cloth_world_id world, const cloth_collider_desc* desc,
+                                                 const float half_extents[3],
+                                                 cloth_collider_id* out_collider);
+/// The solid half-space { p : dot(normal, p) <= offset } in the local frame
+/// (btStaticPlaneShape's normal and constant). `normal` need not be unit
+/// length but must not be zero.
+CLOTH_API cloth_result cloth_collider_create_plane(cloth_world_id world, const cloth_collider_desc* desc,
+                                                   const float normal[3], float offset,
+                                                   cloth_collider_id* out_collider);
+/// The convex hull of `point_count` local points (4..4096, 3 floats each, not
+/// all in one plane: else CLOTH_ERROR_DEGENERATE_GEOMETRY).
+CLOTH_API cloth_result cloth_collider_create_convex_hull(cloth_world_id world,
+                                                         const cloth_collider_desc* desc,
+                                                         const float* points_xyz, uint32_t point_count,
+                                                         cloth_collider_id* out_collider);
+/// A triangle mesh (typically static: terrain, walls). Triangles are
+/// one-sided solids of shallow depth: the front is where the winding
+/// (counter-clockwise) normal points. A particle closer than the thickness
+/// in front, or whose path crosses a triangle from the front, is pushed back
+/// in front. 1..2^24 vertices and triangles; no degenerate triangle.
+CLOTH_API cloth_result cloth_collider_create_triangle_mesh(cloth_world_id world,
+                                                           const cloth_collider_desc* desc,
+                                                           const float* vertices_xyz, uint32_t vertex_count,
+                                                           const uint32_t* indices, uint32_t triangle_count,
+                                                           cloth_collider_id* out_collider);
+
+/// A height field in the local frame, solid below. Sample (c, r) sits at
+/// (c * spacing_x, heights[r * columns + c], r * spacing_z); cell (c, r) is
+/// split into triangles (c,r)-(c+1,r)-(c,r+1) and (c+1,r)-(c+1,r+1)-(c,r+1)
+/// (btHeightfieldTerrainShape's default split, up axis y, with its origin
+/// moved to the first sample).
+typedef struct cloth_heightfield_desc {
+    uint32_t struct_size;  ///< sizeof(cloth_heightfield_desc)
+    uint32_t columns;      ///< samples along x, 2..65536; default 2
+    uint32_t rows;         ///< samples along z, 2..65536; default 2
+    float spacing_x;       ///< m, > 0; default 1
+    float spacing_z;       ///< m, > 0; default 1
+    const float* heights;  ///< columns * rows heights, m, row-major (required)
+    uint32_t internal_cookie;
+} cloth_heightfield_desc;
+
+CLOTH_API cloth_heightfield_desc cloth_default_heightfield_desc(void);
+
+CLOTH_API cloth_result cloth_collider_create_heightfield(cloth_world_id world,
+                                                         const cloth_collider_desc* desc,
+                                                         const cloth_heightfield_desc* heightfield,
+                                                         cloth_collider_id* out_collider);
+CLOTH_API cloth_result cloth_collider_destroy(cloth_collider_id collider);
+/// Change which cloths collide with it (see cloth_collision_params.collider_mask).
+CLOTH_API cloth_result cloth_collider_set_group_bits(cloth_collider_id collider, uint32_t group_bits);
+
+/// How a cloth meets colliders.
+typedef struct cloth_collision_params {
+    uint32_t struct_size;    ///< sizeof(cloth_collision_params)
+    float thickness;         ///< m, >= 0: particles keep this distance from colliders; default 0.01
+    float friction;          ///< Coulomb coefficient, >= 0; default 0.3
+    uint32_t collider_mask;  ///< collide with colliders whose group_bits meet this; default all; 0: none
+} cloth_collision_params;
+
+CLOTH_API cloth_collision_params cloth_default_collision_params(void);
+CLOTH_API cloth_result cloth_set_collision(cloth_id cloth, const cloth_collision_params* params);
+/// Fills the whole struct, struct_size included.
+CLOTH_API cloth_result cloth_get_collision(cloth_id cloth, cloth_collision_params* out_params);
+
+/// Attach particles to a body, particle indices[k] at body-local offset
+/// local_offsets_xyz[3k..3k+2] (m). With local_offsets_xyz NULL, each stays
+/// where it is now relative to the body's current pose. Attached particles
+/// are kinematic (cloth_is_pinned reports them pinned): every substep they
+/// sit exactly at body pose * offset, the body pose interpolated across the
+/// step. Re-attaching a particle moves it to the new body and offset. The
+/// body must be in the cloth's world.
+CLOTH_API cloth_result cloth_attach(cloth_id cloth, cloth_body_id body, const uint32_t* indices,
+                                    const float* local_offsets_xyz, uint32_t count);
+/// Release attached particles (each must be attached); they keep their
+/// velocity. cloth_unpin releases attached particles too.
+CLOTH_API cloth_result cloth_detach(cloth_id cloth, const uint32_t* indices, uint32_t count);
+/// Whether particle `index` is attached, and to which body (null if not).
+CLOTH_API cloth_result cloth_get_attachment(cloth_id cloth, uint32_t index, cloth_body_id* out_body,
+                                            float out_local_offset[3]);
+
+typedef enum cloth_teleport_mode {
+    CLOTH_TELEPORT_DEFAULT = 0,  ///< CLOTH_TELEPORT_MOVE
+    CLOTH_TELEPORT_MOVE = 1,     ///< move the cloth rigidly with the carrier, keeping its shape and motion
+    CLOTH_TELEPORT_AND_RESET =
+        2,  ///< put the cloth in its reference shape at the new pose, at rest on the carrier
+    CLOTH_TELEPORT_MODE_FORCE_U32 = 0x7FFFFFFF
+} cloth_teleport_mode;
+
+/// How a cloth travels with its carrier body. Each step the carrier's
+/// motion over the frame is measured from its poses: the change of its
+/// velocity (linear) and of its rotation (angular, with Coriolis) and the
+/// centripetal part of its rotation are given to the cloth's free particles
+/// scaled by (1 - inertia). Inertia 1 is physical (the carrier's motion is
+/// felt fully through the attachments only), 0 makes the cloth move with
+/// the carrier as if it were rigidly fixed to it.
+typedef struct cloth_carrier_desc {
+    uint32_t struct_size;       ///< sizeof(cloth_carrier_desc)
+    float linear_inertia;       ///< 0..1; default 1
+    float angular_inertia;      ///< 0..1 (Euler and Coriolis terms); default 1
+    float centrifugal_inertia;  ///< 0..1; default 1
+    float max_relative_speed;   ///< m/s, >= 0: clamp of particle speed relative to the carrier; 0 (default):
+                                ///< none
+    float teleport_distance;  ///< m, >= 0: a frame's carrier move beyond this is a teleport; 0 (default): off
+    float
+        teleport_rotation;  ///< rad, >= 0: a frame's carrier turn beyond this is a teleport; 0 (default): off
+    cloth_teleport_mode teleport_mode;  ///< default CLOTH_TELEPORT_MOVE
+    uint32_t internal_cookie;
+} cloth_carrier_desc;
+
+CLOTH_API cloth_carrier_desc cloth_default_carrier_desc(void);
+
+/// Make `body` the cloth's carrier (a null body removes the carrier; desc is
+/// then ignored and may be NULL). The cloth's current positions relative to
+/// the body's current pose become its reference shape for
+/// CLOTH_TELEPORT_AND_RESET.
+CLOTH_API cloth_result cloth_set_carrier(cloth_id cloth, cloth_body_id body, const cloth_carrier_desc* desc);
+/// Whether the carrier teleport handling fired in the last step of this cloth.
+CLOTH_API cloth_result cloth_get_teleported(cloth_id cloth, bool* out_teleported);
+
 /* ------------------------------------------------------------------ */
 /* Self-collision                                                     */
 /* ------------------------------------------------------------------ */

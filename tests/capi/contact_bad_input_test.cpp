@@ -1,0 +1,449 @@
+// Contract tests of the bodies/colliders/attachments/carrier C API against
+// bad input, in the style of bad_input_test.cpp. Every rejected call:
+//   - returns the specific cloth_result the header names;
+//   - sets a non-empty cloth_get_last_error() on a fresh thread, and the
+//     world's log callback received the same code and message;
+//   - changed nothing: the cloth (positions, velocities, pins, attachments,
+//     collision settings, teleport flag), the body (pose), the allocator's
+//     live bytes and the output arguments are as before; and at the end of
+//     each test the fixture world and an identical twin world are stepped
+//     together and must stay bit-identical (hidden state a failed call
+//     changed, e.g. a collider half created or a body pose, shows up there).
+#include <cloth/cloth.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kFrame = 1.0f / 60.0f;
+constexpr uint32_t kColumns = 6, kRows = 6, kParticles = kColumns * kRows;
+
+struct Host {
+    std::map<void*, size_t> live;
+    size_t live_bytes = 0;
+    std::vector<std::pair<cloth_result, std::string>> errors;
+};
+
+void* HostAlloc(size_t size, size_t alignment, void* user) {
+    Host* h = static_cast<Host*>(user);
+    void* p = nullptr;
+    if (posix_memalign(&p, alignment < sizeof(void*) ? sizeof(void*) : alignment, size ? size : 1) != 0)
+        return nullptr;
+    h->live[p] = size;
+    h->live_bytes += size;
+    return p;
+}
+
+void HostFree(void* ptr, size_t, void* user) {
+    Host* h = static_cast<Host*>(user);
+    h->live_bytes -= h->live[ptr];
+    h->live.erase(ptr);
+    std::free(ptr);
+}
+
+void HostLog(cloth_log_level level, cloth_result code, const char* message, void* user) {
+    if (level == CLOTH_LOG_ERROR) static_cast<Host*>(user)->errors.push_back({code, message});
+}
+
+struct Scene {
+    Host host;
+    cloth_world_id world{};
+    cloth_fabric_id fabric{};
+    cloth_id cloth{};
+    cloth_body_id body{};   // carries the cloth; two corners attached to it; a sphere fixed to it
+    cloth_body_id spare{};  // a body with nothing on it
+    cloth_body_id stale_body{};
+    cloth_collider_id sphere{}, ground{}, stale_collider{};
+};
+
+// The whole observable state of the scene's cloth and body.
+struct State {
+    std::vector<float> x, v;
+    std::vector<int> pinned;
+    std::vector<cloth_body_id> attached;
+    std::vector<float> offsets;
+    cloth_collision_params collision{};
+    bool teleported = false;
+    float body_position[3] = {}, body_rotation[4] = {};
+
+    bool operator==(const State& o) const {
+        auto same_ids = [&] {
+            for (size_t i = 0; i < attached.size(); ++i)
+                // Twin worlds differ in world1 only.
+                if (attached[i].index1 != o.attached[i].index1 ||
+                    attached[i].generation != o.attached[i].generation)
+                    return false;
+            return attached.size() == o.attached.size();
+        };
+        return std::memcmp(x.data(), o.x.data(), x.size() * 4) == 0 && x.size() == o.x.size() &&
+               std::memcmp(v.data(), o.v.data(), v.size() * 4) == 0 && pinned == o.pinned && same_ids() &&
+               std::memcmp(offsets.data(), o.offsets.data(), offsets.size() * 4) == 0 &&
+               std::memcmp(&collision, &o.collision, sizeof collision) == 0 && teleported == o.teleported &&
+               std::memcmp(body_position, o.body_position, sizeof body_position) == 0 &&
+               std::memcmp(body_rotation, o.body_rotation, sizeof body_rotation) == 0;
+    }
+};
+
+State Read(const Scene& s) {
+    State st;
+    st.x.resize(3 * kParticles);
+    st.v.resize(3 * kParticles);
+    EXPECT_EQ(cloth_read_positions(s.cloth, st.x.data(), 3 * kParticles), CLOTH_OK);
+    EXPECT_EQ(cloth_read_velocities(s.cloth, st.v.data(), 3 * kParticles), CLOTH_OK);
+    for (uint32_t i = 0; i < kParticles; ++i) {
+        bool pinned = false;
+        EXPECT_EQ(cloth_is_pinned(s.cloth, i, &pinned), CLOTH_OK);
+        st.pinned.push_back(pinned);
+        cloth_body_id body{};
+        float offset[3];
+        EXPECT_EQ(cloth_get_attachment(s.cloth, i, &body, offset), CLOTH_OK);
+        st.attached.push_back(body);
+        st.offsets.insert(st.offsets.end(), offset, offset + 3);
+    }
+    EXPECT_EQ(cloth_get_collision(s.cloth, &st.collision), CLOTH_OK);
+    EXPECT_EQ(cloth_get_teleported(s.cloth, &st.teleported), CLOTH_OK);
+    EXPECT_EQ(cloth_body_get_pose(s.body, st.body_position, st.body_rotation), CLOTH_OK);
+    return st;
+}
+
+#define EXPECT_REJECTED(expected, call) Reject((expected), #call, [&]() -> cloth_result { return (call); })
+
+class ContactBadInput : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        Build(a_);
+        Build(b_);
+    }
+
+    void TearDown() override {
+        for (int i = 0; i < 4; ++i) {
+            const float p[3] = {0.1f * i, 0.0f, 0.0f}, q[4] = {0, 0, 0, 1};
+            EXPECT_EQ(cloth_body_set_pose(a_.body, p, q), CLOTH_OK);
+            EXPECT_EQ(cloth_body_set_pose(b_.body, p, q), CLOTH_OK);
+            EXPECT_EQ(cloth_step(a_.world, kFrame), CLOTH_OK) << cloth_get_last_error();
+            EXPECT_EQ(cloth_step(b_.world, kFrame), CLOTH_OK) << cloth_get_last_error();
+        }
+        EXPECT_TRUE(Read(a_) == Read(b_)) << "after the rejected calls the world evolves unlike its twin";
+        for (Scene* s : {&a_, &b_}) {
+            EXPECT_EQ(cloth_world_destroy(s->world), CLOTH_OK);
+            EXPECT_EQ(s->host.live_bytes, 0u);
+        }
+    }
+
+    static void Build(Scene& s) {
+        cloth_world_desc wd = cloth_default_world_desc();
+        wd.alloc = HostAlloc;
+        wd.free = HostFree;
+        wd.log = HostLog;
+        wd.user = &s.host;
+        ASSERT_EQ(cloth_world_create(&wd, &s.world), CLOTH_OK);
+        cloth_grid_desc grid = cloth_default_grid_desc();
+        grid.columns = kColumns;
+        grid.rows = kRows;
+        ASSERT_EQ(cloth_fabric_create_grid(s.world, &grid, &s.fabric), CLOTH_OK);
+        cloth_desc cd = cloth_default_desc();
+        cd.fabric = s.fabric;
+        ASSERT_EQ(cloth_create(s.world, &cd, &s.cloth), CLOTH_OK);
+        const cloth_body_desc bd = cloth_default_body_desc();
+        ASSERT_EQ(cloth_body_create(s.world, &bd, &s.stale_body), CLOTH_OK);
+        ASSERT_EQ(cloth_body_destroy(s.stale_body), CLOTH_OK);
+        ASSERT_EQ(cloth_body_create(s.world, &bd, &s.body), CLOTH_OK);
+        ASSERT_EQ(cloth_body_create(s.world, &bd, &s.spare), CLOTH_OK);
+        const uint32_t corners[] = {0, kColumns - 1};
+        ASSERT_EQ(cloth_attach(s.cloth, s.body, corners, nullptr, 2), CLOTH_OK);
+        cloth_collider_desc c = cloth_default_collider_desc();
+        c.body = s.body;
+        c.local_position[1] = -0.5f;
+        c.local_position[2] = 0.3f;
+        ASSERT_EQ(cloth_collider_create_sphere(s.world, &c, 0.2f, &s.stale_collider), CLOTH_OK);
+        ASSERT_EQ(cloth_collider_destroy(s.stale_collider), CLOTH_OK);
+        ASSERT_EQ(cloth_collider_create_sphere(s.world, &c, 0.2f, &s.sphere), CLOTH_OK);
+        const float up[3] = {0, 1, 0};
+        const cloth_collider_desc g = cloth_default_collider_desc();
+        ASSERT_EQ(cloth_collider_create_plane(s.world, &g, up, -2.0f, &s.ground), CLOTH_OK);
+        cloth_carrier_desc carrier = cloth_default_carrier_desc();
+        carrier.linear_inertia = 0.5f;
+        ASSERT_EQ(cloth_set_carrier(s.cloth, s.body, &carrier), CLOTH_OK);
+        for (int i = 0; i < 3; ++i)
+            ASSERT_EQ(cloth_step(s.world, kFrame), CLOTH_OK) << cloth_get_last_error();
+        s.host.errors.clear();
+    }
+
+    void Reject(cloth_result expected, const std::string& what, const std::function<cloth_result()>& call) {
+        SCOPED_TRACE(what);
+        const State before = Read(a_);
+        const size_t bytes = a_.host.live_bytes;
+        const size_t logged = a_.host.errors.size();
+        cloth_result result = CLOTH_OK;
+        std::string error_before, error_after;
+        std::thread([&] {
+            error_before = cloth_get_last_error();
+            result = call();
+            error_after = cloth_get_last_error();
+        }).join();
+        EXPECT_EQ(result, expected) << cloth_result_name(result) << ": " << error_after;
+        EXPECT_EQ(error_before, "");
+        EXPECT_NE(error_after, "");
+        if (result != CLOTH_ERROR_INVALID_HANDLE || a_.host.errors.size() > logged) {
+            ASSERT_EQ(a_.host.errors.size(), logged + 1) << "the world's log did not receive the error";
+            EXPECT_EQ(a_.host.errors.back().first, result);
+            EXPECT_EQ(a_.host.errors.back().second, error_after);
+        }
+        EXPECT_TRUE(before == Read(a_)) << "the rejected call changed the scene";
+        EXPECT_EQ(a_.host.live_bytes, bytes) << "the rejected call kept memory";
+    }
+
+    Scene a_, b_;
+};
+
+const float kOrigin[3] = {0, 0, 0};
+const float kIdentity[4] = {0, 0, 0, 1};
+
+TEST_F(ContactBadInput, BodyCallsRejectBadHandlesPosesAndDescriptions) {
+    cloth_body_id out{};
+    cloth_body_desc d = cloth_default_body_desc();
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_body_create(a_.world, nullptr, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_body_create(a_.world, &d, nullptr));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_body_create(cloth_world_id{}, &d, &out));
+    cloth_body_desc raw{};
+    raw.struct_size = sizeof raw;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_DESC, cloth_body_create(a_.world, &raw, &out));
+    d.struct_size = 4;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_DESC, cloth_body_create(a_.world, &d, &out));
+    d = cloth_default_body_desc();
+    d.position[1] = kNaN;
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_body_create(a_.world, &d, &out));
+    d = cloth_default_body_desc();
+    d.rotation[3] = 2.0f;  // not unit length
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_body_create(a_.world, &d, &out));
+    d = cloth_default_body_desc();
+    d.angular_velocity[2] = kInf;
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_body_create(a_.world, &d, &out));
+
+    const float nan3[3] = {0, kNaN, 0};
+    const float zero_q[4] = {0, 0, 0, 0};
+    const float inf_q[4] = {0, 0, kInf, 1};
+    for (auto set : {cloth_body_set_pose, cloth_body_teleport}) {
+        EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, set(a_.stale_body, kOrigin, kIdentity));
+        EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, set(cloth_body_id{}, kOrigin, kIdentity));
+        EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, set(a_.body, nullptr, kIdentity));
+        EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, set(a_.body, kOrigin, nullptr));
+        EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, set(a_.body, nan3, kIdentity));
+        EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, set(a_.body, kOrigin, zero_q));
+        EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, set(a_.body, kOrigin, inf_q));
+    }
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_body_set_velocity(a_.body, nan3, kOrigin));
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_body_set_velocity(a_.body, kOrigin, nan3));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_body_set_velocity(a_.body, nullptr, kOrigin));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_body_set_velocity(a_.stale_body, kOrigin, kOrigin));
+    float p[3], q[4];
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_body_get_pose(a_.body, nullptr, q));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_body_get_pose(a_.stale_body, p, q));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_body_destroy(a_.stale_body));
+    // A body of another world is not this world's body.
+    cloth_body_id foreign = b_.body;
+    foreign.world1 = a_.body.world1;
+    foreign.world_generation = static_cast<uint16_t>(a_.body.world_generation + 1);
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_body_set_pose(foreign, kOrigin, kIdentity));
+}
+
+TEST_F(ContactBadInput, ColliderCreationRejectsBadShapesAndChangesNothing) {
+    cloth_collider_id out{};
+    const cloth_collider_desc d = cloth_default_collider_desc();
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_collider_create_sphere(a_.world, nullptr, 1.0f, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_collider_create_sphere(a_.world, &d, 1.0f, nullptr));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE,
+                    cloth_collider_create_sphere(cloth_world_id{}, &d, 1.0f, &out));
+    cloth_collider_desc raw{};
+    raw.struct_size = sizeof raw;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_DESC, cloth_collider_create_sphere(a_.world, &raw, 1.0f, &out));
+    cloth_collider_desc bad = d;
+    bad.local_rotation[0] = 1.0f;  // (1, 0, 0, 1): length sqrt 2
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_collider_create_sphere(a_.world, &bad, 1.0f, &out));
+    bad = d;
+    bad.local_position[0] = kNaN;
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_collider_create_sphere(a_.world, &bad, 1.0f, &out));
+    bad = d;
+    bad.body = a_.stale_body;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_collider_create_sphere(a_.world, &bad, 1.0f, &out));
+    bad.body = b_.body;  // another world's body
+    bad.body.world_generation = static_cast<uint16_t>(bad.body.world_generation + 7);
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_collider_create_sphere(a_.world, &bad, 1.0f, &out));
+
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_collider_create_sphere(a_.world, &d, 0.0f, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_collider_create_sphere(a_.world, &d, kNaN, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE,
+                    cloth_collider_create_capsule(a_.world, &d, -1.0f, 1.0f, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE,
+                    cloth_collider_create_capsule(a_.world, &d, 1.0f, -1.0f, &out));
+    const float flat[3] = {1, 0, 1}, nan_box[3] = {1, kNaN, 1};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_collider_create_box(a_.world, &d, flat, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_collider_create_box(a_.world, &d, nan_box, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_collider_create_box(a_.world, &d, nullptr, &out));
+    const float zero[3] = {0, 0, 0}, up[3] = {0, 1, 0};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_collider_create_plane(a_.world, &d, zero, 0.0f, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_collider_create_plane(a_.world, &d, up, kInf, &out));
+
+    const float square[] = {0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1, 0.5f, 0, 0.5f};  // all in y = 0
+    const float tetra[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, kNaN};
+    EXPECT_REJECTED(CLOTH_ERROR_DEGENERATE_GEOMETRY,
+                    cloth_collider_create_convex_hull(a_.world, &d, square, 5, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_collider_create_convex_hull(a_.world, &d, tetra, 4, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                    cloth_collider_create_convex_hull(a_.world, &d, square, 3, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER,
+                    cloth_collider_create_convex_hull(a_.world, &d, nullptr, 4, &out));
+
+    const uint32_t tri[] = {0, 1, 2}, bad_tri[] = {0, 1, 7}, sliver[] = {0, 0, 1};
+    EXPECT_REJECTED(CLOTH_ERROR_INDEX_OUT_OF_RANGE,
+                    cloth_collider_create_triangle_mesh(a_.world, &d, square, 5, bad_tri, 1, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_DEGENERATE_GEOMETRY,
+                    cloth_collider_create_triangle_mesh(a_.world, &d, square, 5, sliver, 1, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                    cloth_collider_create_triangle_mesh(a_.world, &d, square, 5, tri, 0, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                    cloth_collider_create_triangle_mesh(a_.world, &d, square, 2, tri, 1, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER,
+                    cloth_collider_create_triangle_mesh(a_.world, &d, square, 5, nullptr, 1, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE,
+                    cloth_collider_create_triangle_mesh(a_.world, &d, tetra, 4, tri, 1, &out));
+
+    const float heights[6] = {0, 0, 0, 0, 0, kNaN};
+    cloth_heightfield_desc h = cloth_default_heightfield_desc();
+    h.columns = 3;
+    h.rows = 2;
+    h.heights = heights;
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_collider_create_heightfield(a_.world, &d, &h, &out));
+    h.heights = nullptr;
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_collider_create_heightfield(a_.world, &d, &h, &out));
+    h.heights = heights;
+    h.rows = 1;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, cloth_collider_create_heightfield(a_.world, &d, &h, &out));
+    h.rows = 2;
+    h.spacing_z = 0.0f;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_collider_create_heightfield(a_.world, &d, &h, &out));
+    cloth_heightfield_desc raw_h{};
+    raw_h.struct_size = sizeof raw_h;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_DESC, cloth_collider_create_heightfield(a_.world, &d, &raw_h, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_collider_create_heightfield(a_.world, &d, nullptr, &out));
+
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_collider_destroy(a_.stale_collider));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_collider_set_group_bits(a_.stale_collider, 2));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_collider_destroy(cloth_collider_id{}));
+}
+
+TEST_F(ContactBadInput, CollisionAttachAndCarrierCallsRejectBadInput) {
+    cloth_collision_params p = cloth_default_collision_params();
+    p.thickness = -0.1f;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_set_collision(a_.cloth, &p));
+    p = cloth_default_collision_params();
+    p.friction = kNaN;
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_set_collision(a_.cloth, &p));
+    p = cloth_default_collision_params();
+    p.struct_size = 3;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_DESC, cloth_set_collision(a_.cloth, &p));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_set_collision(a_.cloth, nullptr));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_get_collision(a_.cloth, nullptr));
+    p = cloth_default_collision_params();
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_set_collision(cloth_id{}, &p));
+
+    const uint32_t good[] = {1, 2}, out_of_range[] = {1, kParticles};
+    const float offsets[] = {0, 0, 0, 0, 0, 0}, nan_offsets[] = {0, 0, 0, kNaN, 0, 0};
+    EXPECT_REJECTED(CLOTH_ERROR_INDEX_OUT_OF_RANGE,
+                    cloth_attach(a_.cloth, a_.spare, out_of_range, offsets, 2));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, cloth_attach(a_.cloth, a_.spare, good, offsets, 0));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                    cloth_attach(a_.cloth, a_.spare, good, offsets, kParticles + 1));
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_attach(a_.cloth, a_.spare, good, nan_offsets, 2));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_attach(a_.cloth, a_.spare, nullptr, offsets, 2));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_attach(a_.cloth, a_.stale_body, good, offsets, 2));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_attach(a_.cloth, b_.body, good, offsets, 2));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_attach(cloth_id{}, a_.spare, good, offsets, 2));
+    const uint32_t not_attached[] = {0, 3};  // 0 is attached, 3 is not
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_detach(a_.cloth, not_attached, 2));
+    EXPECT_REJECTED(CLOTH_ERROR_INDEX_OUT_OF_RANGE, cloth_detach(a_.cloth, out_of_range, 2));
+    const uint32_t corner[] = {0};
+    const float target[] = {1, 1, 1};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_set_pin_targets(a_.cloth, corner, target, 1));
+    cloth_body_id body;
+    float offset[3];
+    EXPECT_REJECTED(CLOTH_ERROR_INDEX_OUT_OF_RANGE,
+                    cloth_get_attachment(a_.cloth, kParticles, &body, offset));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_get_attachment(a_.cloth, 0, nullptr, offset));
+
+    cloth_carrier_desc c = cloth_default_carrier_desc();
+    c.linear_inertia = 1.5f;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_set_carrier(a_.cloth, a_.spare, &c));
+    c = cloth_default_carrier_desc();
+    c.centrifugal_inertia = kNaN;
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_set_carrier(a_.cloth, a_.spare, &c));
+    c = cloth_default_carrier_desc();
+    c.teleport_distance = -1.0f;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_set_carrier(a_.cloth, a_.spare, &c));
+    c = cloth_default_carrier_desc();
+    c.max_relative_speed = kInf;
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_set_carrier(a_.cloth, a_.spare, &c));
+    c = cloth_default_carrier_desc();
+    c.teleport_mode = static_cast<cloth_teleport_mode>(9);
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_set_carrier(a_.cloth, a_.spare, &c));
+    cloth_carrier_desc raw{};
+    raw.struct_size = sizeof raw;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_DESC, cloth_set_carrier(a_.cloth, a_.spare, &raw));
+    c = cloth_default_carrier_desc();
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_set_carrier(a_.cloth, a_.spare, nullptr));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_set_carrier(a_.cloth, a_.stale_body, &c));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_get_teleported(a_.cloth, nullptr));
+}
+
+TEST(ContactApi, DestroyingABodyDetachesItsParticlesRemovesItsCollidersAndCarrierLinks) {
+    cloth_world_desc wd = cloth_default_world_desc();
+    cloth_world_id world;
+    ASSERT_EQ(cloth_world_create(&wd, &world), CLOTH_OK);
+    cloth_grid_desc grid = cloth_default_grid_desc();
+    grid.columns = grid.rows = 4;
+    cloth_fabric_id fabric;
+    ASSERT_EQ(cloth_fabric_create_grid(world, &grid, &fabric), CLOTH_OK);
+    cloth_desc cd = cloth_default_desc();
+    cd.fabric = fabric;
+    cloth_id cloth;
+    ASSERT_EQ(cloth_create(world, &cd, &cloth), CLOTH_OK);
+    const cloth_body_desc bd = cloth_default_body_desc();
+    cloth_body_id body;
+    ASSERT_EQ(cloth_body_create(world, &bd, &body), CLOTH_OK);
+    const uint32_t top[] = {0, 1, 2, 3};
+    ASSERT_EQ(cloth_attach(cloth, body, top, nullptr, 4), CLOTH_OK);
+    cloth_collider_desc c = cloth_default_collider_desc();
+    c.body = body;
+    cloth_collider_id sphere;
+    ASSERT_EQ(cloth_collider_create_sphere(world, &c, 0.1f, &sphere), CLOTH_OK);
+    const cloth_carrier_desc carrier = cloth_default_carrier_desc();
+    ASSERT_EQ(cloth_set_carrier(cloth, body, &carrier), CLOTH_OK);
+
+    ASSERT_EQ(cloth_body_destroy(body), CLOTH_OK);
+    for (uint32_t i : top) {
+        bool pinned = true;
+        cloth_body_id attached{1, 1, 1, 1};
+        ASSERT_EQ(cloth_is_pinned(cloth, i, &pinned), CLOTH_OK);
+        ASSERT_EQ(cloth_get_attachment(cloth, i, &attached, nullptr), CLOTH_OK);
+        EXPECT_FALSE(pinned) << "particle " << i << " is still held by a destroyed body";
+        EXPECT_EQ(attached.index1, 0u);
+    }
+    EXPECT_EQ(cloth_collider_destroy(sphere), CLOTH_ERROR_INVALID_HANDLE)
+        << "the body's collider outlived it";
+    EXPECT_EQ(cloth_body_set_pose(body, kOrigin, kIdentity), CLOTH_ERROR_INVALID_HANDLE);
+    EXPECT_EQ(cloth_step(world, kFrame), CLOTH_OK) << cloth_get_last_error();
+    EXPECT_EQ(cloth_world_destroy(world), CLOTH_OK);
+}
+
+}  // namespace
