@@ -88,8 +88,8 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
                              "snapshot of %u particles (%zu bytes) does not fit this cloth of %u particles",
                              h.particle_count, size, n);
     }
-    if (h.solver_kind < CLOTH_SOLVER_JACOBI || h.solver_kind > CLOTH_SOLVER_EXPLICIT || h.iterations < 1 ||
-        h.iterations > 256 || h.substeps < 1 || h.substeps > 64) {
+    if (h.solver_kind > CLOTH_SOLVER_CHEBYSHEV || h.iterations < 1 || h.iterations > 256 || h.substeps < 1 ||
+        h.substeps > 64) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "snapshot solver settings are out of range");
     }
     const float* values = reinterpret_cast<const float*>(static_cast<const unsigned char*>(in) + sizeof h);

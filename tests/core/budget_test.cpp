@@ -22,6 +22,7 @@ SceneConfig four_flags(uint32_t iterations) {
     SceneConfig config;
     config.kind = SceneKind::kFlagInWind;
     config.resolution = 32;
+    config.solver.kind = CLOTH_SOLVER_JACOBI;  // the policy tunes Jacobi sweeps
     config.solver.iterations = iterations;
     config.copies = 4;
     return config;
@@ -76,6 +77,7 @@ TEST(Budget, ATightBudgetLowersIterationsAndOverrunsDropALooseOneRaisesThemAgain
     }
     const cloth_id fixed = scene.cloths().back();
     cloth_solver_settings one_sweep = cloth_default_solver_settings();
+    one_sweep.kind = CLOTH_SOLVER_JACOBI;
     ASSERT_EQ(cloth_set_solver(fixed, &one_sweep), CLOTH_OK);  // cheap, so the others can meet the budget
 
     // 16 sweeps cost about (16 + 3) / (1 + 3) = 4.75 times one sweep per

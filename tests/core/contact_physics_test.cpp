@@ -41,6 +41,7 @@ struct World {
         EXPECT_EQ(cloth_fabric_create_grid(world, &g, &fabric), CLOTH_OK);
         cloth_desc cd = cloth_default_desc();
         cd.fabric = fabric;
+        cd.solver.kind = CLOTH_SOLVER_JACOBI;  // the figures below were set with the paper's solver
         cd.solver.substeps = substeps;
         if (!air) {
             cd.aero.air_density = 0;
