@@ -16,9 +16,9 @@
 namespace cloth_samples {
 
 enum class SceneKind {
-    kHanging,      // vertical, released from rest
-    kFallingFlat,  // horizontal, falls and swings down about its pinned edge
-    kFlagInWind,   // vertical, left column pinned, wind along the flag (+x) with a cross breeze
+    kHanging,       // vertical, released from rest
+    kFallingFlat,   // horizontal, falls and swings down about its pinned edge
+    kFlagInWind,    // vertical, left column pinned, wind along the flag (+x) with a cross breeze
     kDrapedSphere,  // horizontal, unpinned, falls onto a fixed sphere (contact applied by Scene::step)
 };
 
