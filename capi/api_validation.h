@@ -6,12 +6,24 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "api_call.h"
 #include "settings.h"
 
 namespace cloth::api {
 // ---------------------------------------------------------------- validation
+
+// The integer a host passed in an enum-typed argument or field. A C caller
+// may pass any int there, and in C++ loading an enum object that holds a
+// value outside its enumerators is undefined, so checks read the bits.
+template <class Enum>
+int32_t enum_bits(const Enum& value) {
+    static_assert(sizeof(Enum) == sizeof(int32_t), "C enums are int-sized");
+    int32_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    return bits;
+}
 
 inline bool finite3(const float* v) {
     return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
@@ -52,9 +64,10 @@ inline Status check_solver(const cloth_solver_settings& s) {
                              "cloth_solver_settings.struct_size is %u, expected %zu", s.struct_size,
                              sizeof(cloth_solver_settings));
     }
-    if (s.kind != CLOTH_SOLVER_DEFAULT && s.kind != CLOTH_SOLVER_JACOBI && s.kind != CLOTH_SOLVER_CG &&
-        s.kind != CLOTH_SOLVER_EXPLICIT && s.kind != CLOTH_SOLVER_PCG && s.kind != CLOTH_SOLVER_CHEBYSHEV) {
-        return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown solver kind %d", int(s.kind));
+    const int32_t kind = enum_bits(s.kind);
+    if (kind != CLOTH_SOLVER_DEFAULT && kind != CLOTH_SOLVER_JACOBI && kind != CLOTH_SOLVER_CG &&
+        kind != CLOTH_SOLVER_EXPLICIT && kind != CLOTH_SOLVER_PCG && kind != CLOTH_SOLVER_CHEBYSHEV) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown solver kind %d", kind);
     }
     if (s.iterations < 1 || s.iterations > 256) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "iterations %u is not in 1..256", s.iterations);

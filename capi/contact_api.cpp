@@ -149,9 +149,10 @@ Status check_carrier(const cloth_carrier_desc& d) {
     if (s.ok()) s = check_non_negative(d.max_relative_speed, "max_relative_speed");
     if (s.ok()) s = check_non_negative(d.teleport_distance, "teleport_distance");
     if (s.ok()) s = check_non_negative(d.teleport_rotation, "teleport_rotation");
-    if (s.ok() && d.teleport_mode != CLOTH_TELEPORT_DEFAULT && d.teleport_mode != CLOTH_TELEPORT_MOVE &&
-        d.teleport_mode != CLOTH_TELEPORT_AND_RESET) {
-        return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown teleport_mode %d", int(d.teleport_mode));
+    const int32_t mode = enum_bits(d.teleport_mode);
+    if (s.ok() && mode != CLOTH_TELEPORT_DEFAULT && mode != CLOTH_TELEPORT_MOVE &&
+        mode != CLOTH_TELEPORT_AND_RESET) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown teleport_mode %d", mode);
     }
     return s;
 }

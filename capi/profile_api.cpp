@@ -21,8 +21,9 @@ static_assert(kMaxWorkers <= CLOTH_MAX_WORKERS, "the profile has room for every 
 extern "C" {
 
 CLOTH_API const char* cloth_stage_name(cloth_stage stage) {
-    if (static_cast<uint32_t>(stage) >= kStageCount) return "?";
-    return stage_name(static_cast<Stage>(stage));
+    const int32_t bits = enum_bits(stage);
+    if (bits < 0 || static_cast<uint32_t>(bits) >= kStageCount) return "?";
+    return stage_name(static_cast<Stage>(bits));
 }
 
 CLOTH_API cloth_result cloth_world_set_profiling(cloth_world_id id, uint32_t max_tasks_per_frame) {

@@ -21,11 +21,11 @@ cloth_install_packages() {
 
 # cloth_build BUILD_DIR TARGET [cmake options...]: configure (tests, samples
 # and benchmarks on, so demo and test share one build tree) and build TARGET
-# ("all" for everything).
+# ("all" for everything; several targets separated by spaces).
 cloth_build() {
     local dir="$1" target="$2"
     shift 2
     cmake -S "$CLOTH_ROOT" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCLOTH_BUILD_TESTS=ON \
         -DCLOTH_BUILD_SAMPLES=ON -DCLOTH_BUILD_BENCHMARKS=ON "$@" >/dev/null
-    cmake --build "$dir" --target "$target" --parallel "$(nproc)"
+    cmake --build "$dir" --target $target --parallel "$(nproc)"
 }
