@@ -73,7 +73,8 @@ cloth_result api_call(const char* function, Body body) {
     std::snprintf(message, sizeof message, "%s: %s", function, status.message);
     set_last_error(message);
     if (log_world) {
-        const bool warning = status.code == CLOTH_ERROR_SOLVER_FAILED;
+        const bool warning =
+            status.code == CLOTH_ERROR_SOLVER_FAILED || status.code == CLOTH_ERROR_OVER_BUDGET;
         try {
             log_world->log(warning ? CLOTH_LOG_WARNING : CLOTH_LOG_ERROR, status.code, message);
         } catch (...) {

@@ -50,6 +50,8 @@ CLOTH_API const char* cloth_result_name(cloth_result result) {
             return "CLOTH_ERROR_SOLVER_FAILED";
         case CLOTH_ERROR_INTERNAL:
             return "CLOTH_ERROR_INTERNAL";
+        case CLOTH_ERROR_OVER_BUDGET:
+            return "CLOTH_ERROR_OVER_BUDGET";
         case CLOTH_RESULT_FORCE_U32:
             break;
     }

@@ -271,9 +271,18 @@ Status World::step(float dt) {
     contact_.end_step();  // bodies start the next step where they are now
     profile_.end_ns = now_ns();
     if (budget_ms_ > 0) {
-        // An overrun is reported in the profile, not as a failed step.
+        // An overrun is reported in the profile and, unless a cloth failed
+        // (which says more), by the step's result.
         profile_.overrun = profile_.step_ms() > budget_ms_;
-        if (profile_.overrun) ++overrun_frames_;
+        if (profile_.overrun) {
+            ++overrun_frames_;
+            if (first_failure.ok()) {
+                first_failure = Status::error(
+                    CLOTH_ERROR_OVER_BUDGET,
+                    "the step took %.3g ms, over the frame budget of %.3g ms; every cloth advanced",
+                    profile_.step_ms(), budget_ms_);
+            }
+        }
         budget_cloths_.clear();
         for (uint32_t s : stepping_)
             budget_cloths_.push_back(BudgetCloth{cloths_[s].object.get(), cloth_cost_ns_[s]});

@@ -78,7 +78,7 @@ extern "C" {
 /* ------------------------------------------------------------------ */
 
 #define CLOTH_VERSION_MAJOR 1
-#define CLOTH_VERSION_MINOR 0
+#define CLOTH_VERSION_MINOR 1
 #define CLOTH_VERSION_PATCH 0
 
 /// Library version. A library with another major version than the header a
@@ -114,6 +114,8 @@ typedef enum cloth_result {
         12,  ///< a step produced NaN/Inf; the cloth was restored to its last finite state
     CLOTH_ERROR_SOLVER_FAILED = 13,  ///< a solve did not converge (state still advanced, finite)
     CLOTH_ERROR_INTERNAL = 14,       ///< an unexpected internal error; the world is unchanged
+    CLOTH_ERROR_OVER_BUDGET =
+        15,  ///< the step took longer than the world's frame budget; every cloth still advanced
     CLOTH_RESULT_FORCE_U32 = 0x7FFFFFFF
 } cloth_result;
 
@@ -547,8 +549,11 @@ CLOTH_API cloth_result cloth_world_set_zone_callbacks(cloth_world_id world, clot
 
 /* Frame budget. A world may have a per-frame budget for cloth_step in
  * milliseconds of wall time. Every frame then reports in its profile
- * whether it overran (an overrun is not an error: cloth_step still returns
- * CLOTH_OK). Cloths with an enabled quality policy have their Jacobi
+ * whether it overran, and a step that overran returns
+ * CLOTH_ERROR_OVER_BUDGET (logged as a warning): the world advanced
+ * completely, nothing was lost, and a failure of a cloth in the same step
+ * (CLOTH_ERROR_NONFINITE_STATE, ...) is returned instead. Without a budget
+ * that code never occurs. Cloths with an enabled quality policy have their Jacobi
  * iterations and substeps lowered after a frame over budget and raised
  * again after several frames well under it (below 70%), within the
  * policy's bounds, from the measured cost of the frames before. */

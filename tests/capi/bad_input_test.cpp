@@ -1858,6 +1858,21 @@ TEST_F(BadInput, LastErrorKeepsTheMessageOfTheLastFailedCallAcrossSuccessfulCall
         << "the header: \"the message of the last failed call made on this thread\"";
 }
 
+// A C host may pass any int where the header says cloth_stage (or any other
+// enum): the library reads it without undefined behaviour (UBSan checks this
+// in the sanitizer build; the fuzzer once found it) and answers "?".
+TEST_F(BadInput, StageNameOfAnIntOutsideTheEnumIsAQuestionMark) {
+    for (int32_t bad : {int32_t{-1}, int32_t{99}, int32_t{0x7FFFFFFF}, static_cast<int32_t>(0x8000057Au)}) {
+        ++g_bad_inputs;
+        cloth_stage stage;
+        std::memcpy(&stage, &bad, sizeof stage);
+        const char* name = cloth_stage_name(stage);
+        ASSERT_NE(name, nullptr) << bad;
+        EXPECT_STREQ(name, "?") << bad;
+    }
+    EXPECT_STREQ(cloth_stage_name(CLOTH_STAGE_AIR), "air");
+}
+
 TEST_F(BadInput, ResultNameIsTheEnumeratorNameAndNeverNull) {
     const std::pair<cloth_result, const char*> names[] = {
         {CLOTH_OK, "CLOTH_OK"},
@@ -1875,13 +1890,14 @@ TEST_F(BadInput, ResultNameIsTheEnumeratorNameAndNeverNull) {
         {CLOTH_ERROR_NONFINITE_STATE, "CLOTH_ERROR_NONFINITE_STATE"},
         {CLOTH_ERROR_SOLVER_FAILED, "CLOTH_ERROR_SOLVER_FAILED"},
         {CLOTH_ERROR_INTERNAL, "CLOTH_ERROR_INTERNAL"},
+        {CLOTH_ERROR_OVER_BUDGET, "CLOTH_ERROR_OVER_BUDGET"},
     };
     for (const auto& [code, name] : names) {
         const char* got = cloth_result_name(code);
         ASSERT_NE(got, nullptr) << static_cast<int>(code);
         EXPECT_STREQ(got, name);
     }
-    for (int bad : {15, 99, -1, 0x7FFFFFFF}) {
+    for (int bad : {16, 99, -1, 0x7FFFFFFF}) {
         ++g_bad_inputs;
         const char* got = cloth_result_name(static_cast<cloth_result>(bad));
         ASSERT_NE(got, nullptr) << "cloth_result_name(" << bad << ") returned NULL";

@@ -2,10 +2,12 @@
 // their iterations go down and the share of frames over budget drops; with
 // a loose budget they go back up to the policy's maximum; cloths without
 // an enabled policy are never changed; an overrun is reported in the
-// profile, never as a failed step.
+// profile and by its own result code, and the world advances as without a
+// budget (a blow-out loses nothing).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "scenes.h"
@@ -53,13 +55,19 @@ double median_step_ms(Scene& scene, int frames) {
     return ms[ms.size() / 2];
 }
 
-// Frames over budget among the next `frames`, each a CLOTH_OK step.
+// One step under a budget: a frame over it returns CLOTH_ERROR_OVER_BUDGET,
+// one within it CLOTH_OK, and the profile agrees. Returns whether it overran.
+bool step_under_budget(Scene& scene) {
+    const cloth_result result = scene.step(kDt);
+    const bool overrun = profile_of(scene.world()).overrun;
+    EXPECT_EQ(result, overrun ? CLOTH_ERROR_OVER_BUDGET : CLOTH_OK) << "the result names the overrun";
+    return overrun;
+}
+
+// Frames over budget among the next `frames`.
 int overruns(Scene& scene, int frames) {
     int count = 0;
-    for (int i = 0; i < frames; ++i) {
-        EXPECT_EQ(scene.step(kDt), CLOTH_OK) << "an overrun is not a failed step";
-        count += profile_of(scene.world()).overrun ? 1 : 0;
-    }
+    for (int i = 0; i < frames; ++i) count += step_under_budget(scene) ? 1 : 0;
     return count;
 }
 
@@ -86,7 +94,7 @@ TEST(Budget, ATightBudgetLowersIterationsAndOverrunsDropALooseOneRaisesThemAgain
     ASSERT_EQ(cloth_world_set_frame_budget(scene.world(), static_cast<float>(full_ms * 0.4)), CLOTH_OK);
     const int early = overruns(scene, 3);
     EXPECT_GE(early, 2) << "at full quality the frames overrun 40% of their cost";
-    for (int i = 0; i < 60; ++i) ASSERT_EQ(scene.step(kDt), CLOTH_OK);
+    for (int i = 0; i < 60; ++i) step_under_budget(scene);
     const uint32_t lowered = iterations_of(scene.cloths()[0]);
     EXPECT_LT(lowered, 16u) << "iterations went down";
     EXPECT_GE(lowered, 1u);
@@ -97,8 +105,7 @@ TEST(Budget, ATightBudgetLowersIterationsAndOverrunsDropALooseOneRaisesThemAgain
 
     // A loose budget: the policy raises them back to the maximum.
     ASSERT_EQ(cloth_world_set_frame_budget(scene.world(), static_cast<float>(full_ms * 20.0)), CLOTH_OK);
-    for (int i = 0; i < 200 && iterations_of(scene.cloths()[0]) < 16; ++i)
-        ASSERT_EQ(scene.step(kDt), CLOTH_OK);
+    for (int i = 0; i < 200 && iterations_of(scene.cloths()[0]) < 16; ++i) step_under_budget(scene);
     EXPECT_EQ(iterations_of(scene.cloths()[0]), 16u) << "iterations went back up";
     EXPECT_EQ(overruns(scene, 5), 0);
 }
@@ -122,6 +129,47 @@ TEST(Budget, PolicyBoundsAreValidatedAndEnablingClampsTheSolver) {
     policy.max_iterations = 8;
     ASSERT_EQ(cloth_set_quality_policy(cloth, &policy), CLOTH_OK);
     EXPECT_EQ(iterations_of(cloth), 8u);
+}
+
+// Recovery from a budget blow-out: a budget no step can meet makes every
+// step return CLOTH_ERROR_OVER_BUDGET and log a warning with that code, yet
+// the cloths end in the same bits as in a world without a budget, and once
+// the budget is lifted steps return CLOTH_OK again.
+TEST(Budget, ABlowOutIsReportedWithItsOwnCodeAndLosesNothing) {
+    struct Log {
+        int warnings = 0;
+        cloth_result last = CLOTH_OK;
+    } log;
+    SceneConfig config = four_flags(4);
+    config.world.log = [](cloth_log_level level, cloth_result code, const char*, void* user) {
+        auto* l = static_cast<Log*>(user);
+        if (level == CLOTH_LOG_WARNING) ++l->warnings;
+        l->last = code;
+    };
+    config.world.user = &log;
+    Scene budgeted(config);
+    Scene reference(four_flags(4));
+    ASSERT_TRUE(budgeted.ok() && reference.ok());
+    ASSERT_EQ(cloth_world_set_frame_budget(budgeted.world(), 1e-6f), CLOTH_OK);
+    for (int i = 0; i < 20; ++i) {
+        ASSERT_EQ(budgeted.step(kDt), CLOTH_ERROR_OVER_BUDGET) << "frame " << i;
+        ASSERT_EQ(reference.step(kDt), CLOTH_OK);
+    }
+    EXPECT_EQ(log.warnings, 20);
+    EXPECT_EQ(log.last, CLOTH_ERROR_OVER_BUDGET);
+    EXPECT_NE(std::string(cloth_get_last_error()).find("over the frame budget"), std::string::npos);
+    EXPECT_EQ(profile_of(budgeted.world()).overrun_frames, 20u);
+    for (size_t c = 0; c < budgeted.cloths().size(); ++c) {
+        std::vector<float> a(3 * static_cast<size_t>(budgeted.particle_count()));
+        std::vector<float> b(a.size());
+        ASSERT_EQ(cloth_read_positions(budgeted.cloths()[c], a.data(), static_cast<uint32_t>(a.size())),
+                  CLOTH_OK);
+        ASSERT_EQ(cloth_read_positions(reference.cloths()[c], b.data(), static_cast<uint32_t>(b.size())),
+                  CLOTH_OK);
+        EXPECT_EQ(a, b) << "cloth " << c << " advanced exactly as without a budget";
+    }
+    ASSERT_EQ(cloth_world_set_frame_budget(budgeted.world(), 0.0f), CLOTH_OK);
+    EXPECT_EQ(budgeted.step(kDt), CLOTH_OK) << "no budget, no overrun";
 }
 
 }  // namespace

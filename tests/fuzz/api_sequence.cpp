@@ -28,12 +28,14 @@ constexpr size_t kMaxCalls = 64;
 constexpr uint32_t kWorldSlots = 2;
 constexpr uint32_t kFabricSlots = 6;
 constexpr uint32_t kClothSlots = 8;
+constexpr uint32_t kBodySlots = 4;
+constexpr uint32_t kColliderSlots = 6;
 constexpr uint32_t kMaxGridSide = 16;
 constexpr uint32_t kMaxMeshVertices = 48;
 constexpr uint32_t kMaxMeshTriangles = 96;
 constexpr uint64_t kStepWorkBudget = 100'000;   // particle-iterations per cloth_step call
 constexpr uint64_t kInputWorkBudget = 300'000;  // per input
-constexpr int kLastResultCode = CLOTH_ERROR_INTERNAL;
+constexpr int kLastResultCode = CLOTH_ERROR_OVER_BUDGET;
 
 [[noreturn]] void broken(const char* what, const char* detail = "") {
     std::fprintf(stderr, "cloth fuzz: contract broken: %s %s\n", what, detail);
@@ -229,6 +231,13 @@ class Harness {
     void null_arguments();
     void self_collision();
     void profiling();
+    void body();
+    void collider();
+    void attachment();
+
+    cloth_body_id pick_body();
+    cloth_collider_id pick_collider();
+    void rotation(float q[4]);
 
     void add_fabric(cloth_fabric_id id) { fabrics_[next_fabric_++ % kFabricSlots] = id; }
     void add_cloth(cloth_id id) { cloths_[next_cloth_++ % kClothSlots] = id; }
@@ -238,8 +247,12 @@ class Harness {
     WorldSlot worlds_[kWorldSlots];
     cloth_fabric_id fabrics_[kFabricSlots]{};
     cloth_id cloths_[kClothSlots]{};
+    cloth_body_id bodies_[kBodySlots]{};
+    cloth_collider_id colliders_[kColliderSlots]{};
     uint32_t next_fabric_ = 0;
     uint32_t next_cloth_ = 0;
+    uint32_t next_body_ = 0;
+    uint32_t next_collider_ = 0;
     uint64_t work_ = 0;
 };
 
@@ -602,7 +615,8 @@ void Harness::step() {
     work_ += work;
     const cloth_result r = check(cloth_step(world, dt), "cloth_step");
     const bool advanced = r == CLOTH_OK || r == CLOTH_ERROR_NONFINITE_STATE ||
-                          r == CLOTH_ERROR_SOLVER_FAILED || r == CLOTH_ERROR_OUT_OF_MEMORY;
+                          r == CLOTH_ERROR_SOLVER_FAILED || r == CLOTH_ERROR_OUT_OF_MEMORY ||
+                          r == CLOTH_ERROR_OVER_BUDGET;
     if (advanced) ++stats_.steps;
     if (b < 240 && worlds_[slot].live) check_cloths_finite(slot);
 }
@@ -806,6 +820,236 @@ void Harness::self_collision() {
     }
 }
 
+// ---------------------------------------------------------------- contact
+
+cloth_body_id Harness::pick_body() {
+    const uint8_t b = in_.u8();
+    if (b >= 240) return cloth_body_id{static_cast<uint16_t>(in_.u8()), in_.u16(), in_.u16(), in_.u16()};
+    return bodies_[b % kBodySlots];
+}
+
+cloth_collider_id Harness::pick_collider() {
+    const uint8_t b = in_.u8();
+    if (b >= 240) return cloth_collider_id{static_cast<uint16_t>(in_.u8()), in_.u16(), in_.u16(), in_.u16()};
+    return colliders_[b % kColliderSlots];
+}
+
+// Mostly the identity or a unit quaternion, sometimes anything (too long,
+// zero, NaN: must be rejected).
+void Harness::rotation(float q[4]) {
+    const uint8_t b = in_.u8();
+    q[0] = q[1] = q[2] = 0.0f;
+    q[3] = 1.0f;
+    if (b < 128) return;
+    in_.floats(q, 4);
+    if (b < 224) {
+        const float length = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+        if (std::isfinite(length) && length > 1e-3f)
+            for (int k = 0; k < 4; ++k) q[k] /= length;
+    }
+}
+
+void Harness::body() {
+    const uint8_t what = in_.u8();
+    float position[3], q[4], w[3];
+    in_.floats(position, 3);
+    rotation(q);
+    switch (what % 6) {
+        case 0: {
+            cloth_body_desc d = cloth_default_body_desc();
+            std::copy(position, position + 3, d.position);
+            std::copy(q, q + 4, d.rotation);
+            if (what & 0x10) in_.floats(d.linear_velocity, 3);
+            if (what & 0x20) in_.floats(d.angular_velocity, 3);
+            if (what & 0x40) d.struct_size = in_.u8();
+            cloth_body_id id{};
+            if (check(cloth_body_create(pick_world(), (what & 0x80) ? nullptr : &d, &id),
+                      "cloth_body_create") == CLOTH_OK)
+                bodies_[next_body_++ % kBodySlots] = id;
+            break;
+        }
+        case 1:
+            check(cloth_body_destroy(pick_body()), "cloth_body_destroy");
+            break;
+        case 2:
+            check(cloth_body_set_pose(pick_body(), position, (what & 0x80) ? nullptr : q),
+                  "cloth_body_set_pose");
+            break;
+        case 3:
+            check(cloth_body_teleport(pick_body(), position, q), "cloth_body_teleport");
+            break;
+        case 4:
+            in_.floats(w, 3);
+            check(cloth_body_set_velocity(pick_body(), position, w), "cloth_body_set_velocity");
+            break;
+        default:
+            check(cloth_body_get_pose(pick_body(), position, (what & 0x80) ? nullptr : q),
+                  "cloth_body_get_pose");
+    }
+}
+
+void Harness::collider() {
+    const uint8_t what = in_.u8();
+    if (what % 9 == 7) {
+        check(cloth_collider_destroy(pick_collider()), "cloth_collider_destroy");
+        return;
+    }
+    if (what % 9 == 8) {
+        check(cloth_collider_set_group_bits(pick_collider(), in_.u32()), "cloth_collider_set_group_bits");
+        return;
+    }
+    const cloth_world_id world = pick_world();
+    cloth_collider_desc d = cloth_default_collider_desc();
+    if (what & 0x10) d.body = pick_body();
+    if (what & 0x20) in_.floats(d.local_position, 3);
+    rotation(d.local_rotation);
+    if (what & 0x40) d.struct_size = in_.u8();
+    const cloth_collider_desc* desc = (what & 0x80) && in_.u8() < 32 ? nullptr : &d;
+    // Shape sizes: small sane values or edge values, point counts within the
+    // harness's bounds or past the library's limits.
+    float a = in_.u8() < 192 ? 0.05f + static_cast<float>(in_.u8()) / 64.0f : in_.any_float();
+    float v[3];
+    for (float& x : v) x = in_.u8() < 192 ? 0.05f + static_cast<float>(in_.u8()) / 64.0f : in_.any_float();
+    cloth_collider_id id{};
+    cloth_result r = CLOTH_OK;
+    switch (what % 9) {
+        case 0:
+            r = check(cloth_collider_create_sphere(world, desc, a, &id), "cloth_collider_create_sphere");
+            break;
+        case 1:
+            r = check(cloth_collider_create_capsule(world, desc, a, v[0], &id),
+                      "cloth_collider_create_capsule");
+            break;
+        case 2:
+            r = check(cloth_collider_create_box(world, desc, v, &id), "cloth_collider_create_box");
+            break;
+        case 3:
+            r = check(cloth_collider_create_plane(world, desc, v, a, &id), "cloth_collider_create_plane");
+            break;
+        case 4: {
+            const uint32_t count = in_.count(16, 4096);
+            std::vector<float> points(3 * size_t{count <= 64 ? count : 1});
+            for (float& x : points)
+                x = in_.u8() < 224 ? static_cast<float>(in_.u8()) / 32.0f : in_.any_float();
+            r = check(cloth_collider_create_convex_hull(world, desc, points.data(), count, &id),
+                      "cloth_collider_create_convex_hull");
+            break;
+        }
+        case 5: {
+            const uint32_t vertices = in_.count(12, 1u << 24);
+            const uint32_t triangles = in_.count(12, 1u << 24);
+            std::vector<float> xyz(3 * size_t{vertices <= 64 ? vertices : 1});
+            for (float& x : xyz) x = in_.u8() < 224 ? static_cast<float>(in_.u8()) / 32.0f : in_.any_float();
+            std::vector<uint32_t> indices(3 * size_t{triangles <= 64 ? triangles : 1});
+            for (uint32_t& i : indices) {
+                const uint8_t b = in_.u8();
+                i = b < 240 ? b % std::max(vertices, 1u) : in_.u32();
+            }
+            r = check(cloth_collider_create_triangle_mesh(world, desc, xyz.data(), vertices, indices.data(),
+                                                          triangles, &id),
+                      "cloth_collider_create_triangle_mesh");
+            break;
+        }
+        case 6: {
+            cloth_heightfield_desc h = cloth_default_heightfield_desc();
+            h.columns = in_.count(8, 65537);
+            h.rows = in_.count(8, 65537);
+            h.spacing_x = a;
+            h.spacing_z = v[0];
+            const uint64_t samples = uint64_t{h.columns} * h.rows;
+            std::vector<float> heights(samples <= 64 ? std::max<uint64_t>(samples, 1) : 1);
+            for (float& x : heights)
+                x = in_.u8() < 224 ? static_cast<float>(in_.u8()) / 64.0f : in_.any_float();
+            const uint8_t flags = in_.u8();
+            h.heights = (flags & 1) ? nullptr : heights.data();
+            if (samples > 64 && (flags & 2) == 0) h.columns = 0;  // never let a huge claim be read
+            if (flags & 4) h.struct_size = in_.u8();
+            r = check(cloth_collider_create_heightfield(world, desc, (flags & 8) ? nullptr : &h, &id),
+                      "cloth_collider_create_heightfield");
+            break;
+        }
+    }
+    if (r == CLOTH_OK) colliders_[next_collider_++ % kColliderSlots] = id;
+}
+
+void Harness::attachment() {
+    const cloth_id cloth = pick_cloth();
+    const uint8_t what = in_.u8();
+    const uint32_t particles = particles_of(cloth);
+    const std::vector<float> before = state_of(cloth);
+    cloth_result r = CLOTH_OK;
+    bool changes_particles = false;  // a rejected call of this kind must leave the cloth's bits alone
+    switch (what % 6) {
+        case 0:
+        case 1: {
+            const uint32_t count = in_.count(8, particles);
+            const size_t length = count <= 4096 ? std::max<uint32_t>(count, 1) : 1;
+            std::vector<uint32_t> indices(length);
+            for (uint32_t& i : indices) {
+                const uint8_t b = in_.u8();
+                i = b < 224 ? b % std::max(particles, 1u) : b < 240 ? particles : in_.u32();
+            }
+            const uint32_t* idx = (what & 0x80) ? nullptr : indices.data();
+            changes_particles = true;
+            if (what % 6 == 0) {
+                std::vector<float> offsets(3 * length);
+                for (size_t k = 0; k < offsets.size(); ++k)
+                    offsets[k] = k < 6 ? in_.any_float() : 0.01f * static_cast<float>(k);
+                r = check(
+                    cloth_attach(cloth, pick_body(), idx, (what & 0x40) ? nullptr : offsets.data(), count),
+                    "cloth_attach");
+            } else {
+                r = check(cloth_detach(cloth, idx, count), "cloth_detach");
+            }
+            break;
+        }
+        case 2: {
+            cloth_body_id body{};
+            float offset[3];
+            const uint8_t b = in_.u8();
+            const uint32_t index = b < 224 ? b % std::max(particles, 1u) : in_.u32();
+            r = check(cloth_get_attachment(cloth, index, (what & 0x80) ? nullptr : &body, offset),
+                      "cloth_get_attachment");
+            break;
+        }
+        case 3: {
+            cloth_collision_params p = cloth_default_collision_params();
+            const uint8_t flags = in_.u8();
+            if (flags & 1) p.thickness = in_.any_float();
+            if (flags & 2) p.friction = in_.any_float();
+            if (flags & 4) p.collider_mask = in_.u32();
+            if (flags & 8) p.struct_size = in_.u8();
+            r = check(cloth_set_collision(cloth, (flags & 16) ? nullptr : &p), "cloth_set_collision");
+            break;
+        }
+        case 4: {
+            cloth_carrier_desc d = cloth_default_carrier_desc();
+            const uint8_t flags = in_.u8();
+            if (flags & 1) d.linear_inertia = in_.any_float();
+            if (flags & 2) d.angular_inertia = in_.any_float();
+            if (flags & 4) d.centrifugal_inertia = in_.any_float();
+            if (flags & 8) d.max_relative_speed = in_.any_float();
+            if (flags & 16) d.teleport_distance = in_.any_float();
+            if (flags & 32) d.teleport_rotation = in_.any_float();
+            if (flags & 64) {
+                const int32_t mode = static_cast<int32_t>(in_.u32() % 4 == 0 ? in_.u32() : in_.u8() % 3);
+                std::memcpy(&d.teleport_mode, &mode, sizeof mode);  // any int a C host could pass
+            }
+            if (flags & 128) d.struct_size = in_.u8();
+            r = check(cloth_set_carrier(cloth, pick_body(), (what & 0x80) ? nullptr : &d),
+                      "cloth_set_carrier");
+            break;
+        }
+        default: {
+            bool teleported = false;
+            r = check(cloth_get_teleported(cloth, (what & 0x80) ? nullptr : &teleported),
+                      "cloth_get_teleported");
+        }
+    }
+    if (changes_particles && r != CLOTH_OK && state_of(cloth) != before)
+        broken("a rejected attach or detach changed the cloth");
+}
+
 // Zone callbacks may run on several workers at once: they only check their
 // arguments.
 void zone_check(const char* name, uint32_t worker, void*) {
@@ -816,7 +1060,7 @@ void zone_check(const char* name, uint32_t worker, void*) {
 void Harness::profiling() {
     const cloth_world_id world = pick_world();
     const uint8_t what = in_.u8();
-    switch (what % 5) {
+    switch (what % 6) {
         case 0: {
             // Small capacities, or ones the library must refuse (> 2^24).
             const uint8_t b = in_.u8();
@@ -855,6 +1099,24 @@ void Harness::profiling() {
                                          "cloth_world_write_trace_json");
             if (r == CLOTH_OK && (capacity == 0 || std::memchr(text.data(), '\0', capacity) == nullptr))
                 broken("cloth_world_write_trace_json wrote no terminating NUL");
+            break;
+        }
+        case 4: {
+            // A frame budget (tiny ones make every step over budget) and a cloth's quality policy.
+            const uint8_t b = in_.u8();
+            const float ms = b < 128 ? static_cast<float>(b) / 64.0f : b < 160 ? 1e-6f : in_.any_float();
+            check(cloth_world_set_frame_budget(world, ms), "cloth_world_set_frame_budget");
+            cloth_quality_policy policy = cloth_default_quality_policy();
+            policy.enabled = what & 0x40;
+            if (what & 0x20) {
+                policy.min_iterations = in_.count(4, 257);
+                policy.max_iterations = in_.count(16, 257);
+                policy.min_substeps = in_.count(4, 65);
+                policy.max_substeps = in_.count(4, 65);
+            }
+            if (what & 0x10) policy.struct_size = in_.u8();
+            check(cloth_set_quality_policy(pick_cloth(), (what & 0x80) ? nullptr : &policy),
+                  "cloth_set_quality_policy");
             break;
         }
         default: {
@@ -934,6 +1196,15 @@ RunStats Harness::run() {
                 break;
             case kProfiling:
                 profiling();
+                break;
+            case kBody:
+                body();
+                break;
+            case kCollider:
+                collider();
+                break;
+            case kAttachment:
+                attachment();
                 break;
             case kOpCount:
                 break;

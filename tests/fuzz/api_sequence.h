@@ -37,6 +37,9 @@ enum Op : uint8_t {
     kNullArguments,      // a function called with a NULL pointer argument
     kSelfCollision,      // set/get self-collision, its stats
     kProfiling,          // profiling, frame profile, task records, trace JSON, zone callbacks
+    kBody,               // create, destroy, set pose, teleport, velocity, get pose
+    kCollider,           // create each shape, destroy, group bits
+    kAttachment,         // attach, detach, get attachment, collision params, carrier, teleported
     kOpCount
 };
 

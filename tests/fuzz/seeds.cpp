@@ -123,12 +123,50 @@ std::vector<std::vector<uint8_t>> seed_inputs() {
     // Profiling on a world with two workers: records, profile, trace JSON, zones.
     Encoder profile;
     profile.world(0, 2).grid(0, 8, 8).cloth(0, 0);
-    profile.op(kProfiling).slot(0).u8(0).u8(32).op(kProfiling).slot(0).u8(0x40).u32(3).step(0, 2);  // zones
-                                                                                                    // on
+    // zones on (what % 6 == 5 with bit 0x40)
+    profile.op(kProfiling).slot(0).u8(0).u8(32).op(kProfiling).slot(0).u8(0x41).u32(3).step(0, 2);
     profile.op(kProfiling).slot(0).u8(1).u8(0).op(kProfiling).slot(0).u8(2).u8(40);
     profile.op(kProfiling).slot(0).u8(3).u8(0).op(kProfiling).slot(0).u8(3).u8(255);
     profile.op(kProfiling).slot(0).u8(0).u8(0);
     seeds.push_back(profile.bytes);
+
+    // A frame budget no step meets (every step returns CLOTH_ERROR_OVER_BUDGET)
+    // with a quality policy on the cloth, then lifted.
+    Encoder budget;
+    budget.world(0).grid(0, 8, 8).cloth(0, 0);
+    budget.op(kProfiling).slot(0).u8(0x40).u8(140).slot(0).step(0, 3);
+    budget.op(kProfiling).slot(0).u8(4).u8(0).slot(0).step(0, 1);
+    seeds.push_back(budget.bytes);
+
+    // Contact: a body carrying a flag (three particles attached where they
+    // are), a sphere on the body, a ground plane and a height field; the body
+    // moves, the cloth gets a carrier with teleport-and-reset, the body
+    // teleports; then detach, destroy the body and a collider, step on.
+    Encoder contact;
+    contact.world(0).grid(0, 8, 8).cloth(0, 0);
+    contact.op(kBody).u8(0).small(0.0f).small(1.0f).small(0.0f).u8(0).slot(0);  // create body 0
+    contact.op(kAttachment).slot(0).u8(0x42).u8(3).u8(0).u8(1).u8(2);           // attach 0, 1, 2 ...
+    for (int k = 0; k < 6; ++k) contact.small(0.0f);
+    contact.slot(0);                                                    // ... to body 0, where they are
+    contact.op(kCollider).u8(0x12).slot(0).slot(0).u8(0).u8(0).u8(16);  // sphere on body 0
+    for (int k = 0; k < 3; ++k) contact.u8(0).u8(10);
+    contact.op(kCollider).u8(3).slot(0).u8(0);  // plane y <= -1
+    contact.u8(200).edge(3).u8(200).edge(0).u8(0).u8(60).u8(200).edge(0);
+    contact.op(kCollider).u8(6).slot(0).u8(0).u8(0).u8(32).u8(0).u8(32).u8(0).u8(0).u8(0).u8(
+        0);  // height field
+    contact.u8(4).u8(4);
+    for (int k = 0; k < 16; ++k) contact.u8(0).u8(static_cast<uint8_t>(k * 3));
+    contact.u8(0);
+    contact.op(kAttachment).slot(0).u8(3).u8(1).small(0.0625f);  // collision thickness
+    contact.op(kAttachment).slot(0).u8(4).u8(16 | 64).small(1.0f).u32(1).u8(2).slot(0);  // carrier, reset
+    contact.step(0, 2);
+    contact.op(kBody).u8(2).small(0.5f).small(1.0f).small(0.0f).u8(0).slot(0).step(0, 2);  // move
+    contact.op(kBody).u8(3).small(6.0f).small(1.0f).small(0.0f).u8(0).slot(0).step(0, 1);  // teleport
+    contact.op(kAttachment).slot(0).u8(5).op(kAttachment).slot(0).u8(2).u8(1);  // teleported? attached?
+    contact.op(kAttachment).slot(0).u8(1).u8(2).u8(0).u8(1).step(0, 1);         // detach 0, 1
+    contact.op(kBody).u8(1).small(0.0f).small(0.0f).small(0.0f).u8(0).slot(0).step(0, 1);  // destroy body
+    contact.op(kCollider).u8(7).slot(1).step(0, 1);                                        // destroy plane
+    seeds.push_back(contact.bytes);
 
     return seeds;
 }

@@ -1,6 +1,8 @@
-// Soak: a windy flag stepped for many frames (100,000 by default) through
-// the C API, with churn every few hundred frames (pins released and set
-// again, a second cloth and a mesh fabric created and destroyed, solver
+// Soak: a windy flag on a swaying pole (a body the flag is attached to)
+// stepped for many frames (100,000 by default) through the C API, with
+// churn every few hundred frames (half the flag detached and attached
+// again, a sphere collider on the pole and a static box below created and
+// destroyed, a second cloth and a mesh fabric created and destroyed, solver
 // settings changed between 1 and 2 substeps, self-collision turned on and
 // off), measuring what a game cares about over a long session:
 //
@@ -122,7 +124,7 @@ constexpr uint32_t kSide = 32;
 constexpr float kFrame = 1.0f / 60.0f;
 constexpr uint32_t kWarmFrames = 100;
 constexpr uint32_t kCheckpoint = 1000;
-constexpr uint32_t kChurnKinds = 8;
+constexpr uint32_t kChurnKinds = 12;
 
 // A 3 x 3 vertex patch of two-triangle cells, as a mesh fabric.
 cloth_fabric_id create_patch(cloth_world_id world) {
@@ -195,9 +197,24 @@ int main(int argc, char** argv) {
     cd.area_density = 1.0f;  // 1 kg over 1 m^2
     cloth_id flag{};
     must(cloth_create(world, &cd, &flag), "cloth_create");
+    // The pole is a body that sways; the flag's first column is attached to
+    // it at the particles' rest positions (the body starts at the origin).
+    cloth_body_id pole_body{};
+    const cloth_body_desc bd = cloth_default_body_desc();
+    must(cloth_body_create(world, &bd, &pole_body), "cloth_body_create");
     std::vector<uint32_t> pole;
     for (uint32_t row = 0; row < kSide; ++row) pole.push_back(row * kSide);
-    must(cloth_pin(flag, pole.data(), kSide), "cloth_pin");
+    std::vector<float> pole_offsets(3 * kSide);
+    {
+        std::vector<float> rest(3 * kSide * kSide);
+        must(cloth_read_positions(flag, rest.data(), static_cast<uint32_t>(rest.size())),
+             "cloth_read_positions");
+        for (uint32_t k = 0; k < kSide; ++k)
+            std::memcpy(&pole_offsets[3 * k], &rest[3 * size_t{pole[k]}], 3 * sizeof(float));
+    }
+    must(cloth_attach(flag, pole_body, pole.data(), pole_offsets.data(), kSide), "cloth_attach");
+    const uint32_t half = kSide / 2;  // the lower half of the pole: rows 16..31
+    cloth_collider_id sphere{}, ground{};
 
     std::vector<float> positions(3 * kSide * kSide);
     cloth_id extra{};  // churn: a second cloth on a mesh fabric, alive every other cycle
@@ -220,8 +237,8 @@ int main(int argc, char** argv) {
         const bool churn = frame > 0 && frame % churn_every == 0;
         if (churn) {
             switch (churns++ % kChurnKinds) {
-                case 0:  // release the lower half of the pole, the flag sags
-                    must(cloth_unpin(flag, pole.data(), kSide / 2), "cloth_unpin");
+                case 0:  // detach the lower half of the pole, the flag sags
+                    must(cloth_detach(flag, pole.data() + half, kSide - half), "cloth_detach");
                     break;
                 case 1:  // a second cloth on a new mesh fabric (whose handle is released at once)
                     extra_fabric = create_patch(world);
@@ -241,17 +258,43 @@ int main(int argc, char** argv) {
                     must(cloth_set_self_collision(flag, &sc), "cloth_set_self_collision on");
                     break;
                 }
-                case 4:  // pin the whole pole again where it hangs now
-                    must(cloth_pin(flag, pole.data(), kSide), "cloth_pin");
+                case 4: {  // a sphere on the pole, in the flag's way
+                    cloth_collider_desc d = cloth_default_collider_desc();
+                    d.body = pole_body;
+                    d.local_position[0] = 0.3f;
+                    d.local_position[1] = 1.0f;
+                    must(cloth_collider_create_sphere(world, &d, 0.15f, &sphere),
+                         "cloth_collider_create_sphere");
                     break;
-                case 5:  // the second cloth goes (its fabric's memory with it)
+                }
+                case 5: {  // a static box under the flag, which the sagging half meets
+                    cloth_collider_desc d = cloth_default_collider_desc();
+                    d.local_position[0] = 0.5f;
+                    d.local_position[1] = 0.2f;
+                    const float half_extents[3] = {1.0f, 0.2f, 1.0f};
+                    must(cloth_collider_create_box(world, &d, half_extents, &ground),
+                         "cloth_collider_create_box");
+                    break;
+                }
+                case 6:  // attach the lower half again at its pole offsets
+                    must(cloth_attach(flag, pole_body, pole.data() + half, pole_offsets.data() + 3 * half,
+                                      kSide - half),
+                         "cloth_attach");
+                    break;
+                case 7:
+                    must(cloth_collider_destroy(sphere), "cloth_collider_destroy sphere");
+                    break;
+                case 8:  // the second cloth goes (its fabric's memory with it)
                     must(cloth_destroy(extra), "cloth_destroy extra");
                     break;
-                case 6: {  // back to one substep
+                case 9: {  // back to one substep
                     const cloth_solver_settings s = cloth_default_solver_settings();
                     must(cloth_set_solver(flag, &s), "cloth_set_solver");
                     break;
                 }
+                case 10:
+                    must(cloth_collider_destroy(ground), "cloth_collider_destroy ground");
+                    break;
                 default: {  // self-collision off (its buffers are freed)
                     const cloth_self_collision_desc sc = cloth_default_self_collision_desc();
                     must(cloth_set_self_collision(flag, &sc), "cloth_set_self_collision off");
@@ -263,6 +306,11 @@ int main(int argc, char** argv) {
         const float t = static_cast<float>(frame) * kFrame;
         const float wind[3] = {8.0f + 4.0f * std::sin(0.7f * t), 0.0f, 1.0f + std::sin(1.3f * t)};
         must(cloth_set_wind(flag, wind), "cloth_set_wind");
+        // The pole sways 0.3 m sideways and turns up to 0.3 rad about its axis.
+        const float angle = 0.3f * std::sin(0.9f * t);
+        const float position[3] = {0.0f, 0.0f, 0.3f * std::sin(0.5f * t)};
+        const float rotation[4] = {0.0f, std::sin(0.5f * angle), 0.0f, std::cos(0.5f * angle)};
+        must(cloth_body_set_pose(pole_body, position, rotation), "cloth_body_set_pose");
         const cloth_result r = cloth_step(world, kFrame);
         if (r == CLOTH_ERROR_NONFINITE_STATE) {
             if (nonfinite_steps++ == 0) {
