@@ -168,11 +168,13 @@ inline AeroParams to_core(const cloth_aero_params& a) {
     return out;
 }
 
-inline void copy_out(const Vec3Soa& values, float* out) {
-    for (size_t i = 0; i < values.size(); ++i) {
-        out[3 * i] = values.x[i];
-        out[3 * i + 1] = values.y[i];
-        out[3 * i + 2] = values.z[i];
+// Per-particle vectors out in the host's vertex order.
+inline void copy_out(const Vec3Soa& values, const Fabric& fabric, float* out) {
+    for (uint32_t i = 0; i < static_cast<uint32_t>(values.size()); ++i) {
+        const size_t v = fabric.vertex(i);
+        out[3 * v] = values.x[i];
+        out[3 * v + 1] = values.y[i];
+        out[3 * v + 2] = values.z[i];
     }
 }
 

@@ -123,7 +123,7 @@ cloth_result read_vectors(const char* function, cloth_id id, float* out, uint32_
         if (!s.ok()) return s;
         s = check_capacity(out, capacity, 3 * static_cast<size_t>(cloth->particle_count()));
         if (!s.ok()) return s;
-        copy_out(read(*cloth), out);
+        copy_out(read(*cloth), cloth->fabric(), out);
         return {};
     });
 }
@@ -157,7 +157,7 @@ CLOTH_API cloth_result cloth_set_positions(cloth_id id, const uint32_t* indices,
         if (!s.ok()) return s;
         for (uint32_t k = 0; k < count; ++k) {
             const float* p = positions_xyz + 3 * k;
-            cloth->set_position(indices[k], Vec3(p[0], p[1], p[2]));
+            cloth->set_position(cloth->fabric().particle(indices[k]), Vec3(p[0], p[1], p[2]));
         }
         return {};
     });
@@ -169,7 +169,7 @@ CLOTH_API cloth_result cloth_pin(cloth_id id, const uint32_t* indices, uint32_t 
         Status s = get_cloth(id, cloth, log_world);
         if (s.ok()) s = check_indices(indices, count, cloth->particle_count());
         if (!s.ok()) return s;
-        cloth->set_pinned(indices, count, true);
+        cloth->set_pinned(indices, count, true, /*vertex_indices=*/true);
         return {};
     });
 }
@@ -180,7 +180,7 @@ CLOTH_API cloth_result cloth_unpin(cloth_id id, const uint32_t* indices, uint32_
         Status s = get_cloth(id, cloth, log_world);
         if (s.ok()) s = check_indices(indices, count, cloth->particle_count());
         if (!s.ok()) return s;
-        cloth->set_pinned(indices, count, false);
+        cloth->set_pinned(indices, count, false, /*vertex_indices=*/true);
         return {};
     });
 }
@@ -193,18 +193,19 @@ CLOTH_API cloth_result cloth_set_pin_targets(cloth_id id, const uint32_t* indice
         if (s.ok()) s = check_indices(indices, count, cloth->particle_count());
         if (s.ok()) s = check_points(targets_xyz, count, "targets");
         if (!s.ok()) return s;
+        const Fabric& fabric = cloth->fabric();
         for (uint32_t k = 0; k < count; ++k) {
-            if (!cloth->is_pinned(indices[k])) {
+            if (!cloth->is_pinned(fabric.particle(indices[k]))) {
                 return Status::error(CLOTH_ERROR_INVALID_VALUE, "particle %u is not pinned", indices[k]);
             }
-            if (cloth->contact().is_attached(indices[k])) {
+            if (cloth->contact().is_attached(fabric.particle(indices[k]))) {
                 return Status::error(CLOTH_ERROR_INVALID_VALUE, "particle %u is attached to a body",
                                      indices[k]);
             }
         }
         for (uint32_t k = 0; k < count; ++k) {
             const float* p = targets_xyz + 3 * k;
-            cloth->set_pin_target(indices[k], Vec3(p[0], p[1], p[2]));
+            cloth->set_pin_target(fabric.particle(indices[k]), Vec3(p[0], p[1], p[2]));
         }
         return {};
     });
@@ -220,7 +221,7 @@ CLOTH_API cloth_result cloth_is_pinned(cloth_id id, uint32_t index, bool* out_pi
             return Status::error(CLOTH_ERROR_INDEX_OUT_OF_RANGE, "index %u, but the cloth has %u particles",
                                  index, cloth->particle_count());
         }
-        *out_pinned = cloth->is_pinned(index);
+        *out_pinned = cloth->is_pinned(cloth->fabric().particle(index));
         return {};
     });
 }

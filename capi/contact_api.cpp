@@ -476,17 +476,18 @@ CLOTH_API cloth_result cloth_attach(cloth_id id, cloth_body_id body_id, const ui
         // A particle attached now sits at its target from the start of the
         // next step: the body's pose at the start of that step.
         const Pose& pose = body->body.start;
+        const Fabric& fabric = cloth->fabric();
         for (uint32_t k = 0; k < count; ++k) {
-            const uint32_t i = indices[k];
+            const uint32_t i = fabric.particle(indices[k]);
             const Vec3 offset = local_offsets_xyz
                                     ? Vec3(local_offsets_xyz[3 * k], local_offsets_xyz[3 * k + 1],
                                            local_offsets_xyz[3 * k + 2])
                                     : pose.apply_inverse(cloth->positions().get(i));
             contact.attach(i, slot, offset);
         }
-        cloth->set_pinned(indices, count, true);
+        cloth->set_pinned(indices, count, true, /*vertex_indices=*/true);
         for (uint32_t k = 0; k < count; ++k) {
-            const uint32_t i = indices[k];
+            const uint32_t i = fabric.particle(indices[k]);
             cloth->set_position(i, pose.apply(contact.attached_offset(i)));
         }
         return {};
@@ -500,10 +501,10 @@ CLOTH_API cloth_result cloth_detach(cloth_id id, const uint32_t* indices, uint32
         if (s.ok()) s = check_indices(indices, count, cloth->particle_count());
         if (!s.ok()) return s;
         for (uint32_t k = 0; k < count; ++k) {
-            if (!cloth->contact().is_attached(indices[k]))
+            if (!cloth->contact().is_attached(cloth->fabric().particle(indices[k])))
                 return Status::error(CLOTH_ERROR_INVALID_VALUE, "particle %u is not attached", indices[k]);
         }
-        cloth->set_pinned(indices, count, false);
+        cloth->set_pinned(indices, count, false, /*vertex_indices=*/true);
         return {};
     });
 }
@@ -520,15 +521,16 @@ CLOTH_API cloth_result cloth_get_attachment(cloth_id id, uint32_t index, cloth_b
                                  index, cloth->particle_count());
         }
         const ClothContact& contact = cloth->contact();
-        if (!contact.is_attached(index)) {
+        const uint32_t particle = cloth->fabric().particle(index);
+        if (!contact.is_attached(particle)) {
             *out_body = cloth_body_id{};
             if (out_local_offset) out_local_offset[0] = out_local_offset[1] = out_local_offset[2] = 0.0f;
             return {};
         }
-        const uint32_t slot = contact.attached_body(index);
+        const uint32_t slot = contact.attached_body(particle);
         write_id(out_body, slot, contact.world()->body(slot), id);
         if (out_local_offset) {
-            const Vec3 offset = contact.attached_offset(index);
+            const Vec3 offset = contact.attached_offset(particle);
             for (int k = 0; k < 3; ++k) out_local_offset[k] = offset[k];
         }
         return {};

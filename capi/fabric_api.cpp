@@ -142,7 +142,9 @@ CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id id, uint32_t*
         if (!s.ok()) return s;
         s = check_capacity(out_indices, capacity, fabric->triangles.size());
         if (!s.ok()) return s;
-        std::copy(fabric->triangles.begin(), fabric->triangles.end(), out_indices);
+        // In the host's vertex order (a mesh's particles are stored spatially sorted).
+        for (size_t i = 0; i < fabric->triangles.size(); ++i)
+            out_indices[i] = fabric->vertex(fabric->triangles[i]);
         return {};
     });
 }

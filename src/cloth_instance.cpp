@@ -84,10 +84,10 @@ void ClothInstance::set_material(const Material& material) {
     springs_->set_material(material);
 }
 
-void ClothInstance::set_pinned(const uint32_t* particles, uint32_t count, bool pinned) {
+void ClothInstance::set_pinned(const uint32_t* indices, uint32_t count, bool pinned, bool vertex_indices) {
     wake();
     for (uint32_t k = 0; k < count; ++k) {
-        const uint32_t i = particles[k];
+        const uint32_t i = vertex_indices ? fabric_->particle(indices[k]) : indices[k];
         if (pinned) pin_target_.set(i, x_.get(i));
         pinned_[i] = pinned ? 1.0f : 0.0f;
         if (!pinned) contact_.detach(i);

@@ -111,9 +111,11 @@ class ClothInstance {
     AeroParams& aero() { return aero_; }
     const AeroParams& aero() const { return aero_; }
 
-    // Pin (kinematic, at their current positions) or release particles.
-    // Allocates nothing: the pinned list has room for every particle.
-    void set_pinned(const uint32_t* particles, uint32_t count, bool pinned);
+    // Pin (kinematic, at their current positions) or release particles,
+    // given by particle index or (as the C API does) by the host's vertex
+    // index (Fabric::particle). Allocates nothing: the pinned list has room
+    // for every particle.
+    void set_pinned(const uint32_t* indices, uint32_t count, bool pinned, bool vertex_indices = false);
     void pin(uint32_t particle) { set_pinned(&particle, 1, true); }
     void unpin(uint32_t particle) { set_pinned(&particle, 1, false); }
     bool is_pinned(uint32_t particle) const { return pinned_[particle] != 0.0f; }

@@ -24,7 +24,9 @@ Fabric::Fabric(const HostMemory* memory)
       triangle_slots(memory),
       grid_families(HostAllocator<SpringFamily>(memory)),
       grid_triangle_shapes(HostAllocator<uint32_t>(memory)),
-      grid_cell_mask(HostAllocator<float>(memory)) {}
+      grid_cell_mask(HostAllocator<float>(memory)),
+      particle_of_vertex(HostAllocator<uint32_t>(memory)),
+      vertex_of_particle(HostAllocator<uint32_t>(memory)) {}
 
 namespace {
 
@@ -261,8 +263,11 @@ Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
     return finish_fabric(springs, f);
 }
 
-Status build_mesh_fabric(const float* positions, uint32_t vertex_count, const uint32_t* indices,
-                         uint32_t triangle_count, uint32_t spring_kinds, Fabric& f) {
+namespace {
+
+// Builds a mesh fabric with the particles in the given vertex order.
+Status build_mesh_in_given_order(const float* positions, uint32_t vertex_count, const uint32_t* indices,
+                                 uint32_t triangle_count, uint32_t spring_kinds, Fabric& f) {
     if (!positions || !indices)
         return Status::error(CLOTH_ERROR_NULL_POINTER, "mesh positions or indices is NULL");
     if (vertex_count < 3 || vertex_count > kMaxParticles) {
@@ -333,6 +338,68 @@ Status build_mesh_fabric(const float* positions, uint32_t vertex_count, const ui
         begin = end;
     }
     return finish_fabric(springs, f);
+}
+
+// Spreads the low 10 bits of v so that two zero bits follow each bit.
+uint32_t spread_bits(uint32_t v) {
+    v &= 0x3FFu;
+    v = (v | (v << 16)) & 0x030000FFu;
+    v = (v | (v << 8)) & 0x0300F00Fu;
+    v = (v | (v << 4)) & 0x030C30C3u;
+    v = (v | (v << 2)) & 0x09249249u;
+    return v;
+}
+
+// Vertices sorted by the Morton (Z-order) code of their rest positions in
+// the mesh's bounding box, ties by index: consecutive runs are compact
+// patches of the surface, whatever order the mesh came in.
+std::vector<uint32_t> spatial_order(const float* positions, uint32_t vertex_count) {
+    Vec3 lo(positions[0], positions[1], positions[2]), hi = lo;
+    for (uint32_t v = 0; v < vertex_count; ++v) {
+        const Vec3 p(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    }
+    const float extent = std::max((hi - lo).maxCoeff(), 1e-30f);
+    std::vector<std::pair<uint32_t, uint32_t>> keyed(vertex_count);
+    for (uint32_t v = 0; v < vertex_count; ++v) {
+        uint32_t code = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            const float t = (positions[3 * v + axis] - lo[axis]) / extent;  // 0..1
+            code |= spread_bits(static_cast<uint32_t>(std::min(t, 1.0f) * 1023.0f)) << axis;
+        }
+        keyed[v] = {code, v};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<uint32_t> order(vertex_count);
+    for (uint32_t k = 0; k < vertex_count; ++k) order[k] = keyed[k].second;
+    return order;
+}
+
+}  // namespace
+
+Status build_mesh_fabric(const float* positions, uint32_t vertex_count, const uint32_t* indices,
+                         uint32_t triangle_count, uint32_t spring_kinds, Fabric& f) {
+    // Validate in the host's order, so that messages name its vertices and
+    // triangles; then build again in the spatial order.
+    {
+        Fabric check(f.memory);
+        Status s =
+            build_mesh_in_given_order(positions, vertex_count, indices, triangle_count, spring_kinds, check);
+        if (!s.ok()) return s;
+    }
+    const std::vector<uint32_t> order = spatial_order(positions, vertex_count);
+    f.particle_of_vertex.resize(vertex_count);
+    f.vertex_of_particle.assign(order.begin(), order.end());
+    for (uint32_t k = 0; k < vertex_count; ++k) f.particle_of_vertex[order[k]] = k;
+    std::vector<float> sorted_positions(3 * static_cast<size_t>(vertex_count));
+    for (uint32_t k = 0; k < vertex_count; ++k) {
+        for (int axis = 0; axis < 3; ++axis) sorted_positions[3 * k + axis] = positions[3 * order[k] + axis];
+    }
+    std::vector<uint32_t> sorted_indices(3 * static_cast<size_t>(triangle_count));
+    for (size_t i = 0; i < sorted_indices.size(); ++i) sorted_indices[i] = f.particle_of_vertex[indices[i]];
+    return build_mesh_in_given_order(sorted_positions.data(), vertex_count, sorted_indices.data(),
+                                     triangle_count, spring_kinds, f);
 }
 
 }  // namespace cloth

@@ -119,6 +119,19 @@ struct Fabric {
     std::vector<SpringFamily, HostAllocator<SpringFamily>> grid_families;
     HostVector<uint32_t> grid_triangle_shapes;
     HostVector<float> grid_cell_mask;
+
+    // Mesh fabrics store their particles in a spatial order (so that each
+    // group of kChunk consecutive particles is a compact patch, paper Fig.
+    // 1-2); the C API speaks the host's vertex indices and maps them here.
+    // Both maps are empty when the two orders agree (grids).
+    HostVector<uint32_t> particle_of_vertex;
+    HostVector<uint32_t> vertex_of_particle;
+    uint32_t particle(uint32_t vertex) const {
+        return particle_of_vertex.empty() ? vertex : particle_of_vertex[vertex];
+    }
+    uint32_t vertex(uint32_t particle) const {
+        return vertex_of_particle.empty() ? particle : vertex_of_particle[particle];
+    }
 };
 
 // Largest particle count a fabric may have.
@@ -127,7 +140,8 @@ constexpr uint32_t kMaxParticles = 1u << 24;
 // Builders fill a freshly constructed `out`; on error, discard it.
 // Build from a grid description.
 Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& out);
-// Build from a triangle mesh (positions: 3 floats per vertex).
+// Build from a triangle mesh (positions: 3 floats per vertex); particles are
+// stored in Morton order of the rest positions (see particle_of_vertex).
 Status build_mesh_fabric(const float* positions, uint32_t vertex_count, const uint32_t* indices,
                          uint32_t triangle_count, uint32_t spring_kinds, Fabric& out);
 // Load an OBJ file (triangulated) and build from it.

@@ -105,8 +105,9 @@ Status World::create_cloth(std::shared_ptr<const Fabric> fabric, const Material&
                                                      std::move(fabric), material, solver, aero);
     if (initial_positions) {
         for (uint32_t i = 0; i < cloth->particle_count(); ++i) {
-            cloth->set_position(i, Vec3(initial_positions[3 * i], initial_positions[3 * i + 1],
-                                        initial_positions[3 * i + 2]));
+            const uint32_t v = cloth->fabric().vertex(i);  // the host's vertex order
+            cloth->set_position(i, Vec3(initial_positions[3 * v], initial_positions[3 * v + 1],
+                                        initial_positions[3 * v + 2]));
         }
     }
     reserve_round_tasks(cloth->group_count());
