@@ -59,7 +59,14 @@ TEST(DefaultSolver, HangingAndFallingFlatHoldStrainAndGainNoEnergy) {
         float stiffness;
         int frames;
     };
-    for (const Case c : {Case{32, 1e3f, 90}, Case{32, 1e4f, 90}, Case{64, 1e4f, 40}}) {
+#ifdef CLOTH_SANITIZED_BUILD
+    // Sanitizers check memory and UB, which the 32 x 32 cases exercise the
+    // same way; the 64 x 64 case costs minutes there.
+    const Case cases[] = {Case{32, 1e3f, 90}, Case{32, 1e4f, 90}};
+#else
+    const Case cases[] = {Case{32, 1e3f, 90}, Case{32, 1e4f, 90}, Case{64, 1e4f, 40}};
+#endif
+    for (const Case c : cases) {
         for (SceneKind kind : {SceneKind::kHanging, SceneKind::kFallingFlat}) {
             SCOPED_TRACE(::testing::Message()
                          << cloth_samples::scene_name(kind) << " " << c.resolution << " k " << c.stiffness);
