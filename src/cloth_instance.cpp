@@ -226,8 +226,12 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     contact_.begin_step(dt, pinned_.data(), x_, v_);  // carrier (no pass without one)
     collides_ = contact_.collides();
     for (uint32_t i : pinned_list_) pin_start_.set(i, x_.get(i));
-    frame_solver_ = resolve_solver(
-        solver_, dt, stiffness_over_mass(material_, mass_.data(), pinned_.data(), particle_count()));
+    // Only the default solver's choice depends on k / m (a pass over every particle).
+    const float stiffness_per_mass =
+        solver_.kind == CLOTH_SOLVER_DEFAULT
+            ? stiffness_over_mass(material_, mass_.data(), pinned_.data(), particle_count())
+            : 0.0f;
+    frame_solver_ = resolve_solver(solver_, dt, stiffness_per_mass);
     substeps_ = frame_solver_.substeps;
     h_ = dt / static_cast<float>(substeps_);
     gravity_ = gravity;
