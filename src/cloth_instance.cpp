@@ -132,29 +132,30 @@ void swap_buffers(Vec3Soa& a, Vec3Soa& b) {
     a.z.swap(b.z);
 }
 
-// Whether x and v are finite on [begin, end): x * 0 is 0 for finite x and
-// NaN otherwise; NaN survives any sum.
-CLOTH_HOT_LOOP bool range_is_finite(const Vec3Soa& x, const Vec3Soa& v, uint32_t begin, uint32_t end) {
-    float sum[VectorLanes::width] = {};
+// Whether x and v are finite on [begin, end) (x * 0 is 0 for finite x and
+// NaN otherwise; NaN survives any sum), and the largest squared speed
+// there, in one pass. The maximum does not depend on the order.
+CLOTH_HOT_LOOP bool range_is_finite(const Vec3Soa& x, const Vec3Soa& v, uint32_t begin, uint32_t end,
+                                    float& max_speed_squared) {
+    float sum[VectorLanes::width] = {}, top[VectorLanes::width] = {};
     for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
         using L = decltype(lanes);
-        typename L::type acc = L::load(sum);
-        for (const Vec3Soa* a : {&x, &v}) {
-            acc += L::load(&a->x[i]) * 0.0f + L::load(&a->y[i]) * 0.0f + L::load(&a->z[i]) * 0.0f;
-        }
+        using T = typename L::type;
+        const T vx = L::load(&v.x[i]), vy = L::load(&v.y[i]), vz = L::load(&v.z[i]);
+        T acc = L::load(sum);
+        acc += L::load(&x.x[i]) * 0.0f + L::load(&x.y[i]) * 0.0f + L::load(&x.z[i]) * 0.0f;
+        acc += vx * 0.0f + vy * 0.0f + vz * 0.0f;
         L::store(sum, acc);
+        const T speed_squared = vx * vx + vy * vy + vz * vz, m = L::load(top);
+        L::store(top, m < speed_squared ? speed_squared : m);
     });
-    float total = 0;
-    for (float s : sum) total += s;
+    float total = 0, m = 0;
+    for (uint32_t lane = 0; lane < VectorLanes::width; ++lane) {
+        total += sum[lane];
+        m = std::max(m, top[lane]);
+    }
+    max_speed_squared = m;
     return std::isfinite(total);
-}
-
-// Largest squared speed on [begin, end).
-float range_max_speed_squared(const Vec3Soa& v, uint32_t begin, uint32_t end) {
-    float m = 0;
-    for (uint32_t i = begin; i < end; ++i)
-        m = std::max(m, v.x[i] * v.x[i] + v.y[i] * v.y[i] + v.z[i] * v.z[i]);
-    return m;
 }
 
 }  // namespace
@@ -174,8 +175,9 @@ void ClothInstance::check_finite(uint32_t group) {
     const Vec3Soa& v = cursor_.stage == Stage::kSelfRespond ? self_collision_->next_velocities()
                        : integrated                         ? integration_v()
                                                             : v_;
-    group_finite_[group] = range_is_finite(x, v, group_begin(group), group_end(group)) ? 1 : 0;
-    group_speed_squared_[group] = range_max_speed_squared(v, group_begin(group), group_end(group));
+    float speed_squared = 0;
+    group_finite_[group] = range_is_finite(x, v, group_begin(group), group_end(group), speed_squared) ? 1 : 0;
+    group_speed_squared_[group] = speed_squared;
 }
 
 void ClothInstance::set_quality_policy(const QualityPolicy& policy) {
