@@ -23,8 +23,10 @@ CLOTH_HOT_LOOP void evaluate_family_kernel(
     const float* __restrict vz, float* __restrict fx, float* __restrict fy, float* __restrict fz,
     float* __restrict bxx, float* __restrict bxy, float* __restrict bxz, float* __restrict byy,
     float* __restrict byz, float* __restrict bzz) {
-    for (uint32_t p = begin; p < end; ++p) {
-        const uint32_t j = p + offset;
+    // 64-bit indices: with j = p + offset in 32 bits (which could wrap) GCC
+    // loads the second ends lane by lane instead of as one vector.
+    for (size_t p = begin; p < end; ++p) {
+        const size_t j = p + offset;
         // Where the family has no spring (grid edge) the mask zeroes k and c,
         // which zeroes the whole term.
         const SpringTerm t =
