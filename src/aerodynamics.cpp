@@ -76,8 +76,10 @@ CLOTH_HOT_LOOP void grid_cell_air_kernel(uint32_t begin, uint32_t end, AirConsta
                                          float* __restrict f1x, float* __restrict f1y, float* __restrict f1z,
                                          float* __restrict f2x, float* __restrict f2y,
                                          float* __restrict f2z) {
-    for (uint32_t p = begin; p < end; ++p) {
-        const uint32_t b = p + o1, c = p + o2, d = p + o3;
+    // 64-bit indices: in 32 bits (which could wrap) GCC loads b, c and d
+    // lane by lane instead of as vectors.
+    for (size_t p = begin; p < end; ++p) {
+        const size_t b = p + o1, c = p + o2, d = p + o3;
         const float acx = px[c] - px[p], acy = py[c] - py[p], acz = pz[c] - pz[p];
         const float sx = vx[p] + vx[c], sy = vy[p] + vy[c], sz = vz[p] + vz[c];
         float x, y, z;
