@@ -85,13 +85,15 @@ __attribute__((always_inline)) inline void gather_families_impl(uint32_t begin, 
     for_each_lane_group(begin, end, max_offset, n, [&](auto lanes, uint32_t p) {
         using L = decltype(lanes);
         using T = typename L::type;
+        // Eight at a time only from max_offset on, where p - offset is always valid.
+        constexpr bool all_valid = L::width > 1;
         T fx = L::load(&force.x[p]), fy = L::load(&force.y[p]), fz = L::load(&force.z[p]);
         for (uint32_t f = 0; f < family_count; ++f) {
             const Vec3Soa& t = terms[f].force;
             fx += L::load(&t.x[p]);
             fy += L::load(&t.y[p]);
             fz += L::load(&t.z[p]);
-            if (p >= offsets[f]) {
+            if (all_valid || p >= offsets[f]) {
                 const uint32_t s = p - offsets[f];
                 fx -= L::load(&t.x[s]);
                 fy -= L::load(&t.y[s]);
@@ -104,7 +106,7 @@ __attribute__((always_inline)) inline void gather_families_impl(uint32_t begin, 
         for (uint32_t f = 0; f < family_count; ++f) {
             const Sym3Soa& b = terms[f].block;
             for (uint32_t shift : {0u, offsets[f]}) {
-                if (p < shift) continue;
+                if (!all_valid && p < shift) continue;
                 const uint32_t s = p - shift;
                 w.xx += L::load(&b.xx[s]);
                 w.xy += L::load(&b.xy[s]);
