@@ -76,8 +76,10 @@ CLOTH_HOT_LOOP void grid_cell_air_kernel(uint32_t begin, uint32_t end, AirConsta
                                          float* __restrict f1x, float* __restrict f1y, float* __restrict f1z,
                                          float* __restrict f2x, float* __restrict f2y,
                                          float* __restrict f2z) {
-    for (uint32_t p = begin; p < end; ++p) {
-        const uint32_t b = p + o1, c = p + o2, d = p + o3;
+    // 64-bit indices: in 32 bits (which could wrap) GCC loads b, c and d
+    // lane by lane instead of as vectors.
+    for (size_t p = begin; p < end; ++p) {
+        const size_t b = p + o1, c = p + o2, d = p + o3;
         const float acx = px[c] - px[p], acy = py[c] - py[p], acz = pz[c] - pz[p];
         const float sx = vx[p] + vx[c], sy = vy[p] + vy[c], sz = vz[p] + vz[c];
         float x, y, z;
@@ -162,17 +164,21 @@ CLOTH_HOT_LOOP void gather_air(const Fabric& fabric, const Vec3Soa& corner_force
     const uint32_t shapes = static_cast<uint32_t>(fabric.grid_triangle_shapes.size() / 3);
     uint32_t max_offset = 0;
     for (uint32_t o : fabric.grid_triangle_shapes) max_offset = std::max(max_offset, o);
+    const uint32_t* shape = fabric.grid_triangle_shapes.data();
+    const float *cx = corner_force.x.data(), *cy = corner_force.y.data(), *cz = corner_force.z.data();
     for_each_lane_group(begin, end, max_offset, static_cast<uint32_t>(n), [&](auto lanes, uint32_t p) {
         using L = decltype(lanes);
+        // Eight at a time only from max_offset on, where p - offset is always valid.
+        constexpr bool all_valid = L::width > 1;
         typename L::type fx{}, fy{}, fz{};
         for (uint32_t s = 0; s < shapes; ++s) {
             for (uint32_t i = 0; i < 3; ++i) {
-                const uint32_t offset = fabric.grid_triangle_shapes[3 * s + i];
-                if (p < offset) continue;
+                const uint32_t offset = shape[3 * s + i];
+                if (!all_valid && p < offset) continue;
                 const size_t entry = s * n + (p - offset);
-                fx += L::load(&corner_force.x[entry]);
-                fy += L::load(&corner_force.y[entry]);
-                fz += L::load(&corner_force.z[entry]);
+                fx += L::load(cx + entry);
+                fy += L::load(cy + entry);
+                fz += L::load(cz + entry);
             }
         }
         store_vec3<L>(particle_force, p, fx, fy, fz);

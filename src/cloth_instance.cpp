@@ -49,13 +49,14 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       normals_(memory),
       backup_x_(memory),
       backup_v_(memory),
+      pin_velocity_start_(memory),
       group_finite_(HostAllocator<uint8_t>(memory)),
       group_speed_squared_(HostAllocator<float>(memory)),
       contact_(memory) {
     const Fabric& f = *fabric_;
     const uint32_t n = f.particle_count();
     for (Vec3Soa* a : {&x_, &v_, &pin_target_, &pin_start_, &external_force_, &rhs_, &dv_, &dv_scratch_,
-                       &normals_, &backup_x_, &backup_v_}) {
+                       &normals_, &backup_x_, &backup_v_, &pin_velocity_start_}) {
         a->resize(n);
     }
     for (uint32_t i = 0; i < n; ++i) x_.set(i, f.rest_positions[i]);
@@ -124,29 +125,37 @@ const Vec3Soa& ClothInstance::normals() const {
 
 namespace {
 
-// Whether x and v are finite on [begin, end): x * 0 is 0 for finite x and
-// NaN otherwise; NaN survives any sum.
-CLOTH_HOT_LOOP bool range_is_finite(const Vec3Soa& x, const Vec3Soa& v, uint32_t begin, uint32_t end) {
-    float sum[VectorLanes::width] = {};
-    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
-        using L = decltype(lanes);
-        typename L::type acc = L::load(sum);
-        for (const Vec3Soa* a : {&x, &v}) {
-            acc += L::load(&a->x[i]) * 0.0f + L::load(&a->y[i]) * 0.0f + L::load(&a->z[i]) * 0.0f;
-        }
-        L::store(sum, acc);
-    });
-    float total = 0;
-    for (float s : sum) total += s;
-    return std::isfinite(total);
+// Exchanges the buffers of a and b (no copy).
+void swap_buffers(Vec3Soa& a, Vec3Soa& b) {
+    a.x.swap(b.x);
+    a.y.swap(b.y);
+    a.z.swap(b.z);
 }
 
-// Largest squared speed on [begin, end).
-float range_max_speed_squared(const Vec3Soa& v, uint32_t begin, uint32_t end) {
-    float m = 0;
-    for (uint32_t i = begin; i < end; ++i)
-        m = std::max(m, v.x[i] * v.x[i] + v.y[i] * v.y[i] + v.z[i] * v.z[i]);
-    return m;
+// Whether x and v are finite on [begin, end) (x * 0 is 0 for finite x and
+// NaN otherwise; NaN survives any sum), and the largest squared speed
+// there, in one pass. The maximum does not depend on the order.
+CLOTH_HOT_LOOP bool range_is_finite(const Vec3Soa& x, const Vec3Soa& v, uint32_t begin, uint32_t end,
+                                    float& max_speed_squared) {
+    float sum[VectorLanes::width] = {}, top[VectorLanes::width] = {};
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        using T = typename L::type;
+        const T vx = L::load(&v.x[i]), vy = L::load(&v.y[i]), vz = L::load(&v.z[i]);
+        T acc = L::load(sum);
+        acc += L::load(&x.x[i]) * 0.0f + L::load(&x.y[i]) * 0.0f + L::load(&x.z[i]) * 0.0f;
+        acc += vx * 0.0f + vy * 0.0f + vz * 0.0f;
+        L::store(sum, acc);
+        const T speed_squared = vx * vx + vy * vy + vz * vz, m = L::load(top);
+        L::store(top, m < speed_squared ? speed_squared : m);
+    });
+    float total = 0, m = 0;
+    for (uint32_t lane = 0; lane < VectorLanes::width; ++lane) {
+        total += sum[lane];
+        m = std::max(m, top[lane]);
+    }
+    max_speed_squared = m;
+    return std::isfinite(total);
 }
 
 }  // namespace
@@ -159,10 +168,16 @@ bool ClothInstance::state_is_finite() const {
 }
 
 void ClothInstance::check_finite(uint32_t group) {
-    // Self-collision's response is the last stage; its velocities become v_ after the barrier.
-    const Vec3Soa& v = cursor_.stage == Stage::kSelfRespond ? self_collision_->next_velocities() : v_;
-    group_finite_[group] = range_is_finite(x_, v, group_begin(group), group_end(group)) ? 1 : 0;
-    group_speed_squared_[group] = range_max_speed_squared(v, group_begin(group), group_end(group));
+    // The state the last stage wrote, which becomes x_, v_ after the barrier:
+    // self-collision's response velocities, or the first integration's output.
+    const bool integrated = cursor_.stage == Stage::kIntegrate;
+    const Vec3Soa& x = integrated ? integration_x() : x_;
+    const Vec3Soa& v = cursor_.stage == Stage::kSelfRespond ? self_collision_->next_velocities()
+                       : integrated                         ? integration_v()
+                                                            : v_;
+    float speed_squared = 0;
+    group_finite_[group] = range_is_finite(x, v, group_begin(group), group_end(group), speed_squared) ? 1 : 0;
+    group_speed_squared_[group] = speed_squared;
 }
 
 void ClothInstance::set_quality_policy(const QualityPolicy& policy) {
@@ -221,13 +236,23 @@ bool ClothInstance::has_air() const {
 }
 
 void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
-    backup_x_ = x_;
-    backup_v_ = v_;
+    // Only the default solver's choice depends on k / m (a pass over every particle).
+    const float stiffness_per_mass =
+        solver_.kind == CLOTH_SOLVER_DEFAULT
+            ? stiffness_over_mass(material_, mass_.data(), pinned_.data(), particle_count())
+            : 0.0f;
+    frame_solver_ = resolve_solver(solver_, dt, stiffness_per_mass);
+    if (contact_.carrier().active() || frame_solver_.kind == CLOTH_SOLVER_EXPLICIT) {
+        backup_ = Backup::kCopied;
+        backup_x_ = x_;
+        backup_v_ = v_;
+    } else {
+        backup_ = Backup::kFirstIntegration;
+        for (uint32_t i : pinned_list_) pin_velocity_start_.set(i, v_.get(i));
+    }
     contact_.begin_step(dt, pinned_.data(), x_, v_);  // carrier (no pass without one)
     collides_ = contact_.collides();
     for (uint32_t i : pinned_list_) pin_start_.set(i, x_.get(i));
-    frame_solver_ = resolve_solver(
-        solver_, dt, stiffness_over_mass(material_, mass_.data(), pinned_.data(), particle_count()));
     substeps_ = frame_solver_.substeps;
     h_ = dt / static_cast<float>(substeps_);
     gravity_ = gravity;
@@ -324,6 +349,14 @@ void ClothInstance::finish_stage() {
     switch (cursor_.stage) {
         case Stage::kJacobiSweep:
             std::swap(sweep_current_, sweep_next_);
+            break;
+        case Stage::kIntegrate:
+            if (backup_ == Backup::kFirstIntegration) {
+                // The new state is in the backups, the frame-start state in x_, v_: swap.
+                swap_buffers(x_, backup_x_);
+                swap_buffers(v_, backup_v_);
+                backup_ = Backup::kSwapped;
+            }
             break;
         case Stage::kSerialSolve:
             frame_converged_ = frame_converged_ && last_solve_.converged;
@@ -428,16 +461,14 @@ Status ClothInstance::end_frame() {
     frame_done_ = true;
     if (frame_out_of_memory_) {
         // Only the CG reference solver allocates during a step.
-        x_ = backup_x_;
-        v_ = backup_v_;
+        restore_frame_start();
         last_step_result_ = CLOTH_ERROR_OUT_OF_MEMORY;
         return Status::error(
             CLOTH_ERROR_OUT_OF_MEMORY,
             "the solver could not allocate; the cloth was restored to its state before the step");
     }
     if (!state_is_finite()) {
-        x_ = backup_x_;
-        v_ = backup_v_;
+        restore_frame_start();
         last_step_result_ = CLOTH_ERROR_NONFINITE_STATE;
         return Status::error(
             CLOTH_ERROR_NONFINITE_STATE,
@@ -452,6 +483,23 @@ Status ClothInstance::end_frame() {
                              static_cast<double>(last_solve_.residual));
     }
     return {};
+}
+
+void ClothInstance::restore_frame_start() {
+    switch (backup_) {
+        case Backup::kCopied:
+            x_ = backup_x_;
+            v_ = backup_v_;
+            return;
+        case Backup::kSwapped:
+            swap_buffers(x_, backup_x_);
+            swap_buffers(v_, backup_v_);
+            break;
+        case Backup::kFirstIntegration:
+            break;
+    }
+    // Only pinned velocities changed before the first integration.
+    for (uint32_t i : pinned_list_) v_.set(i, pin_velocity_start_.get(i));
 }
 
 Vec3 ClothInstance::pin_position(uint32_t i, float frame_fraction) const {
@@ -656,8 +704,11 @@ void ClothInstance::run_strain_limit(uint32_t group) {
 }
 
 CLOTH_HOT_LOOP void ClothInstance::run_integrate(uint32_t group) {
-    // dv is zero on pinned particles; they are placed below.
+    // dv is zero on pinned particles; they are placed below. Writes to x_, v_
+    // or, on the frame's first integration, to the spare buffers.
     const Vec3Soa& dv = *sweep_current_;
+    Vec3Soa& x_out = integration_x();
+    Vec3Soa& v_out = integration_v();
     const uint32_t begin = group_begin(group), end = group_end(group);
     const float h = h_;
     for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
@@ -665,11 +716,11 @@ CLOTH_HOT_LOOP void ClothInstance::run_integrate(uint32_t group) {
         const typename L::type vx = L::load(&v_.x[i]) + L::load(&dv.x[i]);
         const typename L::type vy = L::load(&v_.y[i]) + L::load(&dv.y[i]);
         const typename L::type vz = L::load(&v_.z[i]) + L::load(&dv.z[i]);
-        store_vec3<L>(v_, i, vx, vy, vz);
-        store_vec3<L>(x_, i, L::load(&x_.x[i]) + vx * h, L::load(&x_.y[i]) + vy * h,
+        store_vec3<L>(x_out, i, L::load(&x_.x[i]) + vx * h, L::load(&x_.y[i]) + vy * h,
                       L::load(&x_.z[i]) + vz * h);
+        store_vec3<L>(v_out, i, vx, vy, vz);
     });
-    land_pins(begin, end);
+    land_pins(begin, end, x_out);
 }
 
 void ClothInstance::run_explicit(uint32_t group) {
@@ -677,7 +728,7 @@ void ClothInstance::run_explicit(uint32_t group) {
     const uint32_t begin = group_begin(group), end = group_end(group);
     springs_->gather(begin, end, external_force_, nullptr);
     integrate_explicit(external_force_, mass_.data(), pinned_.data(), h_, begin, end, v_, x_);
-    land_pins(begin, end);
+    land_pins(begin, end, x_);
 }
 
 void ClothInstance::run_self_collision(uint32_t group) {
@@ -709,12 +760,12 @@ void ClothInstance::run_self_collision(uint32_t group) {
     }
 }
 
-void ClothInstance::land_pins(uint32_t begin, uint32_t end) {
+void ClothInstance::land_pins(uint32_t begin, uint32_t end, Vec3Soa& x) {
     // Pinned particles land exactly on their substep targets.
     const float fraction_end = static_cast<float>(cursor_.substep + 1) / static_cast<float>(substeps_);
     auto first = std::lower_bound(pinned_list_.begin(), pinned_list_.end(), begin);
     for (auto it = first; it != pinned_list_.end() && *it < end; ++it) {
-        x_.set(*it, pin_position(*it, fraction_end));
+        x.set(*it, pin_position(*it, fraction_end));
     }
 }
 

@@ -160,8 +160,14 @@ class ClothInstance {
     void run_explicit(uint32_t group);
     void run_self_collision(uint32_t group);  // the kSelf* stages
     void run_collisions(uint32_t group);
-    void land_pins(uint32_t begin, uint32_t end);
+    void land_pins(uint32_t begin, uint32_t end, Vec3Soa& x);
     void check_finite(uint32_t group);
+    // Puts back the state the frame started from (end_frame, on failure).
+    void restore_frame_start();
+    // Where the integration stage writes: the spare buffers while the
+    // frame-start state is still in x_ and v_ (Backup::kFirstIntegration).
+    Vec3Soa& integration_x() { return backup_ == Backup::kFirstIntegration ? backup_x_ : x_; }
+    Vec3Soa& integration_v() { return backup_ == Backup::kFirstIntegration ? backup_v_ : v_; }
     // The stage after the current one (the plan of a frame).
     Stage next_stage(Stage current) const;
     Stage first_stage_of_substep() const;
@@ -199,7 +205,23 @@ class ClothInstance {
     Vec3Soa dv_, dv_scratch_;               // per particle
     SolverWorkspace solver_work_;  // PCG / Chebyshev vectors and block partials, strain-limit scratch
     mutable Vec3Soa normals_;      // per particle, filled by normals()
+
+    // The state a frame started from, for a failed frame to go back to.
+    // Copying x and v every frame costs more than a step's smaller stages,
+    // so the copy is taken only when something rewrites them wholesale
+    // before integration (a carrier) or integrates in place (explicit).
+    // Otherwise the stages before integration change only the velocities
+    // of pinned particles (saved in pin_velocity_start_), the frame's first
+    // integration writes into backup_x_ and backup_v_ and the buffers are
+    // swapped: the frame-start state then sits in backup_x_ and backup_v_.
+    enum class Backup : uint8_t {
+        kCopied,            // backup_x_, backup_v_ hold a copy taken in begin_frame
+        kFirstIntegration,  // x_, v_ still hold it (but pinned v); integration writes to the backups
+        kSwapped,           // backup_x_, backup_v_ hold it (but pinned v)
+    };
+    Backup backup_ = Backup::kCopied;
     Vec3Soa backup_x_, backup_v_;
+    Vec3Soa pin_velocity_start_;  // per particle, valid for pinned ones: v at the start of the frame
 
     std::shared_ptr<SelfCollision> self_collision_;  // null while off
     bool self_overlapping_ = false;                  // the last projection pass left overlaps

@@ -49,7 +49,11 @@ struct VectorLanes {
         std::memcpy(&v, p, sizeof v);
         return v;
     }
-    static void store(float* p, type v) { std::memcpy(p, &v, sizeof v); }
+    // Stored as floats (a float vector with float alignment), not through
+    // memcpy: a memcpy store may alias anything, so GCC would reload every
+    // array pointer (read from a HostVector) after each store.
+    typedef float unaligned __attribute__((vector_size(32), aligned(4)));
+    static void store(float* p, type v) { *reinterpret_cast<unaligned*>(p) = v; }
 };
 
 // Calls body(lanes, p) over [begin, end): eight particles at a time where

@@ -3,10 +3,10 @@
 // stored by first particle, so every loop here has contiguous loads only:
 // particle p reads its family-f spring as first particle at p and as second
 // particle at p - offset_f. Entries past n - offset_f are never written and
-// stay zero. The per-spring loop is vectorized by the compiler; the force
-// and diagonal gather sums all families in registers, eight particles at a
-// time (lanes.h); the products gather goes family by family over L1-sized
-// chunks, which vectorizes best.
+// stay zero, and so do max_offset leading entries before p = 0, so p - offset_f
+// reads a zero spring for p < offset_f instead of needing a test. The per-spring loop is vectorized by the
+// compiler; the force and diagonal gather sums all families in registers, eight particles at a time
+// (lanes.h); the products gather goes family by family over L1-sized chunks, which vectorizes best.
 #include <type_traits>
 
 #include "lanes.h"
@@ -23,8 +23,10 @@ CLOTH_HOT_LOOP void evaluate_family_kernel(
     const float* __restrict vz, float* __restrict fx, float* __restrict fy, float* __restrict fz,
     float* __restrict bxx, float* __restrict bxy, float* __restrict bxz, float* __restrict byy,
     float* __restrict byz, float* __restrict bzz) {
-    for (uint32_t p = begin; p < end; ++p) {
-        const uint32_t j = p + offset;
+    // 64-bit indices: with j = p + offset in 32 bits (which could wrap) GCC
+    // loads the second ends lane by lane instead of as one vector.
+    for (size_t p = begin; p < end; ++p) {
+        const size_t j = p + offset;
         // Where the family has no spring (grid edge) the mask zeroes k and c,
         // which zeroes the whole term.
         const SpringTerm t =
@@ -65,36 +67,38 @@ constexpr uint32_t kChunk = 512;
 
 struct FamilyTerms {
     explicit FamilyTerms(const HostMemory* memory) : force(memory), block(memory) {}
-    Vec3Soa force;  // by first particle
+    // By first particle, after max_offset zero entries: particle p is at
+    // index max_offset + p.
+    Vec3Soa force;
     Sym3Soa block;
     float stiffness = 0, damping = 0;
 };
 
 // force_p += sum over families of force[p] - force[p - offset] and, unless
 // diagonal is null, diagonal_p += A[p] + A[p - offset]: all families summed
-// in registers, eight particles at a time from max_offset on (where every
-// p - offset is valid; loads at p stay below n), one at a time before it,
-// in the same order.
+// in registers, eight particles at a time, in the same order whatever the
+// range. For p < offset the leading zero entries stand in for the missing
+// spring: x - (+0) is x, and x + (+0) is x for every sum here (they start
+// from +0 or a mass, so they are never -0).
 template <class Count>
 __attribute__((always_inline)) inline void gather_families_impl(uint32_t begin, uint32_t end, uint32_t n,
-                                                                uint32_t max_offset, const uint32_t* offsets,
+                                                                uint32_t pad, const uint32_t* offsets,
                                                                 const FamilyTerms* terms, Count family_count,
                                                                 Vec3Soa& force, Sym3Soa* diagonal) {
-    for_each_lane_group(begin, end, max_offset, n, [&](auto lanes, uint32_t p) {
+    for_each_lane_group(begin, end, begin, n, [&](auto lanes, uint32_t p) {
         using L = decltype(lanes);
         using T = typename L::type;
+        const uint32_t i = pad + p;
         T fx = L::load(&force.x[p]), fy = L::load(&force.y[p]), fz = L::load(&force.z[p]);
         for (uint32_t f = 0; f < family_count; ++f) {
             const Vec3Soa& t = terms[f].force;
-            fx += L::load(&t.x[p]);
-            fy += L::load(&t.y[p]);
-            fz += L::load(&t.z[p]);
-            if (p >= offsets[f]) {
-                const uint32_t s = p - offsets[f];
-                fx -= L::load(&t.x[s]);
-                fy -= L::load(&t.y[s]);
-                fz -= L::load(&t.z[s]);
-            }
+            const uint32_t s = i - offsets[f];
+            fx += L::load(&t.x[i]);
+            fy += L::load(&t.y[i]);
+            fz += L::load(&t.z[i]);
+            fx -= L::load(&t.x[s]);
+            fy -= L::load(&t.y[s]);
+            fz -= L::load(&t.z[s]);
         }
         store_vec3<L>(force, p, fx, fy, fz);
         if (!diagonal) return;
@@ -102,8 +106,7 @@ __attribute__((always_inline)) inline void gather_families_impl(uint32_t begin, 
         for (uint32_t f = 0; f < family_count; ++f) {
             const Sym3Soa& b = terms[f].block;
             for (uint32_t shift : {0u, offsets[f]}) {
-                if (p < shift) continue;
-                const uint32_t s = p - shift;
+                const uint32_t s = i - shift;
                 w.xx += L::load(&b.xx[s]);
                 w.xy += L::load(&b.xy[s]);
                 w.xz += L::load(&b.xz[s]);
@@ -118,14 +121,14 @@ __attribute__((always_inline)) inline void gather_families_impl(uint32_t begin, 
 
 // The usual grid has all six families: a compile-time count lets the
 // compiler unroll the family loops.
-CLOTH_HOT_LOOP void gather_families(uint32_t begin, uint32_t end, uint32_t n, uint32_t max_offset,
+CLOTH_HOT_LOOP void gather_families(uint32_t begin, uint32_t end, uint32_t n, uint32_t pad,
                                     const uint32_t* offsets, const FamilyTerms* terms, uint32_t family_count,
                                     Vec3Soa& force, Sym3Soa* diagonal) {
     if (family_count == 6) {
-        gather_families_impl(begin, end, n, max_offset, offsets, terms, std::integral_constant<uint32_t, 6>{},
-                             force, diagonal);
+        gather_families_impl(begin, end, n, pad, offsets, terms, std::integral_constant<uint32_t, 6>{}, force,
+                             diagonal);
     } else {
-        gather_families_impl(begin, end, n, max_offset, offsets, terms, family_count, force, diagonal);
+        gather_families_impl(begin, end, n, pad, offsets, terms, family_count, force, diagonal);
     }
 }
 
@@ -138,11 +141,13 @@ class GridSprings final : public SpringTerms {
         const uint32_t n = fabric_->particle_count();
         terms_.reserve(fabric_->grid_families.size());
         for (const SpringFamily& family : fabric_->grid_families) {
-            FamilyTerms& t = terms_.emplace_back(memory);
-            t.force.resize(n);
-            t.block.resize(n);
             offsets_.push_back(family.offset);
             max_offset_ = std::max(max_offset_, family.offset);
+        }
+        for (size_t f = 0; f < fabric_->grid_families.size(); ++f) {
+            FamilyTerms& t = terms_.emplace_back(memory);
+            t.force.resize(max_offset_ + n);
+            t.block.resize(max_offset_ + n);
         }
         set_material(material);
     }
@@ -158,16 +163,16 @@ class GridSprings final : public SpringTerms {
 
     void evaluate(const Vec3Soa& x, const Vec3Soa& v, float h, JacobianClamp clamp, uint32_t begin,
                   uint32_t end) override {
-        const uint32_t n = fabric_->particle_count();
+        const uint32_t n = fabric_->particle_count(), pad = max_offset_;
         for (size_t f = 0; f < terms_.size(); ++f) {
             const SpringFamily& family = fabric_->grid_families[f];
             FamilyTerms& t = terms_[f];
             evaluate_family_kernel(begin, std::min(end, n - family.offset), family.offset, family.rest_length,
                                    t.stiffness, t.damping, h, clamp, family.mask.data(), x.x.data(),
                                    x.y.data(), x.z.data(), v.x.data(), v.y.data(), v.z.data(),
-                                   t.force.x.data(), t.force.y.data(), t.force.z.data(), t.block.xx.data(),
-                                   t.block.xy.data(), t.block.xz.data(), t.block.yy.data(), t.block.yz.data(),
-                                   t.block.zz.data());
+                                   t.force.x.data() + pad, t.force.y.data() + pad, t.force.z.data() + pad,
+                                   t.block.xx.data() + pad, t.block.xy.data() + pad, t.block.xz.data() + pad,
+                                   t.block.yy.data() + pad, t.block.yz.data() + pad, t.block.zz.data() + pad);
         }
     }
 
@@ -177,26 +182,26 @@ class GridSprings final : public SpringTerms {
     }
 
     void neighbour_sums(const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& q) const override {
-        const uint32_t n = fabric_->particle_count();
+        const uint32_t n = fabric_->particle_count(), pad = max_offset_;
         for (HostVector<float>* a : {&q.x, &q.y, &q.z}) std::fill(a->begin() + begin, a->begin() + end, 0.0f);
         for (uint32_t chunk = begin; chunk < end; chunk += kChunk) {
             const uint32_t chunk_end = std::min(end, chunk + kChunk);
             for (size_t f = 0; f < terms_.size(); ++f) {
                 const uint32_t offset = offsets_[f];
-                const Sym3Soa& b = terms_[f].block;
+                const Sym3Soa& block = terms_[f].block;
+                const float* b[6] = {block.xx.data() + pad, block.xy.data() + pad, block.xz.data() + pad,
+                                     block.yy.data() + pad, block.yz.data() + pad, block.zz.data() + pad};
                 // As first particle: A[p] x[p + offset]; as second: A[p - offset] x[p - offset].
                 const uint32_t first_end = std::min(chunk_end, n - offset);
                 if (chunk < first_end) {
-                    product_kernel(chunk, first_end, 0, offset, b.xx.data(), b.xy.data(), b.xz.data(),
-                                   b.yy.data(), b.yz.data(), b.zz.data(), x.x.data(), x.y.data(), x.z.data(),
-                                   q.x.data(), q.y.data(), q.z.data());
+                    product_kernel(chunk, first_end, 0, offset, b[0], b[1], b[2], b[3], b[4], b[5],
+                                   x.x.data(), x.y.data(), x.z.data(), q.x.data(), q.y.data(), q.z.data());
                 }
                 const uint32_t second_begin = std::max(chunk, offset);
                 if (second_begin < chunk_end) {
                     const int64_t back = -static_cast<int64_t>(offset);
-                    product_kernel(second_begin, chunk_end, back, back, b.xx.data(), b.xy.data(), b.xz.data(),
-                                   b.yy.data(), b.yz.data(), b.zz.data(), x.x.data(), x.y.data(), x.z.data(),
-                                   q.x.data(), q.y.data(), q.z.data());
+                    product_kernel(second_begin, chunk_end, back, back, b[0], b[1], b[2], b[3], b[4], b[5],
+                                   x.x.data(), x.y.data(), x.z.data(), q.x.data(), q.y.data(), q.z.data());
                 }
             }
         }
@@ -207,7 +212,7 @@ class GridSprings final : public SpringTerms {
         for (size_t f = 0; f < terms_.size(); ++f) {
             const SpringFamily& family = fabric_->grid_families[f];
             for (uint32_t p = 0; p + family.offset < n; ++p) {
-                if (family.mask[p] != 0.0f) visit(p, p + family.offset, terms_[f].block.get(p));
+                if (family.mask[p] != 0.0f) visit(p, p + family.offset, terms_[f].block.get(max_offset_ + p));
             }
         }
     }
