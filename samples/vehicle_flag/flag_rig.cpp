@@ -1,20 +1,89 @@
 #include "flag_rig.h"
 
+#include <algorithm>
+
 namespace vehicle_flag {
 
-FlagRig::FlagRig(const FlagSettings& s, const VehicleLayout& vehicle, const btTransform& chassis_pose) {
+FlagRig::FlagRig(const FlagSettings& s, VehicleWorld& vehicle) : vehicle_(vehicle) {
     cloth_world_desc world_desc = cloth_default_world_desc();
     world_desc.worker_count = s.threads;
     if (!check(cloth_world_create(&world_desc, &world_), "cloth_world_create")) return;
     if (s.profile_tasks > 0 &&
         !check(cloth_world_set_profiling(world_, s.profile_tasks), "cloth_world_set_profiling"))
         return;
+    if (!create_colliders()) return;
 
     // The flag in the chassis frame: its pole edge runs down the rear of the
-    // pole from the top, and it streams backwards (-z), hanging in a vertical plane.
-    const float gap = vehicle.pole_radius + 0.01f;
-    const btVector3 top_local(vehicle.pole_base[0], vehicle.pole_base[1] + vehicle.pole_height,
-                              vehicle.pole_base[2] - gap);
+    // pole from the top, one thickness clear of the capsule, and it streams
+    // backwards (-z), hanging in a vertical plane.
+    const VehicleLayout& layout = vehicle.layout();
+    const float gap = layout.pole_radius + s.thickness;
+    const btVector3 top_local(layout.pole_base[0], layout.pole_base[1] + layout.pole_height,
+                              layout.pole_base[2] - gap);
+    if (!create_cloth(s, vehicle.chassis_pose(), top_local)) return;
+
+    // The pole-side column rides on the chassis body at these offsets.
+    for (uint32_t r = 0; r < s.rows; ++r) {
+        attached_.push_back(r * s.columns);
+        attached_local_.push_back(top_local + btVector3(0, -s.height * r / (s.rows - 1), 0));
+    }
+    std::vector<float> offsets;
+    for (const btVector3& p : attached_local_) offsets.insert(offsets.end(), {p.x(), p.y(), p.z()});
+    if (!check(cloth_attach(cloth_, chassis_body_, attached_.data(), offsets.data(),
+                            static_cast<uint32_t>(attached_.size())),
+               "cloth_attach"))
+        return;
+
+    // The chassis carries the flag: physical inertia while driving (1), but a
+    // jump of more than teleport_distance in one frame moves the flag with it.
+    cloth_carrier_desc carrier = cloth_default_carrier_desc();
+    carrier.teleport_distance = s.teleport_distance;
+    carrier.teleport_mode = CLOTH_TELEPORT_MOVE;
+    if (!check(cloth_set_carrier(cloth_, chassis_body_, &carrier), "cloth_set_carrier")) return;
+}
+
+FlagRig::~FlagRig() {
+    mirror_.reset();  // its bodies and colliders go before the world
+    if (world_.index1) cloth_world_destroy(world_);
+}
+
+bool FlagRig::check(cloth_result result, const char* call) {
+    if (result == CLOTH_OK) return true;
+    error_ = std::string(call) + ": " + cloth_result_name(result) + " (" + cloth_get_last_error() + ")";
+    return false;
+}
+
+bool FlagRig::create_colliders() {
+    // The chassis: a body mirrored from the btRigidBody, with a collider for
+    // each child of its compound (the box and the pole capsule).
+    mirror_ = std::make_unique<cloth_bullet::BodyMirror>(world_);
+    if (mirror_->add(vehicle_.chassis_body(), 1u, &chassis_body_) != CLOTH_OK) {
+        error_ = "mirroring the chassis: " + mirror_->last_error();
+        return false;
+    }
+    collider_count_ = mirror_->colliders(vehicle_.chassis_body()).size();
+
+    // The terrain never moves: a static collider at the terrain object's pose.
+    const btCollisionObject* terrain = vehicle_.terrain_object();
+    std::vector<cloth_bullet::ColliderSpec> specs;
+    std::string message;
+    if (!cloth_bullet::describe_shape(*terrain->getCollisionShape(), terrain->getWorldTransform(), &specs,
+                                      &message)) {
+        error_ = "terrain: " + message;
+        return false;
+    }
+    for (const cloth_bullet::ColliderSpec& spec : specs) {
+        cloth_collider_id collider{};
+        if (!check(cloth_bullet::create_collider(world_, spec, cloth_body_id{}, 1u, &collider),
+                   "terrain collider"))
+            return false;
+        ++collider_count_;
+    }
+    return true;
+}
+
+bool FlagRig::create_cloth(const FlagSettings& s, const btTransform& chassis_pose,
+                           const btVector3& top_local) {
     const btVector3 top = chassis_pose * top_local;
     const btVector3 u = chassis_pose.getBasis() * btVector3(0, 0, -s.width);
     const btVector3 v = chassis_pose.getBasis() * btVector3(0, -s.height, 0);
@@ -26,7 +95,7 @@ FlagRig::FlagRig(const FlagSettings& s, const VehicleLayout& vehicle, const btTr
         grid.u[k] = u[k];
         grid.v[k] = v[k];
     }
-    if (!check(cloth_fabric_create_grid(world_, &grid, &fabric_), "cloth_fabric_create_grid")) return;
+    if (!check(cloth_fabric_create_grid(world_, &grid, &fabric_), "cloth_fabric_create_grid")) return false;
 
     cloth_desc desc = cloth_default_desc();
     desc.fabric = fabric_;
@@ -35,15 +104,18 @@ FlagRig::FlagRig(const FlagSettings& s, const VehicleLayout& vehicle, const btTr
     desc.shear.stiffness = 0.2f * s.stiffness;
     desc.bend.stiffness = 0.02f * s.stiffness;
     desc.solver = s.solver;
-    if (!check(cloth_create(world_, &desc, &cloth_), "cloth_create")) return;
+    if (!check(cloth_create(world_, &desc, &cloth_), "cloth_create")) return false;
     particle_count_ = s.columns * s.rows;
 
-    for (uint32_t r = 0; r < s.rows; ++r) {
-        attached_.push_back(r * s.columns);
-        attached_local_.push_back(top_local + btVector3(0, -s.height * r / (s.rows - 1), 0));
+    cloth_collision_params collision = cloth_default_collision_params();
+    collision.thickness = s.thickness;
+    collision.friction = s.friction;
+    if (!check(cloth_set_collision(cloth_, &collision), "cloth_set_collision")) return false;
+    if (s.max_strain > 0.0f) {
+        cloth_strain_limit limit = cloth_default_strain_limit();
+        limit.max_strain = s.max_strain;
+        if (!check(cloth_set_strain_limit(cloth_, &limit), "cloth_set_strain_limit")) return false;
     }
-    if (!check(cloth_pin(cloth_, attached_.data(), static_cast<uint32_t>(attached_.size())), "cloth_pin"))
-        return;
 
     uint32_t triangle_count = 0;
     cloth_fabric_get_triangle_count(fabric_, &triangle_count);
@@ -51,59 +123,39 @@ FlagRig::FlagRig(const FlagSettings& s, const VehicleLayout& vehicle, const btTr
     if (!check(
             cloth_fabric_read_triangles(fabric_, triangles_.data(), static_cast<uint32_t>(triangles_.size())),
             "cloth_fabric_read_triangles"))
-        return;
+        return false;
     positions_.resize(3 * particle_count_);
     normals_.resize(3 * particle_count_);
+    return true;
 }
 
-FlagRig::~FlagRig() {
-    if (world_.index1) cloth_world_destroy(world_);
+cloth_result FlagRig::teleport_chassis() {
+    const cloth_result result = mirror_->teleport(vehicle_.chassis_body());
+    if (result != CLOTH_OK) error_ = "teleport: " + mirror_->last_error();
+    return result;
 }
 
-bool FlagRig::check(cloth_result result, const char* call) {
-    if (result == CLOTH_OK) return true;
-    error_ = std::string(call) + ": " + cloth_result_name(result) + " (" + cloth_get_last_error() + ")";
-    return false;
-}
-
-void FlagRig::attached_targets(const btTransform& chassis_pose, std::vector<float>* out) const {
-    out->resize(3 * attached_local_.size());
-    for (size_t i = 0; i < attached_local_.size(); ++i) {
-        const btVector3 p = chassis_pose * attached_local_[i];
-        for (int k = 0; k < 3; ++k) (*out)[3 * i + k] = p[k];
-    }
-}
-
-cloth_result FlagRig::teleport(const btTransform& from, const btTransform& to) {
-    const btTransform delta = to * from.inverse();
-    const std::vector<float>& current = positions();
-    std::vector<uint32_t> all(particle_count_);
-    std::vector<float> moved(3 * particle_count_);
-    for (uint32_t i = 0; i < particle_count_; ++i) {
-        all[i] = i;
-        const btVector3 p = delta * btVector3(current[3 * i], current[3 * i + 1], current[3 * i + 2]);
-        for (int k = 0; k < 3; ++k) moved[3 * i + k] = p[k];
-    }
-    return cloth_set_positions(cloth_, all.data(), moved.data(), particle_count_);
-}
-
-cloth_result FlagRig::follow(const btTransform& chassis_pose) {
-    attached_targets(chassis_pose, &targets_);
-    return cloth_set_pin_targets(cloth_, attached_.data(), targets_.data(),
-                                 static_cast<uint32_t>(attached_.size()));
+cloth_result FlagRig::sync() {
+    const cloth_result result = mirror_->sync();
+    if (result != CLOTH_OK) error_ = "sync: " + mirror_->last_error();
+    return result;
 }
 
 float FlagRig::attachment_error(const btTransform& chassis_pose) {
-    attached_targets(chassis_pose, &targets_);
     const std::vector<float>& p = positions();
     float worst = 0.0f;
     for (size_t i = 0; i < attached_.size(); ++i) {
         const size_t a = 3 * size_t{attached_[i]};
-        const btVector3 d(p[a] - targets_[3 * i], p[a + 1] - targets_[3 * i + 1],
-                          p[a + 2] - targets_[3 * i + 2]);
-        worst = std::max(worst, d.length());
+        const btVector3 target = chassis_pose * attached_local_[i];
+        worst = std::max(worst, (btVector3(p[a], p[a + 1], p[a + 2]) - target).length());
     }
     return worst;
+}
+
+bool FlagRig::teleported() const {
+    bool fired = false;
+    cloth_get_teleported(cloth_, &fired);
+    return fired;
 }
 
 const std::vector<float>& FlagRig::positions() {

@@ -1,10 +1,20 @@
-// The cloth side of the sample: one flag (a grid fabric) whose pole-side
-// column follows the pole on the vehicle's chassis. The attached particles
-// sit on the rear of the pole at fixed offsets in the chassis frame.
+// The cloth side of the sample: one flag (a grid fabric) on the pole of the
+// vehicle's chassis, through the Bullet adapter (cloth_bullet):
+//  - the chassis btRigidBody is mirrored into a cloth body each frame, with
+//    colliders for its btCompoundShape children (the box and the pole capsule);
+//  - the terrain's btHeightfieldTerrainShape becomes a static height-field
+//    collider;
+//  - the flag's pole-side column is attached to the chassis body
+//    (cloth_attach) at fixed offsets behind the pole;
+//  - the chassis body is the flag's carrier, so the course's teleport back to
+//    the start moves the flag with the vehicle instead of stretching it.
+// Coupling is one-way: the flag never pushes the vehicle.
 #pragma once
 
 #include <cloth/cloth.h>
+#include <cloth_bullet/cloth_bullet.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,14 +29,18 @@ struct FlagSettings {
     float height = 0.8f;    // m
     float area_density = 0.25f;
     float stiffness = 1000.0f;  // structural N/m; shear 0.2x, bend 0.02x
+    float thickness = 0.01f;    // m, kept from every collider
+    float friction = 0.3f;
+    float max_strain = 0.1f;  // strain limit after each substep (0: off)
     cloth_solver_settings solver = cloth_default_solver_settings();
-    uint32_t threads = 1;        // workers of the cloth world (1: the calling thread only)
-    uint32_t profile_tasks = 0;  // task records kept per frame (0: profiling off)
+    uint32_t threads = 1;            // workers of the cloth world (1: the calling thread only)
+    uint32_t profile_tasks = 0;      // task records kept per frame (0: profiling off)
+    float teleport_distance = 5.0f;  // m: a carrier move beyond this in one frame is a teleport
 };
 
 class FlagRig {
   public:
-    FlagRig(const FlagSettings& settings, const VehicleLayout& vehicle, const btTransform& chassis_pose);
+    FlagRig(const FlagSettings& settings, VehicleWorld& vehicle);
     ~FlagRig();
     FlagRig(const FlagRig&) = delete;
     FlagRig& operator=(const FlagRig&) = delete;
@@ -34,20 +48,25 @@ class FlagRig {
     bool ok() const { return error_.empty(); }
     const std::string& error() const { return error_; }
 
-    // Move the flag with the chassis by a pose jump (teleport): every particle
-    // keeps its place in the chassis frame and comes to rest there.
-    cloth_result teleport(const btTransform& from, const btTransform& to);
-    // Before a step: where the attached particles must be at its end.
-    cloth_result follow(const btTransform& chassis_pose);
+    // The host teleported the chassis (in Bullet): jump its cloth body there
+    // without a sweep; the carrier moves the flag with it in the next step.
+    cloth_result teleport_chassis();
+    // After the Bullet step, before cloth_step: the chassis body's pose and
+    // velocities, reached at the end of the next step.
+    cloth_result sync();
     cloth_result set_wind(const float wind[3]) { return cloth_set_wind(cloth_, wind); }
     cloth_result step(float dt) { return cloth_step(world_, dt); }
 
-    // After a step: largest distance of an attached particle from its target (m).
+    // After a step: largest distance of an attached particle from its target
+    // (the chassis pose times its offset), m.
     float attachment_error(const btTransform& chassis_pose);
+    // Whether the carrier's teleport handling fired in the last step.
+    bool teleported() const;
 
     cloth_world_id world() const { return world_; }
-    cloth_fabric_id fabric() const { return fabric_; }
     cloth_id cloth() const { return cloth_; }
+    cloth_body_id chassis_body() const { return chassis_body_; }
+    size_t collider_count() const { return collider_count_; }
     uint32_t particle_count() const { return particle_count_; }
     const std::vector<uint32_t>& attached() const { return attached_; }
     const std::vector<float>& positions();  // refreshed on each call
@@ -56,16 +75,21 @@ class FlagRig {
 
   private:
     bool check(cloth_result result, const char* call);
-    void attached_targets(const btTransform& chassis_pose, std::vector<float>* out) const;
+    bool create_cloth(const FlagSettings& s, const btTransform& chassis_pose, const btVector3& top_local);
+    bool create_colliders();
 
+    VehicleWorld& vehicle_;
     std::string error_;
     cloth_world_id world_{};
+    std::unique_ptr<cloth_bullet::BodyMirror> mirror_;  // chassis body and its colliders
+    cloth_body_id chassis_body_{};
+    size_t collider_count_ = 0;
     cloth_fabric_id fabric_{};
     cloth_id cloth_{};
     uint32_t particle_count_ = 0;
     std::vector<uint32_t> attached_;
     std::vector<btVector3> attached_local_;  // offsets in the chassis frame
-    std::vector<float> targets_, positions_, normals_;
+    std::vector<float> positions_, normals_;
     std::vector<uint32_t> triangles_;
 };
 
