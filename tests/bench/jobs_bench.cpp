@@ -71,6 +71,7 @@ SceneConfig flags(uint32_t resolution, uint32_t copies, uint32_t workers) {
     config.resolution = resolution;
     config.copies = copies;
     config.world.worker_count = workers;
+    config.solver.kind = CLOTH_SOLVER_JACOBI;  // one sweep (the default solver is PCG)
     return config;
 }
 
@@ -96,6 +97,7 @@ void BM_FeaturesOff(benchmark::State& state) {
     config.resolution = 64;
     config.spring_kinds = CLOTH_SPRING_STRUCTURAL | CLOTH_SPRING_SHEAR;
     config.damping = 0.1f;
+    config.solver.kind = CLOTH_SOLVER_JACOBI;  // as the bare ClothInstance below
     Scene world_scene(config);
     if (!world_scene.ok()) {
         state.SkipWithError(world_scene.error().c_str());
