@@ -1,12 +1,13 @@
 // The built-in pool (why it is written by hand: thread_pool.h).
 //
-// Protocol. The stepping thread publishes a job by writing its slot and
-// then the ticket (new epoch, next item 0); workers see the epoch change,
-// take ranges by compare-and-swap on the ticket and count finished items
-// in done_; the stepping thread takes ranges too and returns once done_
-// reaches the item count. Before it writes a slot it waits until no
-// worker is inside a job (inside_), so a late worker never reads a slot
-// while it is written.
+// Protocol. The stepping thread publishes a job by writing its slot, the
+// block tickets (new epoch, the block's first item) and then the ticket
+// (new epoch); workers see the epoch change, take ranges by
+// compare-and-swap on the block tickets (their own block first) and count
+// finished items in done_; the stepping thread takes ranges too and
+// returns once done_ reaches the item count. Before it writes a slot it
+// waits until no worker is inside a job (inside_), so a late worker never
+// reads a slot while it is written.
 #include "thread_pool.h"
 
 #include <algorithm>
@@ -42,7 +43,10 @@ void wait_until(Done done) {
 
 }  // namespace
 
-ThreadPool::ThreadPool(uint32_t workers) : worker_count_(std::max(1u, workers)) {
+ThreadPool::ThreadPool(uint32_t workers)
+    : worker_count_(std::max(1u, workers)),
+      block_ends_{std::make_unique<uint32_t[]>(worker_count_), std::make_unique<uint32_t[]>(worker_count_)},
+      blocks_(std::make_unique<Block[]>(worker_count_)) {
     threads_.reserve(worker_count_ - 1);
     for (uint32_t w = 1; w < worker_count_; ++w) threads_.emplace_back([this, w] { worker_main(w); });
 }
@@ -67,9 +71,18 @@ void ThreadPool::parallel_for(uint32_t count, uint32_t min_range, RangeTask task
     const uint32_t epoch = epoch_of(ticket_.load()) + 1;
     // About four ranges per worker: enough to balance uneven groups.
     const uint32_t grain = std::max(min_range, count / (4 * worker_count_));
+    const uint32_t ranges = (count + grain - 1) / grain;
     jobs_[epoch & 1] = Job{task, context, count, grain};
+    uint32_t* ends = block_ends_[epoch & 1].get();
+    for (uint32_t w = 0; w < worker_count_; ++w) {
+        const uint64_t first_range = static_cast<uint64_t>(ranges) * w / worker_count_;
+        const uint64_t end_range = static_cast<uint64_t>(ranges) * (w + 1) / worker_count_;
+        ends[w] = static_cast<uint32_t>(std::min<uint64_t>(count, end_range * grain));
+        const uint32_t first = static_cast<uint32_t>(std::min<uint64_t>(count, first_range * grain));
+        blocks_[w].ticket.store((static_cast<uint64_t>(epoch) << 32) | first, std::memory_order_relaxed);
+    }
     done_.store(0);
-    ticket_.store(static_cast<uint64_t>(epoch) << 32);
+    ticket_.store(static_cast<uint64_t>(epoch) << 32);  // publishes the slot and the blocks
     if (sleepers_.load() > 0) {
         { std::lock_guard<std::mutex> lock(mutex_); }
         wake_.notify_all();
@@ -80,16 +93,21 @@ void ThreadPool::parallel_for(uint32_t count, uint32_t min_range, RangeTask task
 
 void ThreadPool::run_ranges(uint32_t epoch, uint32_t worker) {
     const Job job = jobs_[epoch & 1];
-    uint64_t ticket = ticket_.load();
-    for (;;) {
-        if (epoch_of(ticket) != epoch) return;
-        const uint32_t begin = static_cast<uint32_t>(ticket);
-        if (begin >= job.count) return;
-        const uint32_t end = std::min(job.count, begin + job.grain);
-        if (!ticket_.compare_exchange_weak(ticket, (static_cast<uint64_t>(epoch) << 32) | end)) continue;
-        job.task(begin, end, worker, job.context);
-        done_.fetch_add(end - begin, std::memory_order_release);
-        ticket = ticket_.load();
+    const uint32_t* ends = block_ends_[epoch & 1].get();
+    for (uint32_t k = 0; k < worker_count_; ++k) {
+        const uint32_t b = (worker + k) % worker_count_;  // own block first
+        std::atomic<uint64_t>& block = blocks_[b].ticket;
+        uint64_t ticket = block.load();
+        for (;;) {
+            if (epoch_of(ticket) != epoch) return;  // a newer job: this one is done
+            const uint32_t begin = static_cast<uint32_t>(ticket);
+            if (begin >= ends[b]) break;
+            const uint32_t end = std::min(ends[b], begin + job.grain);
+            if (!block.compare_exchange_weak(ticket, (static_cast<uint64_t>(epoch) << 32) | end)) continue;
+            job.task(begin, end, worker, job.context);
+            done_.fetch_add(end - begin, std::memory_order_release);
+            ticket = block.load();
+        }
     }
 }
 

@@ -19,6 +19,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -50,13 +51,26 @@ class ThreadPool final : public TaskSystem {
     // Runs ranges of the job of `epoch` until none is left.
     void run_ranges(uint32_t epoch, uint32_t worker);
 
+    // A job's items are split into one contiguous block per worker. Worker
+    // w takes ranges from block w first and then helps with the others, so
+    // with balanced stages every worker touches the same particle groups in
+    // every stage of a step (their data stays in its core's cache) while a
+    // late worker's block is still taken over by the others.
+    struct alignas(64) Block {
+        // High 32 bits: epoch of the job; low 32 bits: next item of the
+        // block to hand out. A range is taken by compare-and-swap within
+        // one epoch, so a late worker never takes a range of a newer job.
+        std::atomic<uint64_t> ticket{0};
+    };
+
     uint32_t worker_count_;
-    // Two job slots: the job of epoch e lives in slot e & 1, so a worker
-    // that is late for epoch e never reads a slot being written for e + 1.
+    // Two job slots: the job of epoch e lives in slot e & 1 (with its block
+    // ends), so a worker that is late for epoch e never reads a slot being
+    // written for e + 1.
     Job jobs_[2];
-    // High 32 bits: epoch of the current job; low 32 bits: next item to
-    // hand out. A range is taken by compare-and-swap within one epoch, so
-    // a late worker can never take a range of a newer job.
+    std::unique_ptr<uint32_t[]> block_ends_[2];  // per slot, per worker
+    std::unique_ptr<Block[]> blocks_;            // per worker
+    // High 32 bits: epoch of the current job (the low bits are unused).
     std::atomic<uint64_t> ticket_{0};
     std::atomic<uint32_t> done_{0};    // items of the current job finished
     std::atomic<uint32_t> inside_{0};  // workers between reading the ticket and leaving run_ranges
