@@ -31,20 +31,28 @@
 #define CLOTH_HOT_LOOP
 #endif
 
+// Every function that takes or returns lanes by value is always inlined.
+// An out-of-line copy would be a problem, not just slow: compiled for the
+// baseline it takes eight-float vectors in memory, while an AVX2 caller
+// passes them in ymm registers, so a non-inlining build (-O0/-O1) read
+// garbage (fixed here; scripts/test builds the sanitizer trees at -O1 to
+// keep it fixed).
+#define CLOTH_LANES_INLINE __attribute__((always_inline)) inline
+
 namespace cloth {
 
 struct ScalarLanes {
     using type = float;
     static constexpr uint32_t width = 1;
-    static float load(const float* p) { return *p; }
-    static void store(float* p, float v) { *p = v; }
+    CLOTH_LANES_INLINE static float load(const float* p) { return *p; }
+    CLOTH_LANES_INLINE static void store(float* p, float v) { *p = v; }
 };
 
 struct VectorLanes {
     // Eight floats: one AVX register, or two SSE registers on the baseline.
     typedef float type __attribute__((vector_size(32)));
     static constexpr uint32_t width = 8;
-    static type load(const float* p) {
+    CLOTH_LANES_INLINE static type load(const float* p) {
         type v;
         std::memcpy(&v, p, sizeof v);
         return v;
@@ -53,7 +61,7 @@ struct VectorLanes {
     // memcpy: a memcpy store may alias anything, so GCC would reload every
     // array pointer (read from a HostVector) after each store.
     typedef float unaligned __attribute__((vector_size(32), aligned(4)));
-    static void store(float* p, type v) { *reinterpret_cast<unaligned*>(p) = v; }
+    CLOTH_LANES_INLINE static void store(float* p, type v) { *reinterpret_cast<unaligned*>(p) = v; }
 };
 
 // Calls body(lanes, p) over [begin, end): eight particles at a time where
@@ -80,13 +88,13 @@ struct Sym3Lanes {
 };
 
 template <class L>
-Sym3Lanes<L> load_sym3(const Sym3Soa& a, uint32_t i) {
+CLOTH_LANES_INLINE Sym3Lanes<L> load_sym3(const Sym3Soa& a, uint32_t i) {
     return {L::load(&a.xx[i]), L::load(&a.xy[i]), L::load(&a.xz[i]),
             L::load(&a.yy[i]), L::load(&a.yz[i]), L::load(&a.zz[i])};
 }
 
 template <class L>
-void store_sym3(Sym3Soa& a, uint32_t i, const Sym3Lanes<L>& m) {
+CLOTH_LANES_INLINE void store_sym3(Sym3Soa& a, uint32_t i, const Sym3Lanes<L>& m) {
     L::store(&a.xx[i], m.xx);
     L::store(&a.xy[i], m.xy);
     L::store(&a.xz[i], m.xz);
@@ -96,7 +104,8 @@ void store_sym3(Sym3Soa& a, uint32_t i, const Sym3Lanes<L>& m) {
 }
 
 template <class L>
-void store_vec3(Vec3Soa& a, uint32_t i, typename L::type x, typename L::type y, typename L::type z) {
+CLOTH_LANES_INLINE void store_vec3(Vec3Soa& a, uint32_t i, typename L::type x, typename L::type y,
+                                   typename L::type z) {
     L::store(&a.x[i], x);
     L::store(&a.y[i], y);
     L::store(&a.z[i], z);

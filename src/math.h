@@ -61,9 +61,11 @@ struct Sym3 {
 
 // numerator * M^-1 for the symmetric M = (xx, xy, xz, yy, yz, zz), by
 // cofactors, written to out[6] in the same order. T is float, or a vector
-// of lanes (lanes.h), so one formula serves scalar and vector code.
+// of lanes (lanes.h), so one formula serves scalar and vector code;
+// always inlined for the reason given in lanes.h.
 template <class T>
-inline void invert_symmetric(T xx, T xy, T xz, T yy, T yz, T zz, T numerator, T* out) {
+__attribute__((always_inline)) inline void invert_symmetric(T xx, T xy, T xz, T yy, T yz, T zz, T numerator,
+                                                            T* out) {
     const T c_xx = yy * zz - yz * yz, c_xy = xz * yz - xy * zz, c_xz = xy * yz - xz * yy;
     const T scale = numerator / (xx * c_xx + xy * c_xy + xz * c_xz);
     out[0] = c_xx * scale;

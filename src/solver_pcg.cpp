@@ -31,7 +31,7 @@ void for_each_block(uint32_t begin, uint32_t end, Body body) {
 struct BlockSum {
     float lanes[VectorLanes::width] = {};
     template <class L>
-    void add(uint32_t offset, typename L::type value) {
+    CLOTH_LANES_INLINE void add(uint32_t offset, typename L::type value) {
         if constexpr (L::width == 1) {
             lanes[offset % VectorLanes::width] += value;
         } else {
@@ -47,7 +47,7 @@ struct BlockSum {
 
 // z_i = W_ii^-1 r_i (zero for pinned particles), lanes at a time.
 template <class L>
-void precondition(const Sym3Soa& w, const Vec3Soa& r, uint32_t i, Vec3Soa& z) {
+CLOTH_LANES_INLINE void precondition(const Sym3Soa& w, const Vec3Soa& r, uint32_t i, Vec3Soa& z) {
     using T = typename L::type;
     const T x = L::load(&r.x[i]), y = L::load(&r.y[i]), zz = L::load(&r.z[i]);
     const T xy = L::load(&w.xy[i]), xz = L::load(&w.xz[i]), yz = L::load(&w.yz[i]);
@@ -56,7 +56,7 @@ void precondition(const Sym3Soa& w, const Vec3Soa& r, uint32_t i, Vec3Soa& z) {
 }
 
 template <class L>
-typename L::type dot(const Vec3Soa& a, const Vec3Soa& b, uint32_t i) {
+CLOTH_LANES_INLINE typename L::type dot(const Vec3Soa& a, const Vec3Soa& b, uint32_t i) {
     return L::load(&a.x[i]) * L::load(&b.x[i]) + L::load(&a.y[i]) * L::load(&b.y[i]) +
            L::load(&a.z[i]) * L::load(&b.z[i]);
 }

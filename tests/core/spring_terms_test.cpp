@@ -86,6 +86,7 @@ TEST(SpringTerms, SplittingTheParticleRangeChangesNoBit) {
 // give the same bits as over the whole range.
 TEST(SpringTerms, AssemblySweepAndAirChangeNoBitWhenTheRangeIsSplit) {
     for (auto fabric : {cloth::testing::make_grid(23, 17), cloth::testing::make_mesh_from_grid(23, 17)}) {
+        SCOPED_TRACE(fabric->grid_families.empty() ? "mesh" : "grid");
         const uint32_t n = fabric->particle_count();
         const Material material = cloth::testing::uniform_material(900.0f, 0.4f, 1.0f);
         ClothInstance cloth(cloth::testing::heap(), fabric, material, SolverSettings{},
@@ -133,6 +134,7 @@ TEST(SpringTerms, AssemblySweepAndAirChangeNoBitWhenTheRangeIsSplit) {
         for (uint32_t i = 0; i < n; ++i) {
             ASSERT_EQ(whole.external.get(i), parts.external.get(i)) << "particle " << i;
             ASSERT_EQ(whole.inverse.get(i).to_matrix(), parts.inverse.get(i).to_matrix()) << "particle " << i;
+            ASSERT_EQ(whole.rhs.get(i), parts.rhs.get(i)) << "particle " << i;
             ASSERT_EQ(whole.p.get(i), parts.p.get(i)) << "particle " << i;
             ASSERT_EQ(whole.next.get(i), parts.next.get(i)) << "particle " << i;
         }
