@@ -236,6 +236,7 @@ CLOTH_API cloth_result cloth_body_teleport(cloth_body_id id, const float positio
         Pose pose;
         if (s.ok()) s = check_pose(position, rotation, "position", "rotation", &pose);
         if (!s.ok()) return s;
+        if (!body->jumped) body->before_jump = body->body.start;
         body->body.start = body->body.target = pose;
         body->jumped = true;
         return {};

@@ -120,6 +120,18 @@ CLOTH_API cloth_result cloth_world_set_gravity(cloth_world_id id, const float gr
     });
 }
 
+CLOTH_API cloth_result cloth_world_shift_origin(cloth_world_id id, const float shift[3]) {
+    return api_call(__func__, [&](const World*& log_world) -> Status {
+        World* world;
+        Status s = get_world(id, world, log_world);
+        if (!s.ok()) return s;
+        if (!shift) return null_error("shift");
+        if (!finite3(shift)) return Status::error(CLOTH_ERROR_NOT_FINITE, "shift is not finite");
+        world->shift_origin(Vec3(shift[0], shift[1], shift[2]));
+        return {};
+    });
+}
+
 CLOTH_API cloth_result cloth_step(cloth_world_id id, float dt) {
     return api_call(__func__, [&](const World*& log_world) -> Status {
         World* world;

@@ -19,9 +19,10 @@ void Carrier::clear() {
     teleported_ = false;
 }
 
-void Carrier::begin_step(const Body& body, bool body_jumped, float dt, const float* pinned,
+void Carrier::begin_step(const Body& body, const Pose* jumped_from, float dt, const float* pinned,
                          const HostVector<uint32_t>* attached_body, Vec3Soa& x, Vec3Soa& v) {
-    const Pose& from = body.start;
+    const bool body_jumped = jumped_from != nullptr;
+    const Pose& from = body_jumped ? *jumped_from : body.start;
     const Pose& to = body.target;
     const Quat turn = (to.rotation * from.rotation.conjugate()).normalized();
     const Vec3 turn_vector = rotation_vector(turn);

@@ -200,6 +200,14 @@ void ClothInstance::wake() {
     rest_frames_ = 0;
 }
 
+void ClothInstance::shift_origin(const Vec3& shift) {
+    for (Vec3Soa* a : {&x_, &pin_target_}) {
+        for (float& c : a->x) c -= shift.x();
+        for (float& c : a->y) c -= shift.y();
+        for (float& c : a->z) c -= shift.z();
+    }
+}
+
 void ClothInstance::update_sleep() {
     float speed_squared = 0;
     for (float s : group_speed_squared_) speed_squared = std::max(speed_squared, s);

@@ -87,6 +87,9 @@ class ClothInstance {
     const SleepSettings& sleep() const { return sleep_; }
     bool sleeping() const { return sleeping_; }
     void wake();
+    // Origin rebasing: subtract `shift` from the positions and pin targets
+    // (between frames; everything else is relative or per frame).
+    void shift_origin(const Vec3& shift);
 
     // Frame-budget policy bounds; enabling clamps the solver into them.
     void set_quality_policy(const QualityPolicy& policy);

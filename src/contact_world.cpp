@@ -92,4 +92,16 @@ void ContactWorld::end_step() {
     }
 }
 
+void ContactWorld::shift_origin(const Vec3& shift) {
+    for (BodySlot& b : bodies_) {
+        if (!b.live) continue;
+        b.body.start.position -= shift;
+        b.body.target.position -= shift;
+        b.before_jump.position -= shift;
+    }
+    for (ColliderSlot& c : colliders_) {
+        if (c.live && c.collider.body == UINT32_MAX) c.collider.local.position -= shift;
+    }
+}
+
 }  // namespace cloth

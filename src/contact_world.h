@@ -17,6 +17,7 @@ namespace cloth {
 struct BodySlot {
     Body body;
     bool jumped = false;  // teleported since the last step (no sweep, no interpolation)
+    Pose before_jump;     // while jumped: where the first teleport took it from (for carriers)
     bool live = false;
     uint16_t generation = 1;
 };
@@ -54,6 +55,8 @@ class ContactWorld {
 
     // After a world step: every body starts the next step where it is now.
     void end_step();
+    // Subtract `shift` from every body pose and static collider pose.
+    void shift_origin(const Vec3& shift);
 
   private:
     const HostMemory* memory_;

@@ -218,6 +218,13 @@ void World::destroy_body(uint32_t body) {
 // 1.6x slower on 2 workers than on 1 with ranges of one group).
 constexpr uint32_t kMinTasksPerRange = 4;
 
+void World::shift_origin(const Vec3& shift) {
+    for (Slot<ClothInstance>& slot : cloths_) {
+        if (slot.object) slot.object->shift_origin(shift);
+    }
+    contact_.shift_origin(shift);
+}
+
 Status World::step(float dt) {
     const int64_t start = now_ns();
     if (zone_begin_) zone_begin_("cloth_step", 0, zone_user_);

@@ -28,6 +28,20 @@ BodyMirror::~BodyMirror() {
     for (const btCollisionObject* object : order_) cloth_body_destroy(entries_.at(object).body);
 }
 
+void BodyMirror::cloth_pose(const btCollisionObject& object, float position[3], float rotation[4]) const {
+    to_pose(object.getWorldTransform(), position, rotation);
+    const btVector3& p = object.getWorldTransform().getOrigin();
+    for (int k = 0; k < 3; ++k) position[k] = static_cast<float>(double{p[k]} - origin_[k]);
+}
+
+cloth_result BodyMirror::shift_origin(const btVector3& shift) {
+    const float s[3] = {shift.x(), shift.y(), shift.z()};
+    const cloth_result result = cloth_world_shift_origin(world_, s);
+    if (result != CLOTH_OK) return fail(result, cloth_get_last_error());
+    for (int k = 0; k < 3; ++k) origin_[k] += double{s[k]};
+    return CLOTH_OK;
+}
+
 cloth_result BodyMirror::fail(cloth_result result, const std::string& message) {
     error_ = message;
     return result;
@@ -47,7 +61,7 @@ cloth_result BodyMirror::add(const btCollisionObject* object, uint32_t group_bit
 
     Entry entry;
     cloth_body_desc desc = cloth_default_body_desc();
-    to_pose(object->getWorldTransform(), desc.position, desc.rotation);
+    cloth_pose(*object, desc.position, desc.rotation);
     velocities(*object, desc.linear_velocity, desc.angular_velocity);
     cloth_result result = cloth_body_create(world_, &desc, &entry.body);
     if (result != CLOTH_OK) return fail(result, std::string("cloth_body_create: ") + cloth_get_last_error());
@@ -80,7 +94,7 @@ cloth_result BodyMirror::teleport(const btCollisionObject* object) {
     const auto it = entries_.find(object);
     if (it == entries_.end()) return fail(CLOTH_ERROR_INVALID_VALUE, "the object is not mirrored");
     float position[3], rotation[4], linear[3], angular[3];
-    to_pose(object->getWorldTransform(), position, rotation);
+    cloth_pose(*object, position, rotation);
     velocities(*object, linear, angular);
     cloth_result result = cloth_body_teleport(it->second.body, position, rotation);
     if (result == CLOTH_OK) result = cloth_body_set_velocity(it->second.body, linear, angular);
@@ -91,7 +105,7 @@ cloth_result BodyMirror::sync() {
     for (const btCollisionObject* object : order_) {
         const Entry& entry = entries_.at(object);
         float position[3], rotation[4], linear[3], angular[3];
-        to_pose(object->getWorldTransform(), position, rotation);
+        cloth_pose(*object, position, rotation);
         velocities(*object, linear, angular);
         cloth_result result = cloth_body_set_pose(entry.body, position, rotation);
         if (result == CLOTH_OK) result = cloth_body_set_velocity(entry.body, linear, angular);

@@ -79,6 +79,22 @@ cloth_result cloth_bullet_mirror_sync(cloth_bullet_mirror* mirror) {
     return guarded([&] { return from_mirror(mirror, mirror->mirror.sync()); });
 }
 
+cloth_result cloth_bullet_mirror_shift_origin(cloth_bullet_mirror* mirror, const float shift[3]) {
+    if (mirror == nullptr || shift == nullptr)
+        return fail(CLOTH_ERROR_NULL_POINTER, "mirror or shift is null");
+    return guarded([&] {
+        return from_mirror(mirror, mirror->mirror.shift_origin(btVector3(shift[0], shift[1], shift[2])));
+    });
+}
+
+cloth_result cloth_bullet_mirror_get_origin(const cloth_bullet_mirror* mirror, double out_origin[3]) {
+    if (mirror == nullptr || out_origin == nullptr) {
+        return fail(CLOTH_ERROR_NULL_POINTER, "mirror or out_origin is null");
+    }
+    for (int k = 0; k < 3; ++k) out_origin[k] = mirror->mirror.origin()[k];
+    return CLOTH_OK;
+}
+
 cloth_result cloth_bullet_create_colliders(cloth_world_id world, const void* bt_collision_shape,
                                            cloth_body_id body, const float local_position[3],
                                            const float local_rotation[4], uint32_t group_bits,

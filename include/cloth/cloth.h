@@ -78,7 +78,7 @@ extern "C" {
 /* ------------------------------------------------------------------ */
 
 #define CLOTH_VERSION_MAJOR 1
-#define CLOTH_VERSION_MINOR 1
+#define CLOTH_VERSION_MINOR 2
 #define CLOTH_VERSION_PATCH 0
 
 /// Library version. A library with another major version than the header a
@@ -221,6 +221,20 @@ CLOTH_API cloth_result cloth_world_create(const cloth_world_desc* desc, cloth_wo
 CLOTH_API cloth_result cloth_world_destroy(cloth_world_id world);
 /// Change gravity (m/s^2).
 CLOTH_API cloth_result cloth_world_set_gravity(cloth_world_id world, const float gravity[3]);
+
+/// Move the world's origin to the point `shift` of the current world frame
+/// (origin rebasing, as PhysX's shiftOrigin): `shift` is subtracted from
+/// every particle position and pin target, every body pose and every static
+/// collider's pose; velocities, attachments, carriers and sleep are
+/// unchanged. Floats resolve 1.5e-5 m at 128 m from the origin and 3e-5 m
+/// at 256 m, so a host whose cloth travels far keeps it near the origin by
+/// shifting now and then, and adds its own (double) origin back when it
+/// reads positions. With a shift in whole multiples of 32 m, every position
+/// the shift brings nearer the origin moves exactly; one it takes farther
+/// away rounds as any position there would. Call it between steps, like
+/// every other call on the world. NULL is CLOTH_ERROR_NULL_POINTER, a non-finite shift
+/// CLOTH_ERROR_NOT_FINITE; either leaves the world unchanged.
+CLOTH_API cloth_result cloth_world_shift_origin(cloth_world_id world, const float shift[3]);
 
 /// Advance every cloth of the world by `dt` seconds (0 < dt <= 1). Each
 /// cloth takes its own number of substeps. If a cloth's state becomes

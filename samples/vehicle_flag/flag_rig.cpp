@@ -1,6 +1,7 @@
 #include "flag_rig.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace vehicle_flag {
 
@@ -129,25 +130,53 @@ bool FlagRig::create_cloth(const FlagSettings& s, const btTransform& chassis_pos
     return true;
 }
 
+bool FlagRig::follow_chassis() {
+    constexpr double kStep = 32.0;
+    const btVector3 p = vehicle_.chassis_pose().getOrigin();
+    const double* origin = mirror_->origin();
+    bool far = false;
+    for (int k = 0; k < 3; ++k) far = far || std::abs(double{p[k]} - origin[k]) > kStep;
+    if (!far) return true;
+    btVector3 shift;
+    for (int k = 0; k < 3; ++k) shift[k] = static_cast<float>(std::round(p[k] / kStep) * kStep - origin[k]);
+    if (mirror_->shift_origin(shift) == CLOTH_OK) return true;
+    error_ = "origin shift: " + mirror_->last_error();
+    return false;
+}
+
 cloth_result FlagRig::teleport_chassis() {
+    // First bring the origin to where the chassis lands, so the flag is
+    // moved there in well-resolved coordinates.
+    if (!follow_chassis()) return CLOTH_ERROR_INVALID_VALUE;
     const cloth_result result = mirror_->teleport(vehicle_.chassis_body());
     if (result != CLOTH_OK) error_ = "teleport: " + mirror_->last_error();
     return result;
 }
 
 cloth_result FlagRig::sync() {
+    if (!follow_chassis()) return CLOTH_ERROR_INVALID_VALUE;
     const cloth_result result = mirror_->sync();
     if (result != CLOTH_OK) error_ = "sync: " + mirror_->last_error();
     return result;
 }
 
-float FlagRig::attachment_error(const btTransform& chassis_pose) {
-    const std::vector<float>& p = positions();
-    float worst = 0.0f;
+double FlagRig::attachment_error(const btTransform& chassis_pose) {
+    // In double: Bullet's own float product (chassis_pose * offset) rounds
+    // to 3e-5 m 256 m out, more than the error measured here.
+    const std::vector<float>& p = local_positions();
+    const double* origin = mirror_->origin();
+    double worst = 0;
     for (size_t i = 0; i < attached_.size(); ++i) {
         const size_t a = 3 * size_t{attached_[i]};
-        const btVector3 target = chassis_pose * attached_local_[i];
-        worst = std::max(worst, (btVector3(p[a], p[a + 1], p[a + 2]) - target).length());
+        double d2 = 0;
+        for (int k = 0; k < 3; ++k) {
+            const btVector3& row = chassis_pose.getBasis()[k];
+            double target = chassis_pose.getOrigin()[k];
+            for (int j = 0; j < 3; ++j) target += double{row[j]} * double{attached_local_[i][j]};
+            const double d = double{p[a + k]} + origin[k] - target;
+            d2 += d * d;
+        }
+        worst = std::max(worst, std::sqrt(d2));
     }
     return worst;
 }
@@ -158,8 +187,17 @@ bool FlagRig::teleported() const {
     return fired;
 }
 
-const std::vector<float>& FlagRig::positions() {
+const std::vector<float>& FlagRig::local_positions() {
     cloth_read_positions(cloth_, positions_.data(), static_cast<uint32_t>(positions_.size()));
+    return positions_;
+}
+
+const std::vector<float>& FlagRig::positions() {
+    local_positions();
+    const double* origin = mirror_->origin();
+    for (size_t i = 0; i < positions_.size(); ++i) {
+        positions_[i] = static_cast<float>(double{positions_[i]} + origin[i % 3]);
+    }
     return positions_;
 }
 

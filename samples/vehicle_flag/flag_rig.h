@@ -7,7 +7,11 @@
 //  - the flag's pole-side column is attached to the chassis body
 //    (cloth_attach) at fixed offsets behind the pole;
 //  - the chassis body is the flag's carrier, so the course's teleport back to
-//    the start moves the flag with the vehicle instead of stretching it.
+//    the start moves the flag with the vehicle instead of stretching it;
+//  - the cloth world's origin follows the vehicle in 32 m steps
+//    (BodyMirror::shift_origin), so the flag is simulated near the origin
+//    wherever the course takes it: floats there resolve far better than the
+//    1e-5 m the attachment check asks for.
 // Coupling is one-way: the flag never pushes the vehicle.
 #pragma once
 
@@ -58,8 +62,8 @@ class FlagRig {
     cloth_result step(float dt) { return cloth_step(world_, dt); }
 
     // After a step: largest distance of an attached particle from its target
-    // (the chassis pose times its offset), m.
-    float attachment_error(const btTransform& chassis_pose);
+    // (the chassis pose times its offset, in double), m.
+    double attachment_error(const btTransform& chassis_pose);
     // Whether the carrier's teleport handling fired in the last step.
     bool teleported() const;
 
@@ -69,7 +73,7 @@ class FlagRig {
     size_t collider_count() const { return collider_count_; }
     uint32_t particle_count() const { return particle_count_; }
     const std::vector<uint32_t>& attached() const { return attached_; }
-    const std::vector<float>& positions();  // refreshed on each call
+    const std::vector<float>& positions();  // in Bullet's frame; refreshed on each call
     const std::vector<float>& normals();
     const std::vector<uint32_t>& triangles() const { return triangles_; }
 
@@ -77,6 +81,11 @@ class FlagRig {
     bool check(cloth_result result, const char* call);
     bool create_cloth(const FlagSettings& s, const btTransform& chassis_pose, const btVector3& top_local);
     bool create_colliders();
+    // Shift the cloth world's origin to the chassis (rounded to 32 m) once
+    // the chassis is more than 32 m from it.
+    bool follow_chassis();
+    // The cloth's positions in the cloth world's frame (Bullet's minus the origin).
+    const std::vector<float>& local_positions();
 
     VehicleWorld& vehicle_;
     std::string error_;

@@ -285,7 +285,7 @@ int main(int argc, char** argv) {
 
         // Checks on the state at the end of the frame (outside the frame's timing).
         start_us = trace.now_us();
-        const float attach = flag.attachment_error(vehicle.chassis_pose());
+        const float attach = static_cast<float>(flag.attachment_error(vehicle.chassis_pose()));
         const Penetrations p = count_penetrations(flag.positions(), skip, vehicle.chassis_pose(),
                                                   vehicle.layout(), terrain, o.tolerance);
         cloth_stats stats{};

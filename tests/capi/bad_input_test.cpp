@@ -575,6 +575,7 @@ TEST_F(BadInput, EveryWorldFunctionRejectsNullStaleAndOutOfTableWorldIdsAndChang
     for (const NamedWorld& b : bad) {
         SCOPED_TRACE(b.what);
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_world_set_gravity(b.id, gravity));
+        EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_world_shift_origin(b.id, gravity));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_step(b.id, kFrame));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE,
                                  cloth_fabric_create_grid(b.id, &grid, &outs_.fabric));
@@ -771,6 +772,7 @@ TEST_F(BadInput, WorldFunctionsRejectEachNullPointerAndChangeNothing) {
     EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_NULL_POINTER, cloth_world_create(&wd, nullptr));
     EXPECT_EQ(host.live_bytes, 0u) << "a rejected cloth_world_create kept memory";
     EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_world_set_gravity(a_.world, nullptr));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_world_shift_origin(a_.world, nullptr));
 }
 
 TEST_F(BadInput, FabricFunctionsRejectEachNullPointerAndChangeNothing) {
@@ -982,6 +984,17 @@ TEST_F(BadInput, SetGravityNonFiniteReturnsNotFiniteAndKeepsTheOldGravity) {
             float g[3] = {0.0f, -20.0f, 0.0f};
             g[axis] = bad;
             EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_world_set_gravity(a_.world, g));
+        }
+    }
+}
+
+TEST_F(BadInput, ShiftOriginNonFiniteReturnsNotFiniteAndMovesNothing) {
+    for (int axis = 0; axis < 3; ++axis) {
+        for (float bad : {kNaN, kInf, -kInf}) {
+            SCOPED_TRACE("shift[" + std::to_string(axis) + "] = " + std::to_string(bad));
+            float shift[3] = {32.0f, 0.0f, -64.0f};
+            shift[axis] = bad;
+            EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_world_shift_origin(a_.world, shift));
         }
     }
 }

@@ -14,6 +14,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace {
@@ -340,55 +341,67 @@ TEST(Carrier, WithInertiaZeroASpinningCarrierTurnsTheClothWithIt) {
     EXPECT_GT(physical, 0.5) << "a cloth held at two corners should lag a carrier spun up to 6 rad/s";
 }
 
+// The jump is either a pose beyond the carrier's teleport distance or a
+// host teleport (cloth_body_teleport), which is one whatever the distance.
 TEST(Carrier, TeleportMovesTheClothRigidlyAndResetRestoresTheReferenceShape) {
-    for (cloth_teleport_mode mode : {CLOTH_TELEPORT_MOVE, CLOTH_TELEPORT_AND_RESET}) {
-        SCOPED_TRACE(mode);
-        const float origin[3] = {0, 0, 0};
-        World w(12, 12, 1, 1, origin, 4);  // substeps keep one Jacobi sweep stable in motion
-        const cloth_body_id body = make_body(w.world, origin);
-        const uint32_t corners[] = {0, 11};
-        ASSERT_EQ(cloth_attach(w.cloth, body, corners, nullptr, 2), CLOTH_OK);
-        cloth_carrier_desc c = cloth_default_carrier_desc();
-        c.teleport_distance = 5.0f;
-        c.teleport_mode = mode;
-        ASSERT_EQ(cloth_set_carrier(w.cloth, body, &c), CLOTH_OK);
-        const std::vector<float> reference = w.positions();
-        // Drive along x at 10 m/s for a second so the cloth swings and stretches.
-        Eigen::Vector3d p(0, 0, 0);
-        for (int frame = 1; frame <= 60; ++frame) {
-            p = Eigen::Vector3d(10.0 * frame * kFrame, 0, 0);
-            set_pose(body, p, Eigen::Quaterniond::Identity());
-            ASSERT_EQ(cloth_step(w.world, kFrame), CLOTH_OK);
+    for (bool host_teleport : {false, true})
+        for (cloth_teleport_mode mode : {CLOTH_TELEPORT_MOVE, CLOTH_TELEPORT_AND_RESET}) {
+            SCOPED_TRACE(std::string(host_teleport ? "cloth_body_teleport" : "cloth_body_set_pose") +
+                         ", mode " + std::to_string(mode));
+            const float origin[3] = {0, 0, 0};
+            World w(12, 12, 1, 1, origin, 4);  // substeps keep one Jacobi sweep stable in motion
+            const cloth_body_id body = make_body(w.world, origin);
+            const uint32_t corners[] = {0, 11};
+            ASSERT_EQ(cloth_attach(w.cloth, body, corners, nullptr, 2), CLOTH_OK);
+            cloth_carrier_desc c = cloth_default_carrier_desc();
+            c.teleport_distance = 5.0f;
+            c.teleport_mode = mode;
+            ASSERT_EQ(cloth_set_carrier(w.cloth, body, &c), CLOTH_OK);
+            const std::vector<float> reference = w.positions();
+            // Drive along x at 10 m/s for a second so the cloth swings and stretches.
+            Eigen::Vector3d p(0, 0, 0);
+            for (int frame = 1; frame <= 60; ++frame) {
+                p = Eigen::Vector3d(10.0 * frame * kFrame, 0, 0);
+                set_pose(body, p, Eigen::Quaterniond::Identity());
+                ASSERT_EQ(cloth_step(w.world, kFrame), CLOTH_OK);
+            }
+            const cloth_stats before = w.stats();
+            bool teleported = true;
+            ASSERT_EQ(cloth_get_teleported(w.cloth, &teleported), CLOTH_OK);
+            EXPECT_FALSE(teleported);
+            // Jump 100 m back and a quarter turn.
+            const Eigen::Vector3d jump(-90, 3, 4);
+            const Eigen::Quaterniond turn(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()));
+            if (host_teleport) {
+                const float position[3] = {float(jump.x()), float(jump.y()), float(jump.z())};
+                const float rotation[4] = {float(turn.x()), float(turn.y()), float(turn.z()),
+                                           float(turn.w())};
+                ASSERT_EQ(cloth_body_teleport(body, position, rotation), CLOTH_OK);
+            } else {
+                set_pose(body, jump, turn);
+            }
+            ASSERT_EQ(cloth_step(w.world, kFrame), CLOTH_OK) << cloth_get_last_error();
+            ASSERT_EQ(cloth_get_teleported(w.cloth, &teleported), CLOTH_OK);
+            EXPECT_TRUE(teleported);
+            const cloth_stats after = w.stats();
+            const std::vector<float> x = w.positions();
+            double max_distance = 0, from_reference = 0;
+            for (uint32_t i = 0; i < w.n; ++i) {
+                max_distance = std::max(max_distance, (w.at(x, i) - jump).norm());
+                const Eigen::Vector3d ref = turn * w.at(reference, i) + jump;
+                from_reference = std::max(from_reference, (w.at(x, i) - ref).norm());
+            }
+            EXPECT_LT(max_distance, 2.0) << "the cloth did not come along with the carrier";
+            if (mode == CLOTH_TELEPORT_MOVE) {
+                EXPECT_LT(after.max_strain, before.max_strain + 0.02f) << "teleport stretched the cloth";
+                EXPECT_GT(from_reference, 0.01)
+                    << "a plain teleport keeps the swing, not the reference shape";
+            } else {
+                EXPECT_LT(after.max_strain, 0.01f) << "reset should restore the unstretched reference shape";
+                // One frame of free fall from the reference: g dt^2 / 2 plus rounding.
+                EXPECT_LT(from_reference, 5e-3) << "reset should put the cloth in its reference shape";
+            }
         }
-        const cloth_stats before = w.stats();
-        bool teleported = true;
-        ASSERT_EQ(cloth_get_teleported(w.cloth, &teleported), CLOTH_OK);
-        EXPECT_FALSE(teleported);
-        // Jump 100 m back and a quarter turn.
-        const Eigen::Vector3d jump(-90, 3, 4);
-        const Eigen::Quaterniond turn(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()));
-        set_pose(body, jump, turn);
-        ASSERT_EQ(cloth_step(w.world, kFrame), CLOTH_OK) << cloth_get_last_error();
-        ASSERT_EQ(cloth_get_teleported(w.cloth, &teleported), CLOTH_OK);
-        EXPECT_TRUE(teleported);
-        const cloth_stats after = w.stats();
-        const std::vector<float> x = w.positions();
-        double max_distance = 0, from_reference = 0;
-        for (uint32_t i = 0; i < w.n; ++i) {
-            max_distance = std::max(max_distance, (w.at(x, i) - jump).norm());
-            const Eigen::Vector3d ref = turn * w.at(reference, i) + jump;
-            from_reference = std::max(from_reference, (w.at(x, i) - ref).norm());
-        }
-        EXPECT_LT(max_distance, 2.0) << "the cloth did not come along with the carrier";
-        if (mode == CLOTH_TELEPORT_MOVE) {
-            EXPECT_LT(after.max_strain, before.max_strain + 0.02f) << "teleport stretched the cloth";
-            EXPECT_GT(from_reference, 0.01) << "a plain teleport keeps the swing, not the reference shape";
-        } else {
-            EXPECT_LT(after.max_strain, 0.01f) << "reset should restore the unstretched reference shape";
-            // One frame of free fall from the reference: g dt^2 / 2 plus rounding.
-            EXPECT_LT(from_reference, 5e-3) << "reset should put the cloth in its reference shape";
-        }
-    }
 }
 
 }  // namespace

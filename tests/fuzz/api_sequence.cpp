@@ -213,6 +213,7 @@ class Harness {
     void world_create();
     void world_destroy();
     void world_set_gravity();
+    void world_shift_origin();
     void fabric_grid();
     void fabric_mesh();
     void fabric_obj();
@@ -425,6 +426,13 @@ void Harness::world_set_gravity() {
     float g[3];
     in_.floats(g, 3);
     check(cloth_world_set_gravity(id, g), "cloth_world_set_gravity");
+}
+
+void Harness::world_shift_origin() {
+    const cloth_world_id id = pick_world();
+    float shift[3];
+    in_.floats(shift, 3);
+    check(cloth_world_shift_origin(id, shift), "cloth_world_shift_origin");
 }
 
 // ---------------------------------------------------------------- fabric
@@ -1205,6 +1213,9 @@ RunStats Harness::run() {
                 break;
             case kAttachment:
                 attachment();
+                break;
+            case kWorldShiftOrigin:
+                world_shift_origin();
                 break;
             case kOpCount:
                 break;

@@ -40,6 +40,7 @@ enum Op : uint8_t {
     kBody,               // create, destroy, set pose, teleport, velocity, get pose
     kCollider,           // create each shape, destroy, group bits
     kAttachment,         // attach, detach, get attachment, collision params, carrier, teleported
+    kWorldShiftOrigin,   // origin rebasing
     kOpCount
 };
 

@@ -69,7 +69,9 @@ bool describe_shape(const btCollisionShape& shape, const btTransform& local, std
                     std::string* error);
 
 // Create the collider of `spec` in `world`, fixed to `body` (null: static,
-// then spec.local is its world pose). Returns the cloth API's result.
+// then spec.local is its pose in the cloth world's frame: after origin
+// shifts, the Bullet pose minus BodyMirror::origin()). Returns the cloth
+// API's result.
 cloth_result create_collider(cloth_world_id world, const ColliderSpec& spec, cloth_body_id body,
                              uint32_t group_bits, cloth_collider_id* out_collider);
 
@@ -99,6 +101,16 @@ class BodyMirror {
     // bodies reach those poses at the end of the next cloth_step.
     cloth_result sync();
 
+    // Origin rebasing for scenes that travel far (cloth_world_shift_origin):
+    // the cloth world's frame is Bullet's moved to origin(), so a cloth
+    // position plus origin() is its Bullet position. shift_origin() moves
+    // the cloth world's origin by `shift` (in whole multiples of 32 m every
+    // position it brings nearer moves exactly) and adds it to origin(),
+    // which the mirror keeps in double and subtracts from every pose it
+    // copies. Between steps only.
+    cloth_result shift_origin(const btVector3& shift);
+    const double* origin() const { return origin_; }
+
     // The object's body (null if not mirrored).
     cloth_body_id body(const btCollisionObject* object) const;
     // The colliders made for the object (empty if not mirrored).
@@ -116,7 +128,10 @@ class BodyMirror {
     cloth_world_id world_;
     std::unordered_map<const btCollisionObject*, Entry> entries_;
     std::vector<const btCollisionObject*> order_;  // insertion order: sync in a fixed order
+    double origin_[3] = {0, 0, 0};                 // Bullet position of the cloth world's origin
     std::string error_;
+    // The object's pose in the cloth world's frame.
+    void cloth_pose(const btCollisionObject& object, float position[3], float rotation[4]) const;
 };
 
 }  // namespace cloth_bullet

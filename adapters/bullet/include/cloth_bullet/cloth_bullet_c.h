@@ -32,6 +32,13 @@ cloth_result cloth_bullet_mirror_teleport(cloth_bullet_mirror* mirror, const voi
 /// Copy all mirrored poses and velocities into the bodies (after the Bullet
 /// step, before cloth_step).
 cloth_result cloth_bullet_mirror_sync(cloth_bullet_mirror* mirror);
+/// Origin rebasing (cloth_world_shift_origin): move the cloth world's origin
+/// by `shift` and remember it; every pose the mirror copies from then on is
+/// Bullet's minus the accumulated origin (kept in double). A cloth position
+/// plus the origin is its Bullet position.
+cloth_result cloth_bullet_mirror_shift_origin(cloth_bullet_mirror* mirror, const float shift[3]);
+/// The Bullet position of the cloth world's origin (0 until the first shift).
+cloth_result cloth_bullet_mirror_get_origin(const cloth_bullet_mirror* mirror, double out_origin[3]);
 
 /// Colliders for a btCollisionShape, fixed to `body` (null: static) at the
 /// local pose (position xyz, quaternion xyzw; NULL: identity). Writes up to
