@@ -44,6 +44,9 @@ int main(int argc, char** argv) {
     pareto_cmd->add_option("--seconds", pareto.seconds, "simulated time per run");
     pareto_cmd->add_option("--stiffness", pareto.stiffness);
     pareto_cmd->add_option("--csv", pareto.csv);
+    pareto_cmd->add_option(
+        "--scenes", pareto.scenes,
+        "scenes to run: hanging, falling_flat, flag_in_wind, draped_sphere (default: all)");
 
     StabilityOptions stability;
     CLI::App* stability_cmd = app.add_subcommand("stability", "stability map");

@@ -28,6 +28,8 @@ struct MatrixOptions {
 };
 
 struct ParetoOptions {
+    // Scene names (cloth_samples::scene_name); empty: every scene.
+    std::vector<std::string> scenes;
     uint32_t resolution = 64;
     float seconds = 1.0f;
     float stiffness = 1000.0f;

@@ -56,6 +56,10 @@ int run_pareto(const ParetoOptions& o) {
     const float dts[] = {1.0f / 30.0f, 1.0f / 60.0f, 1.0f / 120.0f};
     for (SceneKind scene :
          {SceneKind::kHanging, SceneKind::kFallingFlat, SceneKind::kFlagInWind, SceneKind::kDrapedSphere}) {
+        if (!o.scenes.empty() &&
+            std::find(o.scenes.begin(), o.scenes.end(), cloth_samples::scene_name(scene)) == o.scenes.end()) {
+            continue;
+        }
         SceneConfig base;
         base.kind = scene;
         base.resolution = o.resolution;
