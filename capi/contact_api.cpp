@@ -236,6 +236,9 @@ CLOTH_API cloth_result cloth_body_teleport(cloth_body_id id, const float positio
         Pose pose;
         if (s.ok()) s = check_pose(position, rotation, "position", "rotation", &pose);
         if (!s.ok()) return s;
+        // A carrier moves its cloth from where the body was at the end of
+        // the last step (a second teleport before the step keeps that pose).
+        if (!body->jumped) body->jumped_from = body->body.start;
         body->body.start = body->body.target = pose;
         body->jumped = true;
         return {};

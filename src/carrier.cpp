@@ -19,9 +19,10 @@ void Carrier::clear() {
     teleported_ = false;
 }
 
-void Carrier::begin_step(const Body& body, bool body_jumped, float dt, const float* pinned,
+void Carrier::begin_step(const Body& body, const Pose* jumped_from, float dt, const float* pinned,
                          const HostVector<uint32_t>* attached_body, Vec3Soa& x, Vec3Soa& v) {
-    const Pose& from = body.start;
+    // The cloth is where the body was at the end of the last step.
+    const Pose& from = jumped_from ? *jumped_from : body.start;
     const Pose& to = body.target;
     const Quat turn = (to.rotation * from.rotation.conjugate()).normalized();
     const Vec3 turn_vector = rotation_vector(turn);
@@ -29,7 +30,8 @@ void Carrier::begin_step(const Body& body, bool body_jumped, float dt, const flo
     const uint32_t n = static_cast<uint32_t>(x.size());
     auto attached = [&](uint32_t i) { return attached_body && (*attached_body)[i] != UINT32_MAX; };
 
-    teleported_ = body_jumped || (params_.teleport_distance > 0 && move.norm() > params_.teleport_distance) ||
+    teleported_ = jumped_from != nullptr ||
+                  (params_.teleport_distance > 0 && move.norm() > params_.teleport_distance) ||
                   (params_.teleport_rotation > 0 && turn_vector.norm() > params_.teleport_rotation);
     if (teleported_) {
         // The jump is not a velocity. Motion relative to the carrier turns

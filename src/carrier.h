@@ -53,8 +53,10 @@ class Carrier {
     // Once per step of `dt` seconds, before the substeps. Free particles
     // (pinned[i] == 0) feel the inertia terms; on a teleport, free and
     // attached particles (attached_body non-null and [i] != UINT32_MAX) move
-    // with the carrier, host-pinned ones stay.
-    void begin_step(const Body& body, bool body_jumped, float dt, const float* pinned,
+    // with the carrier, host-pinned ones stay. `jumped_from` is non-null
+    // when the host teleported the body since the last step: the pose it
+    // had at the end of that step (body.start is already the new pose then).
+    void begin_step(const Body& body, const Pose* jumped_from, float dt, const float* pinned,
                     const HostVector<uint32_t>* attached_body, Vec3Soa& x, Vec3Soa& v);
 
   private:

@@ -35,7 +35,7 @@ Vec3 ClothContact::attached_position(uint32_t particle, float fraction) const {
 void ClothContact::begin_step(float dt, const float* pinned, Vec3Soa& x, Vec3Soa& v) {
     if (!carrier_.active()) return;
     const BodySlot& slot = world_->body(carrier_.body());
-    carrier_.begin_step(slot.body, slot.jumped, dt, pinned,
+    carrier_.begin_step(slot.body, slot.jumped ? &slot.jumped_from : nullptr, dt, pinned,
                         attached_body_.empty() ? nullptr : &attached_body_, x, v);
 }
 

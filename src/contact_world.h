@@ -17,6 +17,7 @@ namespace cloth {
 struct BodySlot {
     Body body;
     bool jumped = false;  // teleported since the last step (no sweep, no interpolation)
+    Pose jumped_from;     // when jumped: the pose at the end of the last step, where the cloths left it
     bool live = false;
     uint16_t generation = 1;
 };

@@ -391,4 +391,43 @@ TEST(Carrier, TeleportMovesTheClothRigidlyAndResetRestoresTheReferenceShape) {
     }
 }
 
+TEST(Carrier, AHostTeleportMovesTheClothFromWhereTheBodyWasAtTheEndOfTheLastStep) {
+    // cloth_body_teleport puts the body at its new pose at once (start and
+    // target), as a host does when it teleports a vehicle; the host then
+    // sets the pose for the end of the step as usual. The carrier must move
+    // the cloth by the jump from the pose the cloth was left at, so the
+    // cloth arrives with the body, in the same shape.
+    const float origin[3] = {0, 0, 0};
+    World w(12, 12, 1, 1, origin, 4);
+    const cloth_body_id body = make_body(w.world, origin);
+    const uint32_t corners[] = {0, 11};
+    ASSERT_EQ(cloth_attach(w.cloth, body, corners, nullptr, 2), CLOTH_OK);
+    cloth_carrier_desc c = cloth_default_carrier_desc();
+    c.teleport_mode = CLOTH_TELEPORT_MOVE;
+    ASSERT_EQ(cloth_set_carrier(w.cloth, body, &c), CLOTH_OK);
+    Eigen::Vector3d p(0, 0, 0);
+    for (int frame = 1; frame <= 60; ++frame) {
+        p = Eigen::Vector3d(10.0 * frame * kFrame, 0, 0);
+        set_pose(body, p, Eigen::Quaterniond::Identity());
+        ASSERT_EQ(cloth_step(w.world, kFrame), CLOTH_OK);
+    }
+    const cloth_stats before = w.stats();
+    const std::vector<float> x_before = w.positions();
+    const Eigen::Vector3d jump(-90, 3, 4);
+    const float to[3] = {-90, 3, 4}, identity[4] = {0, 0, 0, 1};
+    ASSERT_EQ(cloth_body_teleport(body, to, identity), CLOTH_OK);
+    set_pose(body, jump + Eigen::Vector3d(0.01, 0, 0), Eigen::Quaterniond::Identity());
+    ASSERT_EQ(cloth_step(w.world, kFrame), CLOTH_OK) << cloth_get_last_error();
+    bool teleported = false;
+    ASSERT_EQ(cloth_get_teleported(w.cloth, &teleported), CLOTH_OK);
+    EXPECT_TRUE(teleported);
+    const std::vector<float> x = w.positions();
+    double moved_off = 0;  // how far each particle is from where the jump alone takes it
+    for (uint32_t i = 0; i < w.n; ++i)
+        moved_off = std::max(moved_off, (w.at(x, i) - (w.at(x_before, i) - p + jump)).norm());
+    // One frame of motion (10 m/s swing, gravity) is well under half a metre.
+    EXPECT_LT(moved_off, 0.5) << "the cloth did not come along with the teleported body";
+    EXPECT_LT(w.stats().max_strain, before.max_strain + 0.02f) << "the teleport stretched the cloth";
+}
+
 }  // namespace
