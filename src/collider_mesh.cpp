@@ -202,6 +202,7 @@ Status build_heightfield(uint32_t columns, uint32_t rows, float spacing_x, float
     float lo = kInfinity, hi = -kInfinity;
     for (float h : field.heights) lo = std::min(lo, h), hi = std::max(hi, h);
     const Vec3 min_corner(0, lo, 0), max_corner(spacing_x * (columns - 1), hi, spacing_z * (rows - 1));
+    field.max_height = hi;
     shape.kind = ShapeKind::kHeightfield;
     shape.bound_center = (min_corner + max_corner) * 0.5f;
     shape.bound_radius = 0.5f * (max_corner - min_corner).norm();
@@ -239,6 +240,10 @@ float surface_height(const HeightfieldShape& f, float x, float z) {
 }  // namespace
 
 SurfaceQuery query_heightfield(const HeightfieldShape& f, const Vec3& p, float radius) {
+    // Above the highest sample by more than the radius: the height above it
+    // is a lower bound on the distance, and no cell needs a look.
+    const float above = p.y() - f.max_height;
+    if (above >= radius) return {above, Vec3::UnitY()};
     const float width = f.spacing_x * static_cast<float>(f.columns - 1);
     const float depth = f.spacing_z * static_cast<float>(f.rows - 1);
     const bool over = p.x() >= 0 && p.x() <= width && p.z() >= 0 && p.z() <= depth;

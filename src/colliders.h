@@ -69,6 +69,7 @@ struct HeightfieldShape {
     uint32_t columns = 2, rows = 2;
     float spacing_x = 1, spacing_z = 1;
     HostVector<float> heights;  // row-major
+    float max_height = 0;       // the highest sample
     float height(uint32_t c, uint32_t r) const { return heights[static_cast<size_t>(r) * columns + c]; }
 };
 
