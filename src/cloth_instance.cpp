@@ -297,13 +297,13 @@ Stage ClothInstance::next_stage(Stage current) const {
             return iterative_.go_on ? Stage::kIterativeSolve : Stage::kIntegrate;
         case Stage::kIntegrate:
         case Stage::kExplicit:
-            if (frame_solver_.strain_limit.max_strain > 0) return Stage::kStrainLimit;
-            return stage_after_solve();
+            if (collides_) return Stage::kCollisions;  // issue 6
+            return stage_after_collisions();
+        case Stage::kCollisions:
+            return stage_after_collisions();
         case Stage::kStrainLimit:
             // Rounds alternate corrections (even) and their application (odd).
-            return cursor_.sweep + 1 < 2 * frame_solver_.strain_limit.iterations ? Stage::kStrainLimit
-                                                                                 : stage_after_solve();
-        case Stage::kCollisions:
+            if (cursor_.sweep + 1 < 2 * frame_solver_.strain_limit.iterations) return Stage::kStrainLimit;
             return self_collision_ ? Stage::kSelfCollision : Stage::kCount;
         case Stage::kSelfCollision:
             return Stage::kSelfSort;
@@ -323,11 +323,10 @@ Stage ClothInstance::next_stage(Stage current) const {
     return Stage::kCount;  // kCount: the substep is over
 }
 
-// Where a substep goes once dv is integrated (and strain is limited).
-// Post-integration passes plug in here, each behind its feature:
-Stage ClothInstance::stage_after_solve() const {
-    // Post-integration passes plug in here, each behind its feature:
-    if (collides_) return Stage::kCollisions;  // issue 6
+// Where a substep goes once dv is integrated and the colliders have had
+// their pass. Post-integration passes plug in here, each behind its feature.
+Stage ClothInstance::stage_after_collisions() const {
+    if (frame_solver_.strain_limit.max_strain > 0) return Stage::kStrainLimit;
     return self_collision_ ? Stage::kSelfCollision : Stage::kCount;
 }
 
@@ -707,7 +706,15 @@ void ClothInstance::run_strain_limit(uint32_t group) {
     if (cursor_.sweep % 2 == 0) {
         strain_limit_corrections(pass, x_, begin, end, solver_work_.r);
     } else {
+        // Contact and strain limit are resolved together: each round's
+        // moves (along straight springs) are taken back out of the
+        // colliders at once, so the next round sees where the particles
+        // really are. Limiting after the colliders alone would pull a
+        // spring that wraps a thin collider (the flag round its pole)
+        // through it; colliders after the limiter alone would push both
+        // ends back out on their own sides every substep, undoing the limit.
         strain_limit_apply(solver_work_.r, h_, begin, end, x_, v_);
+        if (collides_) run_collisions(group);
     }
 }
 

@@ -157,7 +157,7 @@ class ClothInstance {
     void run_strain_limit(uint32_t group);      // kStrainLimit
     // Serial bookkeeping of the iterative solvers after their stages' barrier.
     void finish_iterative_stage();
-    Stage stage_after_solve() const;
+    Stage stage_after_collisions() const;
     LinearSystem system() const;
     void run_integrate(uint32_t group);
     void run_explicit(uint32_t group);

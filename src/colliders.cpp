@@ -163,19 +163,19 @@ uint32_t collide_particles(const MovingCollider& collider, const CollisionParams
         bool hit = false;
         Vec3 contact = local_end;
         Vec3 normal = Vec3::UnitY();
-        const SurfaceQuery at_start = query_shape(shape, local_start, radius);
-        const SurfaceQuery at_end = query_shape(shape, local_end, radius);
-        if (at_start.distance < thickness) {
-            // In contact at the start: the particle may slide along the
-            // surface but not go below the contact plane of its start point
-            // (so a collider that moves past in one substep carries it).
-            const Vec3 on_surface = local_start + at_start.normal * (thickness - at_start.distance);
-            const float below = (local_end - on_surface).dot(at_start.normal);
+        // From a contact point on the thickness surface: the particle ends
+        // where its path ends, but not below the contact plane (so a
+        // collider that moves past in one substep carries it), and outside
+        // the thickness. The motion along the plane is kept: a particle that
+        // touches the surface slides on it instead of being held where it
+        // touched (friction acts on the velocity below).
+        auto slide = [&](const Vec3& on_surface, const Vec3& plane_normal) {
+            const float below = (local_end - on_surface).dot(plane_normal);
             Vec3 p = local_end;
+            normal = plane_normal;
             if (below < 0) {
-                p -= at_start.normal * below;
+                p -= plane_normal * below;
                 hit = true;
-                normal = at_start.normal;
             }
             const SurfaceQuery q = query_shape(shape, p, radius);
             if (q.distance < thickness) {
@@ -184,6 +184,12 @@ uint32_t collide_particles(const MovingCollider& collider, const CollisionParams
                 normal = q.normal;
             }
             contact = p;
+        };
+        const SurfaceQuery at_start = query_shape(shape, local_start, radius);
+        const SurfaceQuery at_end = query_shape(shape, local_end, radius);
+        if (at_start.distance < thickness) {
+            // In contact at the start: slide from the start point.
+            slide(local_start + at_start.normal * (thickness - at_start.distance), at_start.normal);
         } else if (length > 0 && (at_end.distance < thickness ||
                                   length > (at_start.distance - thickness) + (at_end.distance - thickness))) {
             // Started clear: sphere-trace along the path to the first point
@@ -194,9 +200,9 @@ uint32_t collide_particles(const MovingCollider& collider, const CollisionParams
             for (int step = 0; step < kMaxSweepSteps; ++step) {
                 const float gap = q.distance - thickness;
                 if (gap <= tolerance) {
+                    // Reached the surface: slide on from there.
+                    slide(p + q.normal * (thickness - q.distance), q.normal);
                     hit = true;
-                    contact = p + q.normal * (thickness - q.distance);
-                    normal = q.normal;
                     break;
                 }
                 t += gap / length;

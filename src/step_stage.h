@@ -26,9 +26,12 @@
 //   kIntegrate      per particle: v += dv, x += h v; pins land
 //   kExplicit       EXPLICIT (replaces kAssemble..kIntegrate): gather, Euler
 //   -- after integration, where contact plugs in:
-//   kStrainLimit    per particle, when enabled (strain_limit.h): rounds alternate
-//                   corrections and x += c, v += c / h, `iterations` times each
 //   kCollisions     colliders and attachments (issue 6)
+//   kStrainLimit    per particle, when enabled (strain_limit.h): rounds alternate
+//                   corrections and x += c, v += c / h, `iterations` times each;
+//                   each application is followed by the colliders' pass over
+//                   the same particles, so contact and strain limit are
+//                   resolved together (its time counts in this stage)
 //   kSelfCollision  self-collision (issue 5, self_collision.h), in five stages:
 //                   per group: region checks and hash keys;
 //   kSelfSort       one task: counting sort into buckets;

@@ -104,6 +104,9 @@ bool FlagRig::create_cloth(const FlagSettings& s, const btTransform& chassis_pos
     desc.structural.stiffness = s.stiffness;
     desc.shear.stiffness = 0.2f * s.stiffness;
     desc.bend.stiffness = 0.02f * s.stiffness;
+    desc.structural.damping = s.damping;
+    desc.shear.damping = 0.4f * s.damping;
+    desc.bend.damping = 0.1f * s.damping;
     desc.solver = s.solver;
     if (!check(cloth_create(world_, &desc, &cloth_), "cloth_create")) return false;
     particle_count_ = s.columns * s.rows;

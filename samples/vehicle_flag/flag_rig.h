@@ -33,6 +33,7 @@ struct FlagSettings {
     float height = 0.8f;    // m
     float area_density = 0.25f;
     float stiffness = 1000.0f;  // structural N/m; shear 0.2x, bend 0.02x
+    float damping = 0.5f;       // structural N s/m (the library's default); shear 0.4x, bend 0.1x
     float thickness = 0.01f;    // m, kept from every collider
     float friction = 0.3f;
     float max_strain = 0.1f;  // strain limit after each substep (0: off)

@@ -135,5 +135,37 @@ TEST(ColliderShapes, HeightFieldIsSolidBelowAndMatchesAPlaneWhenFlatAndASlopeWhe
     EXPECT_GT(deep.normal.y(), 0.9999f);
 }
 
+TEST(ColliderResponse, AParticleTouchingASurfaceSlidesAlongItInsteadOfStickingWhereItTouched) {
+    // A particle on (or a hair above) the thickness surface of a static
+    // plane, moving along it at 0.5 m/s and into it at 0.2 m/s, without
+    // friction: the surface stops the normal motion only, so over one
+    // substep the particle moves h * 0.5 m along the plane and ends on the
+    // thickness surface. Both sides of the surface must agree (the sweep
+    // from a start just outside once held the particle at its start point).
+    Shape plane(heap());
+    ASSERT_TRUE(build_plane(Vec3(0, 1, 0), 0.0f, plane).ok());
+    MovingCollider collider;
+    collider.shape = &plane;
+    CollisionParams params;
+    params.thickness = 0.01f;
+    params.friction = 0.0f;
+    const float h = 1.0f / 60.0f;
+    const float kinematic[1] = {0.0f};
+    for (float start_gap : {-1e-6f, 0.0f, 1e-6f}) {
+        SCOPED_TRACE(start_gap);
+        Vec3Soa x(heap()), v(heap());
+        x.resize(1);
+        v.resize(1);
+        const Vec3 start(0.0f, params.thickness + start_gap, 0.0f), velocity(0.5f, -0.2f, 0.0f);
+        v.set(0, velocity);
+        x.set(0, start + velocity * h);  // collide_particles sees the state after integration
+        EXPECT_EQ(collide_particles(collider, params, h, kinematic, 0, 1, x, v), 1u);
+        EXPECT_NEAR(x.get(0).x(), 0.5f * h, 1e-6f) << "the particle did not slide along the surface";
+        EXPECT_NEAR(x.get(0).y(), params.thickness, 1e-6f);
+        EXPECT_NEAR(v.get(0).x(), 0.5f, 1e-6f);
+        EXPECT_NEAR(v.get(0).y(), 0.0f, 1e-6f);
+    }
+}
+
 }  // namespace
 }  // namespace cloth
