@@ -122,7 +122,7 @@ class HostJobSystem {
 };
 
 #ifdef CLOTH_SANITIZED_BUILD
-constexpr int kSteps = 40;  // sanitizers slow the spinning pool 70x on two cores
+constexpr int kSteps = 20;  // sanitizers slow the spinning pool 70x on two cores
 const std::vector<uint32_t> kWorkerCounts = {2u, 3u};
 #else
 constexpr int kSteps = 300;
