@@ -127,8 +127,7 @@ CLOTH_API cloth_result cloth_world_shift_origin(cloth_world_id id, const float s
         if (!s.ok()) return s;
         if (!shift) return null_error("shift");
         if (!finite3(shift)) return Status::error(CLOTH_ERROR_NOT_FINITE, "shift is not finite");
-        world->shift_origin(Vec3(shift[0], shift[1], shift[2]));
-        return {};
+        return world->shift_origin(Vec3(shift[0], shift[1], shift[2]));
     });
 }
 

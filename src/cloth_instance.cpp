@@ -200,6 +200,15 @@ void ClothInstance::wake() {
     rest_frames_ = 0;
 }
 
+bool ClothInstance::can_shift_origin(const Vec3& shift) const {
+    for (const Vec3Soa* a : {&x_, &pin_target_}) {
+        for (size_t i = 0; i < a->size(); ++i) {
+            if (!(a->get(i) - shift).allFinite()) return false;
+        }
+    }
+    return true;
+}
+
 void ClothInstance::shift_origin(const Vec3& shift) {
     for (Vec3Soa* a : {&x_, &pin_target_}) {
         for (float& c : a->x) c -= shift.x();

@@ -88,7 +88,9 @@ class ClothInstance {
     bool sleeping() const { return sleeping_; }
     void wake();
     // Origin rebasing: subtract `shift` from the positions and pin targets
-    // (between frames; everything else is relative or per frame).
+    // (between frames; everything else is relative or per frame);
+    // can_shift_origin: whether every result stays finite.
+    bool can_shift_origin(const Vec3& shift) const;
     void shift_origin(const Vec3& shift);
 
     // Frame-budget policy bounds; enabling clamps the solver into them.

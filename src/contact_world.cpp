@@ -92,6 +92,19 @@ void ContactWorld::end_step() {
     }
 }
 
+bool ContactWorld::can_shift_origin(const Vec3& shift) const {
+    const auto fits = [&](const Vec3& p) { return (p - shift).allFinite(); };
+    for (const BodySlot& b : bodies_) {
+        if (b.live &&
+            !(fits(b.body.start.position) && fits(b.body.target.position) && fits(b.before_jump.position)))
+            return false;
+    }
+    for (const ColliderSlot& c : colliders_) {
+        if (c.live && c.collider.body == UINT32_MAX && !fits(c.collider.local.position)) return false;
+    }
+    return true;
+}
+
 void ContactWorld::shift_origin(const Vec3& shift) {
     for (BodySlot& b : bodies_) {
         if (!b.live) continue;

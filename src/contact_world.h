@@ -55,7 +55,9 @@ class ContactWorld {
 
     // After a world step: every body starts the next step where it is now.
     void end_step();
-    // Subtract `shift` from every body pose and static collider pose.
+    // Subtract `shift` from every body pose and static collider pose;
+    // can_shift_origin: whether every result stays finite.
+    bool can_shift_origin(const Vec3& shift) const;
     void shift_origin(const Vec3& shift);
 
   private:

@@ -218,11 +218,19 @@ void World::destroy_body(uint32_t body) {
 // 1.6x slower on 2 workers than on 1 with ranges of one group).
 constexpr uint32_t kMinTasksPerRange = 4;
 
-void World::shift_origin(const Vec3& shift) {
+Status World::shift_origin(const Vec3& shift) {
+    bool fits = contact_.can_shift_origin(shift);
+    for (const Slot<ClothInstance>& slot : cloths_)
+        fits = fits && (!slot.object || slot.object->can_shift_origin(shift));
+    if (!fits) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE,
+                             "the shift would move a position out of float range; nothing was moved");
+    }
     for (Slot<ClothInstance>& slot : cloths_) {
         if (slot.object) slot.object->shift_origin(shift);
     }
     contact_.shift_origin(shift);
+    return {};
 }
 
 Status World::step(float dt) {

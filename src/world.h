@@ -58,8 +58,9 @@ class World {
     Status destroy_cloth(cloth_id id);
     // Origin rebasing (cloth_world_shift_origin): subtract `shift` from
     // every world-frame position of the world's cloths, bodies and static
-    // colliders.
-    void shift_origin(const Vec3& shift);
+    // colliders. A shift that would take one of them out of float range
+    // is refused and changes nothing.
+    Status shift_origin(const Vec3& shift);
 
     // Step every cloth; a cloth that goes non-finite is restored and
     // reported, the others advance. All cloths advance together, stage by

@@ -233,7 +233,8 @@ CLOTH_API cloth_result cloth_world_set_gravity(cloth_world_id world, const float
 /// the shift brings nearer the origin moves exactly; one it takes farther
 /// away rounds as any position there would. Call it between steps, like
 /// every other call on the world. NULL is CLOTH_ERROR_NULL_POINTER, a non-finite shift
-/// CLOTH_ERROR_NOT_FINITE; either leaves the world unchanged.
+/// CLOTH_ERROR_NOT_FINITE, and a shift that would take any position out of
+/// float range CLOTH_ERROR_INVALID_VALUE; each leaves the world unchanged.
 CLOTH_API cloth_result cloth_world_shift_origin(cloth_world_id world, const float shift[3]);
 
 /// Advance every cloth of the world by `dt` seconds (0 < dt <= 1). Each

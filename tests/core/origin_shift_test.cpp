@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 namespace {
@@ -190,6 +191,25 @@ TEST(OriginShift, StaticCollidersMoveWithTheWorld) {
     }
     EXPECT_GT(touching, 3) << "the flag should press on the sphere";
     EXPECT_GT(deepest, 0.009) << "a particle went into the sphere (thickness 0.01 m)";
+}
+
+TEST(OriginShift, AShiftThatWouldOverflowAPositionIsRefusedAndMovesNothing) {
+    // A fuzzer finding: a finite shift can still take a far position to
+    // infinity, which no later step could undo.
+    Scene s(4, 4);
+    const cloth_body_id body = make_body(s.world);
+    const uint32_t far = 5;
+    const float out_there[3] = {-3e38f, 0.0f, 0.0f};
+    ASSERT_EQ(cloth_set_positions(s.cloth, &far, out_there, 1), CLOTH_OK);
+    const std::vector<float> before = s.positions();
+    const float shift[3] = {3e38f, 1.0f, 0.0f};
+    EXPECT_EQ(cloth_world_shift_origin(s.world, shift), CLOTH_ERROR_INVALID_VALUE);
+    const std::vector<float> after = s.positions();
+    EXPECT_EQ(std::memcmp(before.data(), after.data(), before.size() * sizeof(float)), 0)
+        << "a refused shift moved particles";
+    float position[3], rotation[4];
+    ASSERT_EQ(cloth_body_get_pose(body, position, rotation), CLOTH_OK);
+    EXPECT_EQ(position[1], 0.0f) << "a refused shift moved a body";
 }
 
 }  // namespace
