@@ -1,4 +1,4 @@
-// C API: version, worlds and stepping. Validation runs completely before
+// C API: version, worlds, their workers and stepping. Validation runs completely before
 // anything is changed, so a failing call changes nothing.
 #include <cloth/cloth.h>
 
@@ -103,6 +103,20 @@ CLOTH_API cloth_result cloth_world_destroy(cloth_world_id id) {
         const HostMemory memory = *world->memory();
         world->~World();
         memory.deallocate(world, sizeof(World));
+        return {};
+    });
+}
+
+CLOTH_API cloth_result cloth_world_set_worker_spin(cloth_world_id id, uint32_t microseconds) {
+    return api_call(__func__, [&](const World*& log_world) -> Status {
+        World* world;
+        Status s = get_world(id, world, log_world);
+        if (!s.ok()) return s;
+        if (microseconds > kMaxWorkerSpinMicroseconds) {
+            return Status::error(CLOTH_ERROR_INVALID_VALUE, "worker spin of %u us is more than %u us (1 s)",
+                                 microseconds, kMaxWorkerSpinMicroseconds);
+        }
+        world->set_worker_spin(microseconds);
         return {};
     });
 }

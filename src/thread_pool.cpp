@@ -11,6 +11,7 @@
 #include "thread_pool.h"
 
 #include <algorithm>
+#include <chrono>
 
 namespace cloth {
 namespace {
@@ -21,9 +22,9 @@ inline void cpu_pause() {
 #endif
 }
 
-// Spin iterations before a worker sleeps: within a frame the next stage
-// comes within microseconds, between frames it is milliseconds away.
-constexpr uint32_t kSpinBeforeSleep = 1u << 14;
+// Pause instructions between two clock reads of a polling worker (a read
+// costs about three pauses).
+constexpr uint32_t kPausesPerClockRead = 32;
 // Spin iterations of a waiting stepping thread before it yields its core
 // (the machine may have fewer cores than workers).
 constexpr uint32_t kSpinBeforeYield = 1u << 10;
@@ -115,10 +116,13 @@ void ThreadPool::worker_main(uint32_t worker) {
     uint32_t seen = 0;
     auto has_work = [&] { return stop_.load() || epoch_of(ticket_.load()) != seen; };
     for (;;) {
-        uint32_t spin = 0;
-        while (!has_work() && spin < kSpinBeforeSleep) {
+        // Poll for spin_ns_ after the last job, then sleep.
+        const auto spin = std::chrono::nanoseconds(spin_ns_.load(std::memory_order_relaxed));
+        const auto idle_since = std::chrono::steady_clock::now();
+        for (uint32_t pauses = 1; !has_work(); ++pauses) {
             cpu_pause();
-            ++spin;
+            if (pauses % kPausesPerClockRead == 0 && std::chrono::steady_clock::now() - idle_since >= spin)
+                break;
         }
         if (!has_work()) {
             std::unique_lock<std::mutex> lock(mutex_);

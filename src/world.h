@@ -74,6 +74,8 @@ class World {
     // Profiling (frame_profile.h). Recording keeps up to max_tasks task
     // records per frame (0: off, frees them).
     void set_profiling(uint32_t max_tasks);
+    // cloth_world_set_worker_spin: the built-in pool's polling time.
+    void set_worker_spin(uint32_t microseconds) { pool_.set_spin(microseconds); }
     const FrameProfile& frame_profile() const { return profile_; }
     // Per-frame CPU budget in milliseconds (0: none); with one, every frame
     // reports overrun and the budget policy adjusts policy-enabled cloths.

@@ -78,7 +78,7 @@ extern "C" {
 /* ------------------------------------------------------------------ */
 
 #define CLOTH_VERSION_MAJOR 1
-#define CLOTH_VERSION_MINOR 2
+#define CLOTH_VERSION_MINOR 3
 #define CLOTH_VERSION_PATCH 0
 
 /// Library version. A library with another major version than the header a
@@ -468,6 +468,18 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);
  * bit-identical in every case: every sum is formed in a fixed order, with
  * no atomics or locks, whatever worker runs a group. Task callbacks must
  * not call back into this API. */
+
+/// How long an idle worker of the world's own threads (worker_count > 1,
+/// no host callbacks) keeps polling for work before it sleeps, in
+/// microseconds; default 500, at most 1000000. Polling costs CPU time on
+/// those threads while nothing runs; sleeping makes the next cloth_step
+/// wait for its workers to wake up (tens of microseconds, and on a busy
+/// machine their caches go cold): Jobs/Speedup* in tests/bench measure
+/// both. A host that calls cloth_step back to back, or wants the most
+/// from two cores, raises it above the time between its steps; 0 sleeps
+/// at once. Results do not depend on it. Without the world's own threads
+/// the value is kept and has no effect.
+CLOTH_API cloth_result cloth_world_set_worker_spin(cloth_world_id world, uint32_t microseconds);
 
 /// The stages of a step, in the order a substep runs them.
 typedef enum cloth_stage {

@@ -4,6 +4,11 @@
 //
 //   Jobs/Speedup128      one 128 x 128 flag: 1 worker vs 2 (ratio = speed-up)
 //   Jobs/Speedup16x32    16 flags of 32 x 32 in one world: 1 vs 2 workers
+//   .../Polling          the same with the second worker polling for 2 ms
+//                        after a step (cloth_world_set_worker_spin) instead
+//                        of the default 0.5 ms: here each world waits for
+//                        the other's step (over 1 ms), so at the default
+//                        its worker sleeps and every step pays its wake-up
 //   Jobs/Overhead32      one 32 x 32 flag: 1 worker vs 2 (ratio > 1: 2 workers faster)
 //   Jobs/FeaturesOff     a 64 x 64 cloth with bend springs, air and
 //                        self-collision off, stepped through the world and
@@ -75,10 +80,17 @@ SceneConfig flags(uint32_t resolution, uint32_t copies, uint32_t workers) {
     return config;
 }
 
-void workers_1_vs_2(benchmark::State& state, uint32_t resolution, uint32_t copies) {
+// A worker polling time that spans the other world's step in run_pair.
+constexpr uint32_t kPollingSpinMicroseconds = 2000;
+
+void workers_1_vs_2(benchmark::State& state, uint32_t resolution, uint32_t copies, uint32_t spin_us = 0) {
     Scene one(flags(resolution, copies, 1)), two(flags(resolution, copies, 2));
     if (!one.ok() || !two.ok()) {
         state.SkipWithError("scene");
+        return;
+    }
+    if (spin_us > 0 && cloth_world_set_worker_spin(two.world(), spin_us) != CLOTH_OK) {
+        state.SkipWithError("cloth_world_set_worker_spin");
         return;
     }
     run_pair(
@@ -88,6 +100,12 @@ void workers_1_vs_2(benchmark::State& state, uint32_t resolution, uint32_t copie
 void BM_Speedup128(benchmark::State& state) { workers_1_vs_2(state, 128, 1); }
 void BM_Speedup16x32(benchmark::State& state) { workers_1_vs_2(state, 32, 16); }
 void BM_Overhead32(benchmark::State& state) { workers_1_vs_2(state, 32, 1); }
+void BM_Speedup128Polling(benchmark::State& state) {
+    workers_1_vs_2(state, 128, 1, kPollingSpinMicroseconds);
+}
+void BM_Speedup16x32Polling(benchmark::State& state) {
+    workers_1_vs_2(state, 32, 16, kPollingSpinMicroseconds);
+}
 
 void BM_FeaturesOff(benchmark::State& state) {
     // Through the world: structural and shear springs only, still air, no
@@ -164,6 +182,14 @@ void BM_Sleeping(benchmark::State& state) {
 
 BENCHMARK(BM_Speedup128)->Name("Jobs/Speedup128")->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Speedup16x32)->Name("Jobs/Speedup16x32")->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Speedup128Polling)
+    ->Name("Jobs/Speedup128/Polling")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Speedup16x32Polling)
+    ->Name("Jobs/Speedup16x32/Polling")
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Overhead32)->Name("Jobs/Overhead32")->UseManualTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FeaturesOff)->Name("Jobs/FeaturesOff")->UseManualTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Sleeping)->Name("Jobs/Sleeping")->Unit(benchmark::kNanosecond);

@@ -579,6 +579,7 @@ TEST_F(BadInput, EveryWorldFunctionRejectsNullStaleAndOutOfTableWorldIdsAndChang
         SCOPED_TRACE(b.what);
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_world_set_gravity(b.id, gravity));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_world_shift_origin(b.id, gravity));
+        EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_world_set_worker_spin(b.id, 100));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_step(b.id, kFrame));
         EXPECT_REJECTED_UNLOGGED(CLOTH_ERROR_INVALID_HANDLE,
                                  cloth_fabric_create_grid(b.id, &grid, &outs_.fabric));
@@ -999,6 +1000,13 @@ TEST_F(BadInput, ShiftOriginNonFiniteReturnsNotFiniteAndMovesNothing) {
             shift[axis] = bad;
             EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_world_shift_origin(a_.world, shift));
         }
+    }
+}
+
+TEST_F(BadInput, WorkerSpinOverOneSecondReturnsInvalidValue) {
+    for (uint32_t spin : {1000001u, 0xFFFFFFFFu}) {
+        SCOPED_TRACE("spin = " + std::to_string(spin));
+        EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_world_set_worker_spin(a_.world, spin));
     }
 }
 

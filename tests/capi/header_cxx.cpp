@@ -114,6 +114,7 @@ CLOTH_CHECK_SIGNATURE(cloth_world_create, cloth_result (*)(const cloth_world_des
 CLOTH_CHECK_SIGNATURE(cloth_world_destroy, cloth_result (*)(cloth_world_id));
 CLOTH_CHECK_SIGNATURE(cloth_world_set_gravity, cloth_result (*)(cloth_world_id, const float*));
 CLOTH_CHECK_SIGNATURE(cloth_world_shift_origin, cloth_result (*)(cloth_world_id, const float*));
+CLOTH_CHECK_SIGNATURE(cloth_world_set_worker_spin, cloth_result (*)(cloth_world_id, uint32_t));
 CLOTH_CHECK_SIGNATURE(cloth_step, cloth_result (*)(cloth_world_id, float));
 CLOTH_CHECK_SIGNATURE(cloth_default_grid_desc, cloth_grid_desc (*)());
 CLOTH_CHECK_SIGNATURE(cloth_default_mesh_desc, cloth_mesh_desc (*)());

@@ -139,7 +139,8 @@ uint64_t fnv1a(uint64_t hash, const void* data, size_t size) {
 // sweeps and two substeps per step, and a second flag in the same world so
 // the stages of two cloths share the workers. Hash of every cloth's
 // positions and velocities.
-uint64_t flag_hash(const cloth_world_desc& world) {
+// spin_us: cloth_world_set_worker_spin (0: keep the default).
+uint64_t flag_hash(const cloth_world_desc& world, uint32_t spin_us = 0) {
     SceneConfig config;
     config.kind = SceneKind::kFlagInWind;
     config.resolution = 40;
@@ -150,6 +151,7 @@ uint64_t flag_hash(const cloth_world_desc& world) {
     config.copies = 2;
     Scene scene(config);
     EXPECT_TRUE(scene.ok()) << scene.error();
+    if (spin_us > 0) EXPECT_EQ(cloth_world_set_worker_spin(scene.world(), spin_us), CLOTH_OK);
     for (int step = 0; step < kSteps; ++step) EXPECT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
     uint64_t hash = 14695981039346656037ull;
     std::vector<float> values(3 * static_cast<size_t>(scene.particle_count()));
@@ -170,6 +172,13 @@ TEST(Determinism, FlagHashIsTheSameForEveryWorkerCountAndForTheHostJobSystem) {
         cloth_world_desc desc = cloth_default_world_desc();
         desc.worker_count = workers;
         EXPECT_EQ(flag_hash(desc), reference) << workers << " workers";
+    }
+    // Workers that sleep after every stage (1 us of polling) or poll for a
+    // whole second: the schedule changes, the bits do not.
+    for (uint32_t spin_us : {1u, 1000000u}) {
+        cloth_world_desc desc = cloth_default_world_desc();
+        desc.worker_count = 2;
+        EXPECT_EQ(flag_hash(desc, spin_us), reference) << "2 workers polling for " << spin_us << " us";
     }
     HostJobSystem host;
     cloth_world_desc desc = cloth_default_world_desc();

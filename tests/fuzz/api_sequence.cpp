@@ -1075,6 +1075,9 @@ void Harness::profiling() {
             static const uint32_t kBig[] = {(1u << 24) + 1, 0xFFFFFFFFu, 4096, 0x80000000u};
             const uint32_t max_tasks = b < 224 ? b % 65 : kBig[b % 4];
             check(cloth_world_set_profiling(world, max_tasks), "cloth_world_set_profiling");
+            // Worker polling time: none, short, the default, or over the 1 s limit.
+            static const uint32_t kSpins[] = {0, 7, 500, 1000001u};
+            check(cloth_world_set_worker_spin(world, kSpins[b % 4]), "cloth_world_set_worker_spin");
             break;
         }
         case 1: {
