@@ -248,6 +248,18 @@ Status ClothInstance::step(float dt, const Vec3& gravity, TaskSystem* tasks) {
     return end_frame();
 }
 
+SpringModel ClothInstance::spring_model() const {
+    SpringModel model = SpringModel::make(frame_solver_.compression_safe_jacobian);
+    // The strain cable (springs.h) with a strain limit and an implicit
+    // solver; the explicit integrator, whose step a spring 100 times
+    // stiffer would blow up, relies on the projection passes alone.
+    if (frame_solver_.strain_limit.max_strain > 0 && frame_solver_.kind != CLOTH_SOLVER_EXPLICIT) {
+        model.cable_stretch = 1.0f + frame_solver_.strain_limit.max_strain;
+        model.cable_factor = kStrainCableStiffness;
+    }
+    return model;
+}
+
 bool ClothInstance::has_air() const {
     return aero_.air_density > 0 && (aero_.drag_coefficient > 0 || aero_.lift_coefficient > 0);
 }
@@ -562,8 +574,7 @@ CLOTH_HOT_LOOP void ClothInstance::run_forces(uint32_t group) {
     uint32_t spring_begin, spring_end;
     group_items(group, springs_->item_count(), spring_begin, spring_end);
     const float h = frame_solver_.kind == CLOTH_SOLVER_EXPLICIT ? 0.0f : h_;  // h = 0: plain forces
-    springs_->evaluate(x_, v_, h, JacobianClamp::make(frame_solver_.compression_safe_jacobian), spring_begin,
-                       spring_end);
+    springs_->evaluate(x_, v_, h, spring_model(), spring_begin, spring_end);
 }
 
 void ClothInstance::run_assemble(uint32_t group) {

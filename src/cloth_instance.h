@@ -18,6 +18,7 @@
 #include "settings.h"
 #include "soa.h"
 #include "solvers.h"
+#include "springs.h"
 #include "status.h"
 #include "step_stage.h"
 #include "task_system.h"
@@ -111,6 +112,9 @@ class ClothInstance {
 
     void set_material(const Material& material);  // recomputes masses
     const Material& material() const { return material_; }
+    // How the last frame shaped its springs (compression-safe Jacobian,
+    // strain cable: springs.h).
+    SpringModel spring_model() const;
     SolverSettings& solver() { return solver_; }
     const SolverSettings& solver() const { return solver_; }
     AeroParams& aero() { return aero_; }

@@ -17,7 +17,7 @@ namespace {
 
 // Every array is a __restrict parameter so GCC vectorizes the loops.
 CLOTH_HOT_LOOP void evaluate_family_kernel(
-    uint32_t begin, uint32_t end, uint32_t offset, float rest, float k, float c, float h, JacobianClamp clamp,
+    uint32_t begin, uint32_t end, uint32_t offset, float rest, float k, float c, float h, SpringModel clamp,
     const float* __restrict mask, const float* __restrict px, const float* __restrict py,
     const float* __restrict pz, const float* __restrict vx, const float* __restrict vy,
     const float* __restrict vz, float* __restrict fx, float* __restrict fy, float* __restrict fz,
@@ -161,7 +161,7 @@ class GridSprings final : public SpringTerms {
 
     uint32_t item_count() const override { return fabric_->particle_count(); }
 
-    void evaluate(const Vec3Soa& x, const Vec3Soa& v, float h, JacobianClamp clamp, uint32_t begin,
+    void evaluate(const Vec3Soa& x, const Vec3Soa& v, float h, SpringModel clamp, uint32_t begin,
                   uint32_t end) override {
         const uint32_t n = fabric_->particle_count(), pad = max_offset_;
         for (size_t f = 0; f < terms_.size(); ++f) {

@@ -10,7 +10,7 @@ namespace {
 // The kernels take every array as a __restrict parameter: GCC trusts
 // restrict on parameters (not on locals) and only then vectorizes the
 // indexed loads.
-void evaluate_kernel(uint32_t begin, uint32_t end, float h, JacobianClamp clamp,
+void evaluate_kernel(uint32_t begin, uint32_t end, float h, SpringModel clamp,
                      const uint32_t* __restrict first, const uint32_t* __restrict second,
                      const float* __restrict rest, const float* __restrict stiffness,
                      const float* __restrict damping, const float* __restrict px, const float* __restrict py,
@@ -110,7 +110,7 @@ class IndexedSprings final : public SpringTerms {
 
     uint32_t item_count() const override { return fabric_->spring_count(); }
 
-    void evaluate(const Vec3Soa& x, const Vec3Soa& v, float h, JacobianClamp clamp, uint32_t begin,
+    void evaluate(const Vec3Soa& x, const Vec3Soa& v, float h, SpringModel clamp, uint32_t begin,
                   uint32_t end) override {
         const Fabric& f = *fabric_;
         evaluate_kernel(begin, end, h, clamp, f.spring_first.data(), f.spring_second.data(),

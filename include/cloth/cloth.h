@@ -353,12 +353,15 @@ typedef struct cloth_solver_settings {
 
 CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
 
-/// Strain limiting (Provot 1995) after every substep: structural and shear
-/// springs longer than (1 + max_strain) times their rest length are pulled
-/// back, `iterations` parallel passes per substep, moving positions and
-/// velocities together. Off by default (the default solver holds strain
-/// without it); applies to every solver kind once set. Set with
-/// cloth_set_strain_limit; cloth_set_solver keeps it.
+/// Strain limiting, in two parts. Inside the solve (every kind but
+/// CLOTH_SOLVER_EXPLICIT): a spring longer than (1 + max_strain) times its
+/// rest length is held by a cable 100 times as stiff as the spring, which
+/// the implicit solve spreads over the whole cloth at once (stats count its
+/// energy). After every substep (Provot 1995): structural and shear springs
+/// still longer than that are pulled back, `iterations` parallel passes,
+/// moving positions and velocities together. Off by default, but the
+/// default solver sets max_strain 0.08 for itself; applies to every solver
+/// kind once set. Set with cloth_set_strain_limit; cloth_set_solver keeps it.
 typedef struct cloth_strain_limit {
     uint32_t struct_size;  ///< sizeof(cloth_strain_limit)
     float max_strain;      ///< >= 0, finite; 0 turns limiting off; default 0
@@ -443,7 +446,7 @@ typedef struct cloth_stats {
     uint32_t struct_size;   ///< set by the caller to sizeof(cloth_stats)
     double kinetic_energy;  ///< J, free particles only
     double gravity_energy;  ///< J, -m g . x (height energy relative to the origin), free particles only
-    double elastic_energy;  ///< J, sum of k (L - l0)^2 / 2 over springs
+    double elastic_energy;  ///< J, sum of k (L - l0)^2 / 2 over springs, plus taut strain cables
     float max_strain;       ///< max over structural springs of (L - l0) / l0
     float mean_strain;      ///< mean of |L - l0| / l0 over structural springs
     float max_speed;        ///< m/s

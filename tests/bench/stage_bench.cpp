@@ -45,7 +45,7 @@ struct StageFixture {
             v.set(i, Vec3(0.01f * static_cast<float>(i % 3), 0.0f, 0.0f));
         }
         springs = make_spring_terms(&memory, fabric, material);
-        springs->evaluate(x, v, kH, JacobianClamp::make(true), 0, springs->item_count());
+        springs->evaluate(x, v, kH, SpringModel::make(true), 0, springs->item_count());
         assemble();
     }
     AssemblyPass assembly() const {
@@ -73,7 +73,7 @@ void BM_Stage_AirGather(benchmark::State& s) {
 }
 void BM_Stage_Springs(benchmark::State& s) {
     run_stage(s, [](StageFixture& f) {
-        f.springs->evaluate(f.x, f.v, StageFixture::kH, JacobianClamp::make(true), 0,
+        f.springs->evaluate(f.x, f.v, StageFixture::kH, SpringModel::make(true), 0,
                             f.springs->item_count());
     });
 }

@@ -1,7 +1,8 @@
 // The default settings hold the scenes (a 1 m, 1 kg cloth pinned at
 // two top corners, 1/60 s frames): no energy gain beyond the work of
 // gravity, max strain under 10 %. Here a short version runs in every build
-// (32x32 at both stiffnesses, 64x64 at 1e4 N/m); `tradeoff default`
+// (32x32 at both stiffnesses; 64x64 at both outside sanitizer builds);
+// `tradeoff default`
 // runs the full 600-step matrix up to 128x128 (docs/accuracy.md).
 #include "solver_default.h"
 
@@ -64,7 +65,10 @@ TEST(DefaultSolver, HangingAndFallingFlatHoldStrainAndGainNoEnergy) {
     // same way; the 64 x 64 case costs minutes there.
     const Case cases[] = {Case{32, 1e3f, 90}, Case{32, 1e4f, 90}};
 #else
-    const Case cases[] = {Case{32, 1e3f, 90}, Case{32, 1e4f, 90}, Case{64, 1e4f, 40}};
+    // 64 x 64 at 1e3 N/m: 45 frames take in the hanging cloth's peak strain
+    // (frame 5) and the falling one's (frames 26-31), which the strain
+    // cable holds (0.107 and 0.110 with projection passes alone).
+    const Case cases[] = {Case{32, 1e3f, 90}, Case{32, 1e4f, 90}, Case{64, 1e4f, 40}, Case{64, 1e3f, 45}};
 #endif
     for (const Case c : cases) {
         for (SceneKind kind : {SceneKind::kHanging, SceneKind::kFallingFlat}) {

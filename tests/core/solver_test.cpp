@@ -80,7 +80,7 @@ TEST(Solvers, ConjugateGradientAnswerSatisfiesTheSystemThroughTheMatrixFreeProdu
     const float h = 1.0f / 60.0f;
 
     auto springs = make_spring_terms(cloth::testing::heap(), fabric, material);
-    springs->evaluate(cloth.positions(), cloth.velocities(), h, JacobianClamp::make(true), 0,
+    springs->evaluate(cloth.positions(), cloth.velocities(), h, SpringModel::make(true), 0,
                       springs->item_count());
     Vec3Soa external(cloth::testing::heap()), rhs(cloth::testing::heap()), dv(cloth::testing::heap()),
         product(cloth::testing::heap());

@@ -26,7 +26,7 @@ Gathered gather_with(const std::shared_ptr<SpringTerms>& terms, const Vec3Soa& x
     out.force.resize(n);
     out.diagonal.resize(n);
     out.products.resize(n);
-    terms->evaluate(x, v, 1.0f / 60.0f, JacobianClamp::make(true), 0, terms->item_count());
+    terms->evaluate(x, v, 1.0f / 60.0f, SpringModel::make(true), 0, terms->item_count());
     // Two ranges [0, split) and [split, n), as two workers would run them.
     for (auto [begin, end] : {std::pair<uint32_t, uint32_t>{0, split}, {split, n}}) {
         terms->gather(begin, end, out.force, &out.diagonal);
@@ -98,7 +98,7 @@ TEST(SpringTerms, AssemblySweepAndAirChangeNoBitWhenTheRangeIsSplit) {
         AeroParams air;
         air.wind = Vec3(9, 1, 4);
         const auto springs = make_spring_terms(cloth::testing::heap(), fabric, material);
-        springs->evaluate(cloth.positions(), cloth.positions(), 1.0f / 60.0f, JacobianClamp::make(true), 0,
+        springs->evaluate(cloth.positions(), cloth.positions(), 1.0f / 60.0f, SpringModel::make(true), 0,
                           springs->item_count());
 
         struct Outputs {

@@ -69,7 +69,7 @@ TEST(SpringJacobian, ViscousRightHandSideIsForcePlusDampingPlusHJTimesRelativeVe
     const Mat3 jacobian = numeric_dfi_dxj(xi, xj, rest, k, true);
     const Vec3 expected = u * (k * (d.norm() - rest)) + u * (c * u.dot(rv)) + h * jacobian * rv;
     const SpringTerm t =
-        spring_term(d.x(), d.y(), d.z(), rv.x(), rv.y(), rv.z(), rest, k, c, h, JacobianClamp::make(true));
+        spring_term(d.x(), d.y(), d.z(), rv.x(), rv.y(), rv.z(), rest, k, c, h, SpringModel::make(true));
     EXPECT_LT((Vec3(t.fx, t.fy, t.fz) - expected).norm(), 2e-3f * expected.norm());
     // A_s = h^2 J + h c u u^T.
     const Mat3 block = Sym3{t.bxx, t.bxy, t.bxz, t.byy, t.byz, t.bzz}.to_matrix();
@@ -77,9 +77,44 @@ TEST(SpringJacobian, ViscousRightHandSideIsForcePlusDampingPlusHJTimesRelativeVe
     EXPECT_LT((block - expected_block).norm(), 2e-3f * expected_block.norm());
 }
 
+// The strain cable (springs.h): past cable_stretch * l0 the force gains
+// cable_factor * k times the excess over that length, and the block the
+// kernel returns (h = 1, c = 0, rv = 0: J itself) is the derivative of
+// that force; short of it the cable does nothing.
+TEST(SpringJacobian, StrainCablePullsOnlyPastItsLengthAndItsJacobianIsTheForcesDerivative) {
+    const float rest = 0.25f, k = 40.0f;
+    SpringModel model = SpringModel::make(true);
+    model.cable_stretch = 1.08f;
+    model.cable_factor = 100.0f;
+    const Vec3 u = Vec3(-0.2f, 0.9f, 0.4f).normalized();
+    auto force = [&](const Vec3& d) {
+        const SpringTerm t = spring_term(d.x(), d.y(), d.z(), 0, 0, 0, rest, k, 0.0f, 1.0f, model);
+        return Vec3(t.fx, t.fy, t.fz);
+    };
+    for (float ratio : {1.05f, 1.12f}) {
+        SCOPED_TRACE("length / rest = " + std::to_string(ratio));
+        const Vec3 d = u * (rest * ratio);
+        const float cable = ratio > model.cable_stretch ? k * model.cable_factor : 0.0f;
+        const float expected = k * rest * (ratio - 1) + cable * rest * (ratio - model.cable_stretch);
+        EXPECT_NEAR(force(d).dot(u), expected, 1e-4f * expected);
+        // df_i/dx_j by central differences of the kernel's force.
+        Mat3 numeric;
+        const float eps = 1e-4f;
+        for (int c = 0; c < 3; ++c) {
+            Vec3 plus = d, minus = d;
+            plus[c] += eps;
+            minus[c] -= eps;
+            numeric.col(c) = (force(plus) - force(minus)) / (2 * eps);
+        }
+        const SpringTerm t = spring_term(d.x(), d.y(), d.z(), 0, 0, 0, rest, k, 0.0f, 1.0f, model);
+        const Mat3 block = Sym3{t.bxx, t.bxy, t.bxz, t.byy, t.byz, t.bzz}.to_matrix();
+        EXPECT_LT((block - numeric).norm(), 2e-3f * (k + cable)) << block << "\n" << numeric;
+    }
+}
+
 TEST(SpringJacobian, CoincidentEndsExertNoForceEvenWithTheExactJacobian) {
     const SpringTerm t =
-        spring_term(0, 0, 0, 1.0f, 2.0f, 3.0f, 0.5f, 1000.0f, 1.0f, 0.1f, JacobianClamp::make(false));
+        spring_term(0, 0, 0, 1.0f, 2.0f, 3.0f, 0.5f, 1000.0f, 1.0f, 0.1f, SpringModel::make(false));
     for (float value : {t.fx, t.fy, t.fz, t.bxx, t.bxy, t.bxz, t.byy, t.byz, t.bzz}) EXPECT_EQ(value, 0.0f);
 }
 
