@@ -37,7 +37,7 @@ class SpringTerms {
     // Stage 1 works on items [0, item_count()): springs or grid particles.
     virtual uint32_t item_count() const = 0;
     // Stage 1 for items [begin, end). h = 0 gives plain forces (explicit).
-    virtual void evaluate(const Vec3Soa& x, const Vec3Soa& v, float h, SpringModel clamp, uint32_t begin,
+    virtual void evaluate(const Vec3Soa& x, const Vec3Soa& v, float h, SpringModel model, uint32_t begin,
                           uint32_t end) = 0;
     // Stage 2 for particles [begin, end): force_i += sum of the incident
     // spring forces (signed); diagonal_i += sum of their A_s unless null.

@@ -16,13 +16,17 @@ namespace cloth {
 namespace {
 
 // Every array is a __restrict parameter so GCC vectorizes the loops.
-CLOTH_HOT_LOOP void evaluate_family_kernel(
-    uint32_t begin, uint32_t end, uint32_t offset, float rest, float k, float c, float h, SpringModel clamp,
-    const float* __restrict mask, const float* __restrict px, const float* __restrict py,
-    const float* __restrict pz, const float* __restrict vx, const float* __restrict vy,
-    const float* __restrict vz, float* __restrict fx, float* __restrict fy, float* __restrict fz,
-    float* __restrict bxx, float* __restrict bxy, float* __restrict bxz, float* __restrict byy,
-    float* __restrict byz, float* __restrict bzz) {
+// kCable: with the strain cable (springs.h).
+template <bool kCable>
+CLOTH_HOT_LOOP void evaluate_family_kernel(uint32_t begin, uint32_t end, uint32_t offset, float rest, float k,
+                                           float c, float h, SpringModel model, const float* __restrict mask,
+                                           const float* __restrict px, const float* __restrict py,
+                                           const float* __restrict pz, const float* __restrict vx,
+                                           const float* __restrict vy, const float* __restrict vz,
+                                           float* __restrict fx, float* __restrict fy, float* __restrict fz,
+                                           float* __restrict bxx, float* __restrict bxy,
+                                           float* __restrict bxz, float* __restrict byy,
+                                           float* __restrict byz, float* __restrict bzz) {
     // 64-bit indices: with j = p + offset in 32 bits (which could wrap) GCC
     // loads the second ends lane by lane instead of as one vector.
     for (size_t p = begin; p < end; ++p) {
@@ -30,8 +34,8 @@ CLOTH_HOT_LOOP void evaluate_family_kernel(
         // Where the family has no spring (grid edge) the mask zeroes k and c,
         // which zeroes the whole term.
         const SpringTerm t =
-            spring_term(px[j] - px[p], py[j] - py[p], pz[j] - pz[p], vx[j] - vx[p], vy[j] - vy[p],
-                        vz[j] - vz[p], rest, k * mask[p], c * mask[p], h, clamp);
+            spring_term<kCable>(px[j] - px[p], py[j] - py[p], pz[j] - pz[p], vx[j] - vx[p], vy[j] - vy[p],
+                                vz[j] - vz[p], rest, k * mask[p], c * mask[p], h, model);
         fx[p] = t.fx;
         fy[p] = t.fy;
         fz[p] = t.fz;
@@ -161,18 +165,20 @@ class GridSprings final : public SpringTerms {
 
     uint32_t item_count() const override { return fabric_->particle_count(); }
 
-    void evaluate(const Vec3Soa& x, const Vec3Soa& v, float h, SpringModel clamp, uint32_t begin,
+    void evaluate(const Vec3Soa& x, const Vec3Soa& v, float h, SpringModel model, uint32_t begin,
                   uint32_t end) override {
         const uint32_t n = fabric_->particle_count(), pad = max_offset_;
         for (size_t f = 0; f < terms_.size(); ++f) {
             const SpringFamily& family = fabric_->grid_families[f];
             FamilyTerms& t = terms_[f];
-            evaluate_family_kernel(begin, std::min(end, n - family.offset), family.offset, family.rest_length,
-                                   t.stiffness, t.damping, h, clamp, family.mask.data(), x.x.data(),
-                                   x.y.data(), x.z.data(), v.x.data(), v.y.data(), v.z.data(),
-                                   t.force.x.data() + pad, t.force.y.data() + pad, t.force.z.data() + pad,
-                                   t.block.xx.data() + pad, t.block.xy.data() + pad, t.block.xz.data() + pad,
-                                   t.block.yy.data() + pad, t.block.yz.data() + pad, t.block.zz.data() + pad);
+            const auto kernel =
+                model.cable_factor > 0 ? evaluate_family_kernel<true> : evaluate_family_kernel<false>;
+            kernel(begin, std::min(end, n - family.offset), family.offset, family.rest_length, t.stiffness,
+                   t.damping, h, model, family.mask.data(), x.x.data(), x.y.data(), x.z.data(), v.x.data(),
+                   v.y.data(), v.z.data(), t.force.x.data() + pad, t.force.y.data() + pad,
+                   t.force.z.data() + pad, t.block.xx.data() + pad, t.block.xy.data() + pad,
+                   t.block.xz.data() + pad, t.block.yy.data() + pad, t.block.yz.data() + pad,
+                   t.block.zz.data() + pad);
         }
     }
 

@@ -10,7 +10,9 @@ namespace {
 // The kernels take every array as a __restrict parameter: GCC trusts
 // restrict on parameters (not on locals) and only then vectorizes the
 // indexed loads.
-void evaluate_kernel(uint32_t begin, uint32_t end, float h, SpringModel clamp,
+// kCable: with the strain cable (springs.h).
+template <bool kCable>
+void evaluate_kernel(uint32_t begin, uint32_t end, float h, SpringModel model,
                      const uint32_t* __restrict first, const uint32_t* __restrict second,
                      const float* __restrict rest, const float* __restrict stiffness,
                      const float* __restrict damping, const float* __restrict px, const float* __restrict py,
@@ -22,8 +24,8 @@ void evaluate_kernel(uint32_t begin, uint32_t end, float h, SpringModel clamp,
     for (uint32_t s = begin; s < end; ++s) {
         const uint32_t i = first[s], j = second[s];
         const SpringTerm t =
-            spring_term(px[j] - px[i], py[j] - py[i], pz[j] - pz[i], vx[j] - vx[i], vy[j] - vy[i],
-                        vz[j] - vz[i], rest[s], stiffness[s], damping[s], h, clamp);
+            spring_term<kCable>(px[j] - px[i], py[j] - py[i], pz[j] - pz[i], vx[j] - vx[i], vy[j] - vy[i],
+                                vz[j] - vz[i], rest[s], stiffness[s], damping[s], h, model);
         fx[s] = t.fx;
         fy[s] = t.fy;
         fz[s] = t.fz;
@@ -110,14 +112,15 @@ class IndexedSprings final : public SpringTerms {
 
     uint32_t item_count() const override { return fabric_->spring_count(); }
 
-    void evaluate(const Vec3Soa& x, const Vec3Soa& v, float h, SpringModel clamp, uint32_t begin,
+    void evaluate(const Vec3Soa& x, const Vec3Soa& v, float h, SpringModel model, uint32_t begin,
                   uint32_t end) override {
         const Fabric& f = *fabric_;
-        evaluate_kernel(begin, end, h, clamp, f.spring_first.data(), f.spring_second.data(),
-                        f.spring_rest_length.data(), stiffness_.data(), damping_.data(), x.x.data(),
-                        x.y.data(), x.z.data(), v.x.data(), v.y.data(), v.z.data(), force_.x.data(),
-                        force_.y.data(), force_.z.data(), block_.xx.data(), block_.xy.data(),
-                        block_.xz.data(), block_.yy.data(), block_.yz.data(), block_.zz.data());
+        const auto kernel = model.cable_factor > 0 ? evaluate_kernel<true> : evaluate_kernel<false>;
+        kernel(begin, end, h, model, f.spring_first.data(), f.spring_second.data(),
+               f.spring_rest_length.data(), stiffness_.data(), damping_.data(), x.x.data(), x.y.data(),
+               x.z.data(), v.x.data(), v.y.data(), v.z.data(), force_.x.data(), force_.y.data(),
+               force_.z.data(), block_.xx.data(), block_.xy.data(), block_.xz.data(), block_.yy.data(),
+               block_.yz.data(), block_.zz.data());
     }
 
     void gather(uint32_t begin, uint32_t end, Vec3Soa& force, Sym3Soa* diagonal) const override {

@@ -61,6 +61,9 @@ struct SpringTerm {
     float bxx, bxy, bxz, byy, byz, bzz;
 };
 
+// kCable = false leaves the strain cable out at compile time (the kernels
+// pick it when model.cable_factor is 0: same result, fewer instructions).
+template <bool kCable = true>
 inline SpringTerm spring_term(float dx, float dy, float dz, float rvx, float rvy, float rvz, float rest,
                               float k, float c, float h, SpringModel model) {
     const float true_length = std::sqrt(dx * dx + dy * dy + dz * dz);
@@ -71,15 +74,21 @@ inline SpringTerm spring_term(float dx, float dy, float dz, float rvx, float rvy
     const float inv = 1.0f / length;
     const float ux = dx * inv, uy = dy * inv, uz = dz * inv;
     const float ratio = rest * inv;
-    // The cable: a stretched spring of rest length cable_rest when taut.
-    const float cable_rest = model.cable_stretch * rest;
-    const float cable = length > cable_rest ? k * model.cable_factor : 0.0f;
-    const float cable_ratio = cable_rest * inv;
-    const float a = k * std::max(model.a_min, 1.0f - ratio) + cable * (1.0f - cable_ratio);
-    const float b = k * std::min(model.ratio_max, ratio) + cable * cable_ratio;
+    float a = k * std::max(model.a_min, 1.0f - ratio);
+    float b = k * std::min(model.ratio_max, ratio);
+    float pull = k * (length - rest);
+    if constexpr (kCable) {
+        // The cable: a stretched spring of rest length cable_rest when taut.
+        const float cable_rest = model.cable_stretch * rest;
+        const float cable = length > cable_rest ? k * model.cable_factor : 0.0f;
+        const float cable_ratio = cable_rest * inv;
+        a += cable * (1.0f - cable_ratio);
+        b += cable * cable_ratio;
+        pull += cable * (length - cable_rest);
+    }
     const float u_dot_rv = ux * rvx + uy * rvy + uz * rvz;
     // J rv = a rv + b (u . rv) u
-    const float along = k * (length - rest) + cable * (length - cable_rest) + c * u_dot_rv + h * b * u_dot_rv;
+    const float along = pull + c * u_dot_rv + h * b * u_dot_rv;
     const float across = h * a;
     const float alpha = h * h * a, beta = h * h * b + h * c;
     return SpringTerm{ux * along + rvx * across,
