@@ -639,6 +639,12 @@ void ClothInstance::run_iterative_solver(uint32_t group) {
         case IterativeSolve::Phase::kChebyshevProduct:
             chebyshev_product(sys, begin, end, dv_, solver_work_);
             break;
+        case IterativeSolve::Phase::kChebyshevEnergy:
+            chebyshev_energy(sys, dv_, begin, end, solver_work_);
+            break;
+        case IterativeSolve::Phase::kChebyshevScale:
+            chebyshev_scale(static_cast<float>(iterative_.step_scale), begin, end, dv_);
+            break;
         case IterativeSolve::Phase::kChebyshevDirection: {
             const double rho_next = 1.0 / (2.0 * iterative_.sigma - iterative_.rho);
             chebyshev_direction(sys, static_cast<float>(rho_next * iterative_.rho),
@@ -696,9 +702,26 @@ void ClothInstance::finish_iterative_stage() {
             break;
         case IterativeSolve::Phase::kChebyshevProduct:
             ++cursor_.sweep;
-            it.go_on = cursor_.sweep < budget;
-            if (it.go_on && cursor_.sweep > 1) it.rho = 1.0 / (2.0 * it.sigma - it.rho);
-            it.next = IterativeSolve::Phase::kChebyshevDirection;
+            if (cursor_.sweep < budget) {
+                it.go_on = true;
+                if (cursor_.sweep > 1) it.rho = 1.0 / (2.0 * it.sigma - it.rho);
+                it.next = IterativeSolve::Phase::kChebyshevDirection;
+            } else {
+                it.go_on = true;  // the step length (solvers.h)
+                it.next = IterativeSolve::Phase::kChebyshevEnergy;
+            }
+            break;
+        case IterativeSolve::Phase::kChebyshevEnergy: {
+            double dwd = 0, bd = 0;
+            for (double partial : solver_work_.partial) dwd += partial;
+            for (double partial : solver_work_.partial_second) bd += partial;
+            it.step_scale = chebyshev_step_scale(dwd, bd);
+            it.go_on = it.step_scale != 1.0;
+            it.next = IterativeSolve::Phase::kChebyshevScale;
+            break;
+        }
+        case IterativeSolve::Phase::kChebyshevScale:
+            it.go_on = false;
             break;
         case IterativeSolve::Phase::kPcgDirection:
             it.go_on = true;

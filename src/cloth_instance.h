@@ -254,12 +254,15 @@ class ClothInstance {
             kChebyshevBound,
             kChebyshevStart,
             kChebyshevProduct,
-            kChebyshevDirection
+            kChebyshevDirection,
+            kChebyshevEnergy,
+            kChebyshevScale
         };
         Phase phase = Phase::kPcgStart;
         Phase next = Phase::kPcgStart;
         double rz0 = 0, rz = 0, alpha = 0, beta = 0;  // PCG
         double sigma = 0, delta = 0, rho = 0;         // Chebyshev
+        double step_scale = 1;                        // Chebyshev: the energy-minimising step length
         bool go_on = false;                           // another iteration follows
     };
     IterativeSolve iterative_;

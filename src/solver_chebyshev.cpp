@@ -1,8 +1,8 @@
 // Chebyshev semi-iteration over block Jacobi (Saad, Iterative Methods for
 // Sparse Linear Systems, Algorithm 12.1, with the block-diagonal
-// preconditioner P = D^-1). The eigenvalue interval comes from bounds that
-// hold for every cloth (solvers.h), so nothing is estimated at run time and
-// no dot product is needed: every pass is a loop over particles.
+// preconditioner P = D^-1), then one exact line search (solvers.h). The eigenvalue interval comes from bounds
+// that hold for every cloth (solvers.h), so nothing is estimated at run time and no dot product is needed:
+// every pass is a loop over particles.
 #include <algorithm>
 #include <cmath>
 
@@ -71,6 +71,35 @@ CLOTH_HOT_LOOP void chebyshev_direction(const LinearSystem& system, float keep, 
     });
 }
 
+void chebyshev_energy(const LinearSystem& system, const Vec3Soa& dv, uint32_t begin, uint32_t end,
+                      SolverWorkspace& work) {
+    multiply_system(system, dv, begin, end, work.q);
+    const Vec3Soa& b = *system.rhs;
+    for (uint32_t first = begin; first < end; first += kReductionBlock) {
+        const uint32_t last = std::min(end, first + kReductionBlock), block = first / kReductionBlock;
+        double dwd = 0, bd = 0;
+        for (uint32_t i = first; i < last; ++i) {
+            dwd +=
+                double(dv.x[i]) * work.q.x[i] + double(dv.y[i]) * work.q.y[i] + double(dv.z[i]) * work.q.z[i];
+            bd += double(dv.x[i]) * b.x[i] + double(dv.y[i]) * b.y[i] + double(dv.z[i]) * b.z[i];
+        }
+        work.partial[block] = dwd;
+        work.partial_second[block] = bd;
+    }
+}
+
+double chebyshev_step_scale(double dv_w_dv, double b_dv) {
+    return dv_w_dv > 0 ? std::max(0.0, b_dv / dv_w_dv) : 1.0;
+}
+
+void chebyshev_scale(float scale, uint32_t begin, uint32_t end, Vec3Soa& dv) {
+    for (uint32_t i = begin; i < end; ++i) {
+        dv.x[i] *= scale;
+        dv.y[i] *= scale;
+        dv.z[i] *= scale;
+    }
+}
+
 SolveReport solve_chebyshev(const LinearSystem& system, const AssemblyPass& pass, uint32_t iterations,
                             Vec3Soa& dv, SolverWorkspace& work) {
     const uint32_t n = system.particle_count;
@@ -86,6 +115,14 @@ SolveReport solve_chebyshev(const LinearSystem& system, const AssemblyPass& pass
         chebyshev_direction(system, static_cast<float>(rho_next * rho),
                             static_cast<float>(2.0 * rho_next / delta), 0, n, work);
         rho = rho_next;
+    }
+    if (iterations > 0) {
+        chebyshev_energy(system, dv, 0, n, work);
+        double dwd = 0, bd = 0;
+        for (double partial : work.partial) dwd += partial;
+        for (double partial : work.partial_second) bd += partial;
+        const double scale = chebyshev_step_scale(dwd, bd);
+        if (scale != 1.0) chebyshev_scale(static_cast<float>(scale), 0, n, dv);
     }
     SolveReport report;
     report.iterations = iterations;
