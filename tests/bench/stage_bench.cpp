@@ -73,8 +73,7 @@ void BM_Stage_AirGather(benchmark::State& s) {
 }
 void BM_Stage_Springs(benchmark::State& s) {
     run_stage(s, [](StageFixture& f) {
-        f.springs->evaluate(f.x, f.v, StageFixture::kH, SpringModel::make(true), 0,
-                            f.springs->item_count());
+        f.springs->evaluate(f.x, f.v, StageFixture::kH, SpringModel::make(true), 0, f.springs->item_count());
     });
 }
 void BM_Stage_Assembly(benchmark::State& s) {
