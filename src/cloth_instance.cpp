@@ -702,24 +702,19 @@ void ClothInstance::finish_iterative_stage() {
             break;
         case IterativeSolve::Phase::kChebyshevProduct:
             ++cursor_.sweep;
+            it.go_on = true;  // another iteration, or the line search (solvers.h)
             if (cursor_.sweep < budget) {
-                it.go_on = true;
                 if (cursor_.sweep > 1) it.rho = 1.0 / (2.0 * it.sigma - it.rho);
                 it.next = IterativeSolve::Phase::kChebyshevDirection;
             } else {
-                it.go_on = true;  // the step length (solvers.h)
                 it.next = IterativeSolve::Phase::kChebyshevEnergy;
             }
             break;
-        case IterativeSolve::Phase::kChebyshevEnergy: {
-            double dwd = 0, bd = 0;
-            for (double partial : solver_work_.partial) dwd += partial;
-            for (double partial : solver_work_.partial_second) bd += partial;
-            it.step_scale = chebyshev_step_scale(dwd, bd);
+        case IterativeSolve::Phase::kChebyshevEnergy:
+            it.step_scale = chebyshev_step_scale(solver_work_);
             it.go_on = it.step_scale != 1.0;
             it.next = IterativeSolve::Phase::kChebyshevScale;
             break;
-        }
         case IterativeSolve::Phase::kChebyshevScale:
             it.go_on = false;
             break;

@@ -1,8 +1,10 @@
 // Chebyshev semi-iteration over block Jacobi (Saad, Iterative Methods for
 // Sparse Linear Systems, Algorithm 12.1, with the block-diagonal
-// preconditioner P = D^-1), then one exact line search (solvers.h). The eigenvalue interval comes from bounds
-// that hold for every cloth (solvers.h), so nothing is estimated at run time and no dot product is needed:
-// every pass is a loop over particles.
+// preconditioner P = D^-1), then one exact line search (solvers.h). The
+// eigenvalue interval comes from bounds that hold for every cloth
+// (solvers.h), so nothing is estimated at run time and the iterations need
+// no dot product: every pass is a loop over particles. The line search
+// takes the only two, once per solve.
 #include <algorithm>
 #include <cmath>
 
@@ -88,7 +90,10 @@ void chebyshev_energy(const LinearSystem& system, const Vec3Soa& dv, uint32_t be
     }
 }
 
-double chebyshev_step_scale(double dv_w_dv, double b_dv) {
+double chebyshev_step_scale(const SolverWorkspace& work) {
+    double dv_w_dv = 0, b_dv = 0;  // block order: the same sums for any split
+    for (double partial : work.partial) dv_w_dv += partial;
+    for (double partial : work.partial_second) b_dv += partial;
     return dv_w_dv > 0 ? std::max(0.0, b_dv / dv_w_dv) : 1.0;
 }
 
@@ -118,10 +123,7 @@ SolveReport solve_chebyshev(const LinearSystem& system, const AssemblyPass& pass
     }
     if (iterations > 0) {
         chebyshev_energy(system, dv, 0, n, work);
-        double dwd = 0, bd = 0;
-        for (double partial : work.partial) dwd += partial;
-        for (double partial : work.partial_second) bd += partial;
-        const double scale = chebyshev_step_scale(dwd, bd);
+        const double scale = chebyshev_step_scale(work);
         if (scale != 1.0) chebyshev_scale(static_cast<float>(scale), 0, n, dv);
     }
     SolveReport report;

@@ -106,8 +106,9 @@ SolveReport solve_chebyshev(const LinearSystem& system, const AssemblyPass& pass
 // and b.dv (work.partial_second) per reduction block, with q = W dv.
 void chebyshev_energy(const LinearSystem& system, const Vec3Soa& dv, uint32_t begin, uint32_t end,
                       SolverWorkspace& work);
-// The line search's length b.dv / dv.W dv (not below 0; 1 when dv.W dv is 0).
-double chebyshev_step_scale(double dv_w_dv, double b_dv);
+// The line search's length b.dv / dv.W dv from chebyshev_energy's partials
+// (not below 0; 1 when dv.W dv is 0).
+double chebyshev_step_scale(const SolverWorkspace& work);
 // dv *= scale.
 void chebyshev_scale(float scale, uint32_t begin, uint32_t end, Vec3Soa& dv);
 
