@@ -77,8 +77,7 @@ void chebyshev_energy(const LinearSystem& system, const Vec3Soa& dv, uint32_t be
                       SolverWorkspace& work) {
     multiply_system(system, dv, begin, end, work.q);
     const Vec3Soa& b = *system.rhs;
-    for (uint32_t first = begin; first < end; first += kReductionBlock) {
-        const uint32_t last = std::min(end, first + kReductionBlock), block = first / kReductionBlock;
+    for_each_block(begin, end, [&](uint32_t block, uint32_t first, uint32_t last) {
         double dwd = 0, bd = 0;
         for (uint32_t i = first; i < last; ++i) {
             dwd +=
@@ -87,7 +86,7 @@ void chebyshev_energy(const LinearSystem& system, const Vec3Soa& dv, uint32_t be
         }
         work.partial[block] = dwd;
         work.partial_second[block] = bd;
-    }
+    });
 }
 
 double chebyshev_step_scale(const SolverWorkspace& work) {

@@ -6,7 +6,6 @@
 // Written by hand rather than with Eigen's CG because it must run as range
 // passes over the SoA buffers, allocate nothing and split across workers.
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 
 #include "lanes.h"
@@ -14,16 +13,6 @@
 
 namespace cloth {
 namespace {
-
-// Calls body(block, first, last) for each reduction block met by [begin, end).
-template <class Body>
-void for_each_block(uint32_t begin, uint32_t end, Body body) {
-    assert(begin % kReductionBlock == 0 && "reducing passes start on a block boundary");
-    for (uint32_t first = begin; first < end; first += kReductionBlock) {
-        const uint32_t last = first + kReductionBlock < end ? first + kReductionBlock : end;
-        body(first / kReductionBlock, first, last);
-    }
-}
 
 // Lane-wise accumulator of one block's dot product: float lanes over a
 // block (their grouping is fixed by the block's start, so the sum is the

@@ -10,6 +10,8 @@
 // every range of a reducing pass starts on a block boundary.
 #pragma once
 
+#include <cassert>
+
 #include "linear_system.h"
 #include "settings.h"
 
@@ -18,6 +20,16 @@ namespace cloth {
 constexpr uint32_t kReductionBlock = 256;
 inline uint32_t reduction_block_count(uint32_t particle_count) {
     return (particle_count + kReductionBlock - 1) / kReductionBlock;
+}
+
+// Calls body(block, first, last) for each reduction block met by [begin, end).
+template <class Body>
+void for_each_block(uint32_t begin, uint32_t end, Body body) {
+    assert(begin % kReductionBlock == 0 && "reducing passes start on a block boundary");
+    for (uint32_t first = begin; first < end; first += kReductionBlock) {
+        const uint32_t last = first + kReductionBlock < end ? first + kReductionBlock : end;
+        body(first / kReductionBlock, first, last);
+    }
 }
 
 // Scratch of the iterative solvers, sized once per cloth (no allocation per

@@ -168,11 +168,11 @@ class GridSprings final : public SpringTerms {
     void evaluate(const Vec3Soa& x, const Vec3Soa& v, float h, SpringModel model, uint32_t begin,
                   uint32_t end) override {
         const uint32_t n = fabric_->particle_count(), pad = max_offset_;
+        const auto kernel =
+            model.cable_factor > 0 ? evaluate_family_kernel<true> : evaluate_family_kernel<false>;
         for (size_t f = 0; f < terms_.size(); ++f) {
             const SpringFamily& family = fabric_->grid_families[f];
             FamilyTerms& t = terms_[f];
-            const auto kernel =
-                model.cable_factor > 0 ? evaluate_family_kernel<true> : evaluate_family_kernel<false>;
             kernel(begin, std::min(end, n - family.offset), family.offset, family.rest_length, t.stiffness,
                    t.damping, h, model, family.mask.data(), x.x.data(), x.y.data(), x.z.data(), v.x.data(),
                    v.y.data(), v.z.data(), t.force.x.data() + pad, t.force.y.data() + pad,
