@@ -37,6 +37,13 @@ constexpr uint64_t kStepWorkBudget = 100'000;   // particle-iterations per cloth
 constexpr uint64_t kInputWorkBudget = 300'000;  // per input
 constexpr int kLastResultCode = CLOTH_ERROR_OVER_BUDGET;
 
+// The harness passes a count larger than its buffer only when the library
+// must refuse it before reading: an in-range count over `buffered` becomes
+// `limit + 1`, so no call can read past a harness buffer.
+uint32_t past_limit_if_unbuffered(uint32_t count, uint32_t buffered, uint32_t limit) {
+    return count <= buffered || count > limit ? count : limit + 1;
+}
+
 [[noreturn]] void broken(const char* what, const char* detail = "") {
     std::fprintf(stderr, "cloth fuzz: contract broken: %s %s\n", what, detail);
     std::fflush(stderr);
@@ -935,8 +942,10 @@ void Harness::collider() {
             r = check(cloth_collider_create_plane(world, desc, v, a, &id), "cloth_collider_create_plane");
             break;
         case 4: {
+            // Every in-range count gets its full buffer (4096 points is small);
+            // a count past the limit must be rejected before any read.
             const uint32_t count = in_.count(16, 4096);
-            std::vector<float> points(3 * size_t{count <= 64 ? count : 1});
+            std::vector<float> points(3 * size_t{count <= 4096 ? count : 1});
             for (float& x : points)
                 x = in_.u8() < 224 ? static_cast<float>(in_.u8()) / 32.0f : in_.any_float();
             r = check(cloth_collider_create_convex_hull(world, desc, points.data(), count, &id),
@@ -944,8 +953,10 @@ void Harness::collider() {
             break;
         }
         case 5: {
-            const uint32_t vertices = in_.count(12, 1u << 24);
-            const uint32_t triangles = in_.count(12, 1u << 24);
+            // A buffer of 2^24 vertices is too big for the fuzzer, so a large
+            // claim is always one the library must reject before reading.
+            const uint32_t vertices = past_limit_if_unbuffered(in_.count(12, 1u << 24), 64, 1u << 24);
+            const uint32_t triangles = past_limit_if_unbuffered(in_.count(12, 1u << 24), 64, 1u << 24);
             std::vector<float> xyz(3 * size_t{vertices <= 64 ? vertices : 1});
             for (float& x : xyz) x = in_.u8() < 224 ? static_cast<float>(in_.u8()) / 32.0f : in_.any_float();
             std::vector<uint32_t> indices(3 * size_t{triangles <= 64 ? triangles : 1});
