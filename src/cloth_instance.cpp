@@ -24,6 +24,10 @@
 
 namespace cloth {
 
+// A staged reduction writes one partial sum per particle group into the
+// block-ordered arrays of solvers.h: a group must be exactly one block.
+static_assert(ClothInstance::kGroupSize == kReductionBlock, "one particle group per reduction block");
+
 ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fabric> fabric,
                              const Material& material, const SolverSettings& solver, const AeroParams& aero)
     : fabric_(std::move(fabric)),

@@ -89,6 +89,10 @@ Status build_triangle_mesh(const float* xyz, uint32_t vertex_count, const uint32
         lo = lo.cwiseMin(mesh.vertices[i]);
         hi = hi.cwiseMax(mesh.vertices[i]);
     }
+    // Finite vertices can still span more than a float (+-1e38 apart): the
+    // grid below divides that span.
+    if (!(hi - lo).allFinite())
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "the vertices span more than the float range");
     mesh.triangles.assign(indices, indices + 3 * static_cast<size_t>(triangle_count));
     mesh.normals.resize(triangle_count);
     double edge_sum = 0;
@@ -249,10 +253,12 @@ SurfaceQuery query_heightfield(const HeightfieldShape& f, const Vec3& p, float r
     Nearest nearest;
     if (c_hi >= 0 && r_hi >= 0 && c_lo < static_cast<float>(f.columns - 1) &&
         r_lo < static_cast<float>(f.rows - 1)) {
+        // Clamped to the field in float before the cast: a particle that
+        // moves far in one substep asks with a radius past any uint32_t.
         const uint32_t c0 = static_cast<uint32_t>(std::max(c_lo, 0.0f));
-        const uint32_t c1 = std::min(f.columns - 2, static_cast<uint32_t>(c_hi));
+        const uint32_t c1 = static_cast<uint32_t>(std::min(c_hi, static_cast<float>(f.columns - 2)));
         const uint32_t r0 = static_cast<uint32_t>(std::max(r_lo, 0.0f));
-        const uint32_t r1 = std::min(f.rows - 2, static_cast<uint32_t>(r_hi));
+        const uint32_t r1 = static_cast<uint32_t>(std::min(r_hi, static_cast<float>(f.rows - 2)));
         // Early out for the usual case, a particle well above the ground:
         // every triangle of these cells lies below their highest sample, so
         // a point more than `radius` above it is clear of all of them (the

@@ -9,7 +9,8 @@ namespace cloth {
 struct ClothMeasure {
     double kinetic_energy = 0;  // J, free particles
     double gravity_energy = 0;  // J, -m g . x summed over free particles
-    double elastic_energy = 0;  // J, k (L - l0)^2 / 2 over all springs
+    double elastic_energy = 0;  // J, k (L - l0)^2 / 2 over all springs, plus taut strain
+                                // cables under the model of the cloth's last step
     float max_strain = 0;       // max (L - l0) / l0 over structural springs
     float mean_strain = 0;      // mean |L - l0| / l0 over structural springs
     float max_speed = 0;        // m/s over all particles

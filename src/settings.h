@@ -34,7 +34,10 @@ struct AeroParams {
 // Provot-style strain limiting after each substep (strain_limit.h): off
 // unless max_strain > 0.
 struct StrainLimit {
-    float max_strain = 0;     // (L - l0) / l0 allowed on structural and shear springs
+    // (L - l0) / l0 allowed: the implicit solvers' strain cable (springs.h)
+    // holds it on every spring, bend included; the projection passes on
+    // structural and shear springs.
+    float max_strain = 0;
     uint32_t iterations = 4;  // Jacobi-style projection passes per substep
 };
 

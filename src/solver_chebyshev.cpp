@@ -7,6 +7,7 @@
 // takes the only two, once per solve.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "lanes.h"
 #include "solvers.h"
@@ -93,7 +94,12 @@ double chebyshev_step_scale(const SolverWorkspace& work) {
     double dv_w_dv = 0, b_dv = 0;  // block order: the same sums for any split
     for (double partial : work.partial) dv_w_dv += partial;
     for (double partial : work.partial_second) b_dv += partial;
-    return dv_w_dv > 0 ? std::max(0.0, b_dv / dv_w_dv) : 1.0;
+    // Not a positive finite curvature (an overflowed product, or W made
+    // indefinite by compression_safe_jacobian off): keep dv as it is, and the
+    // step's non-finite check sees what the iterations made of it.
+    if (!(dv_w_dv > 0) || !std::isfinite(dv_w_dv) || !std::isfinite(b_dv)) return 1.0;
+    // At most FLT_MAX: the scale is applied in float.
+    return std::min(std::max(0.0, b_dv / dv_w_dv), double(std::numeric_limits<float>::max()));
 }
 
 void chebyshev_scale(float scale, uint32_t begin, uint32_t end, Vec3Soa& dv) {

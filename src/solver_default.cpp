@@ -23,7 +23,11 @@ SolverSettings resolve_solver(const SolverSettings& requested, float dt, float s
     out.iterations = kDefaultPcgIterations;
     out.cg_tolerance = kDefaultPcgTolerance;
     // Substeps: the fewest that bring the substep's gamma to kDefaultSubstepGamma
-    // (gamma falls with the square of the substep count).
+    // (gamma falls with the square of the substep count). The gamma is the
+    // springs' own: a taut strain cable is 101 times as stiff, and the choice
+    // does not count it (it would multiply the cost of every stiff cloth);
+    // docs/stability.md measures where this holds, and the few cells of
+    // 1/30-1/10 s steps of soft, heavy cloth where it gains energy.
     const double gamma = static_cast<double>(dt) * dt * stiffness_per_mass;
     const double wanted = std::ceil(std::sqrt(gamma / kDefaultSubstepGamma));
     const uint32_t substeps = static_cast<uint32_t>(

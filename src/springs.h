@@ -79,12 +79,16 @@ inline SpringTerm spring_term(float dx, float dy, float dz, float rvx, float rvy
     float pull = k * (length - rest);
     if constexpr (kCable) {
         // The cable: a stretched spring of rest length cable_rest when taut.
+        // A slack cable adds exact zeros: its ratio and stretch are not even
+        // formed, since a huge accepted limit makes them inf, and 0 * inf is NaN.
         const float cable_rest = model.cable_stretch * rest;
-        const float cable = length > cable_rest ? k * model.cable_factor : 0.0f;
-        const float cable_ratio = cable_rest * inv;
+        const bool taut = length > cable_rest;
+        const float cable = taut ? k * model.cable_factor : 0.0f;
+        const float cable_ratio = taut ? cable_rest * inv : 0.0f;
+        const float cable_stretch = taut ? length - cable_rest : 0.0f;
         a += cable * (1.0f - cable_ratio);
         b += cable * cable_ratio;
-        pull += cable * (length - cable_rest);
+        pull += cable * cable_stretch;
     }
     const float u_dot_rv = ux * rvx + uy * rvy + uz * rvz;
     // J rv = a rv + b (u . rv) u

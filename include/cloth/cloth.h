@@ -480,8 +480,10 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);
 /// machine their caches go cold): Jobs/Speedup* in tests/bench measure
 /// both. A host that calls cloth_step back to back, or wants the most
 /// from two cores, raises it above the time between its steps; 0 sleeps
-/// at once. Results do not depend on it. Without the world's own threads
-/// the value is kept and has no effect.
+/// at once. A worker reads the value when it goes idle, so a change
+/// reaches a worker already polling or asleep after its next job. Results
+/// do not depend on it. Without the world's own threads the value is kept
+/// and has no effect.
 CLOTH_API cloth_result cloth_world_set_worker_spin(cloth_world_id world, uint32_t microseconds);
 
 /// The stages of a step, in the order a substep runs them.
@@ -773,7 +775,8 @@ CLOTH_API cloth_result cloth_collider_create_convex_hull(cloth_world_id world,
 /// one-sided solids of shallow depth: the front is where the winding
 /// (counter-clockwise) normal points. A particle closer than the thickness
 /// in front, or whose path crosses a triangle from the front, is pushed back
-/// in front. 1..2^24 vertices and triangles; no degenerate triangle.
+/// in front. 1..2^24 vertices and triangles; no degenerate triangle; the
+/// vertices' span must fit a float (else CLOTH_ERROR_INVALID_VALUE).
 CLOTH_API cloth_result cloth_collider_create_triangle_mesh(cloth_world_id world,
                                                            const cloth_collider_desc* desc,
                                                            const float* vertices_xyz, uint32_t vertex_count,

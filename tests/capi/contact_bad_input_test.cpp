@@ -318,6 +318,11 @@ TEST_F(ContactBadInput, ColliderCreationRejectsBadShapesAndChangesNothing) {
                     cloth_collider_create_triangle_mesh(a_.world, &d, square, 5, nullptr, 1, &out));
     EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE,
                     cloth_collider_create_triangle_mesh(a_.world, &d, tetra, 4, tri, 1, &out));
+    // Finite vertices 6.8e38 apart: their span is not a float.
+    const float huge = std::numeric_limits<float>::max();
+    const float spread[] = {0, 0, 0, 1, 0, 0, 0, 0, 1, -huge, 0, 0, huge, 0, 0};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE,
+                    cloth_collider_create_triangle_mesh(a_.world, &d, spread, 5, tri, 1, &out));
 
     const float heights[6] = {0, 0, 0, 0, 0, kNaN};
     cloth_heightfield_desc h = cloth_default_heightfield_desc();

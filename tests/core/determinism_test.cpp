@@ -151,7 +151,9 @@ uint64_t flag_hash(const cloth_world_desc& world, uint32_t spin_us = 0) {
     config.copies = 2;
     Scene scene(config);
     EXPECT_TRUE(scene.ok()) << scene.error();
-    if (spin_us > 0) EXPECT_EQ(cloth_world_set_worker_spin(scene.world(), spin_us), CLOTH_OK);
+    if (spin_us > 0) {
+        EXPECT_EQ(cloth_world_set_worker_spin(scene.world(), spin_us), CLOTH_OK);
+    }
     for (int step = 0; step < kSteps; ++step) EXPECT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
     uint64_t hash = 14695981039346656037ull;
     std::vector<float> values(3 * static_cast<size_t>(scene.particle_count()));

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "linear_system.h"
 #include "solvers.h"
@@ -169,6 +170,29 @@ TEST(ParallelSolvers, ChebyshevStepHasTheEnergyMinimisingLengthAlongItsDirection
     EXPECT_LT(phi(1.0), 0.0) << "the step lowers the energy";
     EXPECT_LE(phi(1.0), phi(0.95));
     EXPECT_LE(phi(1.0), phi(1.05));
+}
+
+// The line search only rescales dv along a positive, finite curvature: an
+// overflowed product or an indefinite W (compression_safe_jacobian off)
+// leaves dv as the iterations made it (scale 1) instead of zeroing it or
+// blowing it up, and the scale always fits the float it is applied in.
+TEST(ParallelSolvers, ChebyshevLineSearchKeepsTheStepWhenItsCurvatureIsNotPositiveAndFinite) {
+    SolverWorkspace work(heap());
+    work.resize(2 * kReductionBlock);
+    auto scale = [&](double dv_w_dv, double b_dv) {
+        work.partial = {dv_w_dv, 0.0};
+        work.partial_second = {0.0, b_dv};
+        return chebyshev_step_scale(work);
+    };
+    EXPECT_EQ(scale(2.0, 1.0), 0.5) << "the minimiser of a^2/2 dv.W dv - a b.dv";
+    EXPECT_EQ(scale(2.0, -1.0), 0.0) << "a direction that raises the energy is not taken";
+    const double inf = std::numeric_limits<double>::infinity();
+    EXPECT_EQ(scale(inf, 1.0), 1.0) << "an overflowed W dv";
+    EXPECT_EQ(scale(1.0, inf), 1.0);
+    EXPECT_EQ(scale(std::nan(""), 1.0), 1.0);
+    EXPECT_EQ(scale(0.0, 1.0), 1.0);
+    EXPECT_EQ(scale(-1.0, 1.0), 1.0) << "indefinite W";
+    EXPECT_EQ(scale(1e-300, 1.0), double(std::numeric_limits<float>::max()));
 }
 
 }  // namespace

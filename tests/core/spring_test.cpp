@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <limits>
+#include <string>
 
 #include "springs.h"
 
@@ -109,6 +111,28 @@ TEST(SpringJacobian, StrainCablePullsOnlyPastItsLengthAndItsJacobianIsTheForcesD
         const SpringTerm t = spring_term(d.x(), d.y(), d.z(), 0, 0, 0, rest, k, 0.0f, 1.0f, model);
         const Mat3 block = Sym3{t.bxx, t.bxy, t.bxz, t.byy, t.byz, t.bzz}.to_matrix();
         EXPECT_LT((block - numeric).norm(), 2e-3f * (k + cable)) << block << "\n" << numeric;
+    }
+}
+
+TEST(SpringJacobian, ASlackCableAddsExactlyNothingEvenWithAnEnormousStrainLimit) {
+    // The C API accepts any finite max_strain: up to FLT_MAX, the cable's rest
+    // length overflows to inf. A slack cable must still add exact zeros (not
+    // 0 * inf = NaN), on compressed, stretched and coincident springs alike.
+    const float rest = 0.25f, k = 1000.0f;
+    SpringModel cable = SpringModel::make(true);
+    cable.cable_stretch = 1.0f + std::numeric_limits<float>::max();
+    cable.cable_factor = 100.0f;
+    for (float ratio : {0.0f, 1e-12f, 0.5f, 1.5f, 1e6f}) {
+        SCOPED_TRACE("length / rest = " + std::to_string(ratio));
+        const float dx = rest * ratio * 0.6f, dy = rest * ratio * 0.8f;
+        const SpringTerm with = spring_term<true>(dx, dy, 0, 0.5f, -1, 2, rest, k, 1.0f, 0.01f, cable);
+        const SpringTerm without =
+            spring_term<false>(dx, dy, 0, 0.5f, -1, 2, rest, k, 1.0f, 0.01f, SpringModel::make(true));
+        const float a[] = {with.fx,  with.fy,  with.fz,  with.bxx, with.bxy,
+                           with.bxz, with.byy, with.byz, with.bzz};
+        const float b[] = {without.fx,  without.fy,  without.fz,  without.bxx, without.bxy,
+                           without.bxz, without.byy, without.byz, without.bzz};
+        for (int c = 0; c < 9; ++c) EXPECT_EQ(a[c], b[c]) << "component " << c;
     }
 }
 
