@@ -119,7 +119,7 @@ SolveReport solve_chebyshev(const LinearSystem& system, const AssemblyPass& pass
 void chebyshev_energy(const LinearSystem& system, const Vec3Soa& dv, uint32_t begin, uint32_t end,
                       SolverWorkspace& work);
 // The line search's length b.dv / dv.W dv from chebyshev_energy's partials
-// (not below 0; 1 when dv.W dv is 0).
+// (in [0, FLT_MAX]; 1, dv kept, when dv.W dv is not positive and finite).
 double chebyshev_step_scale(const SolverWorkspace& work);
 // dv *= scale.
 void chebyshev_scale(float scale, uint32_t begin, uint32_t end, Vec3Soa& dv);
