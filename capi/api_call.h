@@ -12,7 +12,7 @@
 #include <new>
 
 #include "errors.h"
-#include "world.h"
+#include "step/world.h"
 
 namespace cloth::api {
 inline constexpr uint32_t kCookie = 0x636C7468;  // "clth": the desc came from cloth_default_*()

@@ -9,7 +9,9 @@
 #include <cstring>
 
 #include "api_call.h"
-#include "settings.h"
+#include "forces/aerodynamics.h"
+#include "forces/material.h"
+#include "solve/solver_settings.h"
 
 namespace cloth::api {
 // ---------------------------------------------------------------- validation

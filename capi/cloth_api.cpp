@@ -6,7 +6,7 @@
 
 #include "api_call.h"
 #include "api_validation.h"
-#include "measure.h"
+#include "step/cloth_measure.h"
 
 using namespace cloth;
 using namespace cloth::api;

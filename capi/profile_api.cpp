@@ -6,7 +6,7 @@
 
 #include "api_call.h"
 #include "api_validation.h"
-#include "frame_profile.h"
+#include "step/frame_profile.h"
 
 using namespace cloth;
 using namespace cloth::api;

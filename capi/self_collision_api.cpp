@@ -6,7 +6,7 @@
 
 #include "api_call.h"
 #include "api_validation.h"
-#include "self_collision.h"
+#include "collide/self_collision.h"
 
 using namespace cloth;
 using namespace cloth::api;

@@ -25,8 +25,8 @@
 #include <memory>
 #include <vector>
 
-#include "cloth_instance.h"
 #include "scenes.h"
+#include "step/cloth_instance.h"
 
 namespace {
 

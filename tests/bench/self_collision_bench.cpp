@@ -16,7 +16,7 @@
 #include <memory>
 #include <vector>
 
-#include "self_collision.h"
+#include "collide/self_collision.h"
 
 namespace cloth {
 namespace {

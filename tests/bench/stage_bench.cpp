@@ -5,11 +5,12 @@
 #include <memory>
 #include <vector>
 
-#include "aerodynamics.h"
-#include "linear_system.h"
-#include "settings.h"
-#include "solvers.h"
-#include "spring_terms.h"
+#include "forces/aerodynamics.h"
+#include "forces/material.h"
+#include "forces/spring_terms.h"
+#include "solve/linear_system.h"
+#include "solve/solver_settings.h"
+#include "solve/solvers.h"
 
 namespace cloth {
 namespace {

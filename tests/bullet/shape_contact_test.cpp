@@ -26,7 +26,7 @@
 #include <random>
 #include <vector>
 
-#include "colliders.h"
+#include "collide/colliders.h"
 
 namespace {
 

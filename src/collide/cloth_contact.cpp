@@ -1,0 +1,63 @@
+#include "collide/cloth_contact.h"
+
+namespace cloth {
+
+void ClothContact::reserve_attachments(uint32_t particle_count) {
+    if (!attached_body_.empty()) return;
+    Vec3Soa offsets(attached_offset_.x.get_allocator().memory());
+    offsets.resize(particle_count);
+    HostVector<uint32_t> bodies(particle_count, UINT32_MAX, attached_body_.get_allocator());
+    attached_offset_ = std::move(offsets);
+    attached_body_ = std::move(bodies);
+}
+
+void ClothContact::attach(uint32_t particle, uint32_t body_slot, const Vec3& offset) {
+    attached_body_[particle] = body_slot;
+    attached_offset_.set(particle, offset);
+}
+
+void ClothContact::detach(uint32_t particle) {
+    if (!attached_body_.empty()) attached_body_[particle] = UINT32_MAX;
+}
+
+Pose ClothContact::body_pose(uint32_t body_slot, float fraction) const {
+    const Body& body = world_->body(body_slot).body;
+    // A carrier teleport takes the carrier's attachments to the new pose at
+    // once (the cloth moved there before the substeps).
+    if (carrier_.teleported() && body_slot == carrier_.body()) return body.target;
+    return body.pose_at(fraction);
+}
+
+Vec3 ClothContact::attached_position(uint32_t particle, float fraction) const {
+    return body_pose(attached_body_[particle], fraction).apply(attached_offset_.get(particle));
+}
+
+void ClothContact::begin_step(float dt, const float* pinned, Vec3Soa& x, Vec3Soa& v) {
+    if (!carrier_.active()) return;
+    const BodySlot& slot = world_->body(carrier_.body());
+    carrier_.begin_step(slot.body, slot.jumped ? &slot.before_jump : nullptr, dt, pinned,
+                        attached_body_.empty() ? nullptr : &attached_body_, x, v);
+}
+
+uint32_t ClothContact::collide(float h, float from, float to, const float* kinematic, uint32_t begin,
+                               uint32_t end, Vec3Soa& x, Vec3Soa& v) const {
+    uint32_t contacts = 0;
+    const HostVector<ColliderSlot>& colliders = world_->colliders();
+    for (const ColliderSlot& slot : colliders) {
+        const Collider& c = slot.collider;
+        if (!slot.live || !(c.group_bits & collision_.collider_mask)) continue;
+        MovingCollider moving;
+        moving.shape = c.shape.get();
+        if (c.body == UINT32_MAX) {
+            moving.start = moving.end = c.local;
+        } else {
+            moving.start = body_pose(c.body, from) * c.local;
+            moving.end = body_pose(c.body, to) * c.local;
+            moving.body = &world_->body(c.body).body;
+        }
+        contacts += collide_particles(moving, collision_, h, kinematic, begin, end, x, v);
+    }
+    return contacts;
+}
+
+}  // namespace cloth

@@ -1,0 +1,77 @@
+// A cloth's side of bodies and colliders: its collision settings, its
+// attachments to bodies and its carrier. ClothInstance holds one and calls
+// it at three places of the step: begin_step (carrier, once per frame),
+// attached_position (the kinematic target of an attached particle at a
+// fraction of the frame, used where pins are driven) and collide (the
+// collision stage after integration, over a particle range).
+//
+// Nothing here allocates until the feature is used: the attachment arrays
+// on the first cloth_attach, the carrier's reference shape on
+// cloth_set_carrier. The collision stage runs only while some collider
+// meets the cloth's mask.
+#pragma once
+
+#include <cstdint>
+
+#include "base/host_allocator.h"
+#include "base/soa.h"
+#include "collide/bodies.h"
+#include "collide/carrier.h"
+#include "collide/colliders.h"
+#include "collide/contact_world.h"
+
+namespace cloth {
+
+class ClothContact {
+  public:
+    explicit ClothContact(const HostMemory* memory)
+        : attached_body_(HostAllocator<uint32_t>(memory)), attached_offset_(memory), carrier_(memory) {}
+
+    void bind(const ContactWorld* world) { world_ = world; }
+    const ContactWorld* world() const { return world_; }
+
+    CollisionParams& collision() { return collision_; }
+    const CollisionParams& collision() const { return collision_; }
+
+    // Attachments. attach() may throw bad_alloc before changing anything.
+    void reserve_attachments(uint32_t particle_count);
+    void attach(uint32_t particle, uint32_t body_slot, const Vec3& offset);
+    void detach(uint32_t particle);
+    bool is_attached(uint32_t particle) const {
+        return !attached_body_.empty() && attached_body_[particle] != UINT32_MAX;
+    }
+    uint32_t attached_body(uint32_t particle) const { return attached_body_[particle]; }
+    Vec3 attached_offset(uint32_t particle) const { return attached_offset_.get(particle); }
+    // Where an attached particle is at `fraction` of the current frame.
+    Vec3 attached_position(uint32_t particle, float fraction) const;
+
+    Carrier& carrier() { return carrier_; }
+    const Carrier& carrier() const { return carrier_; }
+
+    // Once per frame, before the substeps (carrier).
+    void begin_step(float dt, const float* pinned, Vec3Soa& x, Vec3Soa& v);
+    // Whether collide() has anything to do for this cloth.
+    bool collides() const {
+        return world_ && collision_.collider_mask && world_->any_collider(collision_.collider_mask);
+    }
+    // Whether the cloth follows bodies that the host moves (attachments, a
+    // carrier or colliders): such a cloth never goes to sleep, since a body
+    // can move without any call on the cloth.
+    bool follows_bodies() const { return !attached_body_.empty() || carrier_.active() || collides(); }
+    // The collision stage over particles [begin, end) of a substep from
+    // fraction `from` to `to` of the frame, of length h. Returns the number
+    // of particle-collider contacts.
+    uint32_t collide(float h, float from, float to, const float* kinematic, uint32_t begin, uint32_t end,
+                     Vec3Soa& x, Vec3Soa& v) const;
+
+  private:
+    Pose body_pose(uint32_t body_slot, float fraction) const;
+
+    const ContactWorld* world_ = nullptr;
+    CollisionParams collision_;
+    HostVector<uint32_t> attached_body_;  // per particle body slot, UINT32_MAX: none; empty until used
+    Vec3Soa attached_offset_;             // per particle, body frame
+    Carrier carrier_;
+};
+
+}  // namespace cloth

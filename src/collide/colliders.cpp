@@ -1,0 +1,243 @@
+// The analytic shapes (sphere, capsule, box, plane), the shape dispatch,
+// and the collision stage. Hulls are in collider_hull.cpp, triangle meshes
+// and height fields in collider_mesh.cpp.
+#include "collide/colliders.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace cloth {
+
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+bool positive_finite(float value) { return std::isfinite(value) && value > 0; }
+
+SurfaceQuery query_sphere(float radius, const Vec3& p) {
+    const float length = p.norm();
+    SurfaceQuery q;
+    q.distance = length - radius;
+    q.normal = length > 0 ? Vec3(p / length) : Vec3(Vec3::UnitY());
+    return q;
+}
+
+SurfaceQuery query_capsule(float radius, float half_height, const Vec3& p) {
+    const Vec3 axis_point(0.0f, std::clamp(p.y(), -half_height, half_height), 0.0f);
+    SurfaceQuery q = query_sphere(radius, p - axis_point);
+    if (p.x() == 0 && p.z() == 0 && std::abs(p.y()) <= half_height) q.normal = Vec3::UnitX();
+    return q;
+}
+
+SurfaceQuery query_box(const Vec3& e, const Vec3& p) {
+    const Vec3 a = p.cwiseAbs();
+    const Vec3 excess = a - e;
+    SurfaceQuery q;
+    const Vec3 outside = excess.cwiseMax(0.0f);
+    const float outside_length = outside.norm();
+    if (outside_length > 0) {
+        q.distance = outside_length;
+        const Vec3 sign(p.x() < 0 ? -1.0f : 1.0f, p.y() < 0 ? -1.0f : 1.0f, p.z() < 0 ? -1.0f : 1.0f);
+        q.normal = outside.cwiseProduct(sign) / outside_length;
+        return q;
+    }
+    // Inside (or on the surface): the nearest face.
+    int axis = 0;
+    if (excess.y() > excess[axis]) axis = 1;
+    if (excess.z() > excess[axis]) axis = 2;
+    q.distance = excess[axis];
+    q.normal = Vec3::Zero();
+    q.normal[axis] = p[axis] < 0 ? -1.0f : 1.0f;
+    return q;
+}
+
+}  // namespace
+
+Status build_sphere(float radius, Shape& shape) {
+    if (!positive_finite(radius))
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "sphere radius must be > 0 and finite");
+    shape.kind = ShapeKind::kSphere;
+    shape.radius = radius;
+    shape.bound_radius = radius;
+    return {};
+}
+
+Status build_capsule(float radius, float half_height, Shape& shape) {
+    if (!positive_finite(radius))
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "capsule radius must be > 0 and finite");
+    if (!std::isfinite(half_height) || half_height < 0)
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "capsule half_height must be >= 0 and finite");
+    shape.kind = ShapeKind::kCapsule;
+    shape.radius = radius;
+    shape.half_height = half_height;
+    shape.bound_radius = radius + half_height;
+    return {};
+}
+
+Status build_box(const Vec3& half_extents, Shape& shape) {
+    for (int k = 0; k < 3; ++k) {
+        if (!positive_finite(half_extents[k]))
+            return Status::error(CLOTH_ERROR_INVALID_VALUE, "box half extents must be > 0 and finite");
+    }
+    shape.kind = ShapeKind::kBox;
+    shape.half_extents = half_extents;
+    shape.bound_radius = half_extents.norm();
+    return {};
+}
+
+Status build_plane(const Vec3& normal, float offset, Shape& shape) {
+    const float length = normal.norm();
+    if (!std::isfinite(length) || !std::isfinite(offset))
+        return Status::error(CLOTH_ERROR_NOT_FINITE, "plane normal or offset is not finite");
+    if (!(length > 1e-12f)) return Status::error(CLOTH_ERROR_INVALID_VALUE, "plane normal is zero");
+    shape.kind = ShapeKind::kPlane;
+    shape.plane_normal = normal / length;
+    shape.plane_offset = offset / length;
+    shape.bound_radius = kInfinity;
+    return {};
+}
+
+SurfaceQuery query_shape(const Shape& shape, const Vec3& p, float radius) {
+    switch (shape.kind) {
+        case ShapeKind::kSphere:
+            return query_sphere(shape.radius, p);
+        case ShapeKind::kCapsule:
+            return query_capsule(shape.radius, shape.half_height, p);
+        case ShapeKind::kBox:
+            return query_box(shape.half_extents, p);
+        case ShapeKind::kPlane:
+            return {shape.plane_normal.dot(p) - shape.plane_offset, shape.plane_normal};
+        case ShapeKind::kConvexHull:
+            return query_hull(shape.hull, p, radius);
+        case ShapeKind::kTriangleMesh:
+            return query_mesh(shape.mesh, p, radius);
+        case ShapeKind::kHeightfield:
+            return query_heightfield(shape.heightfield, p, radius);
+    }
+    return {kInfinity, Vec3::UnitY()};
+}
+
+namespace {
+
+float distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 ab = b - a;
+    const float length2 = ab.squaredNorm();
+    const float t = length2 > 0 ? std::clamp((p - a).dot(ab) / length2, 0.0f, 1.0f) : 0.0f;
+    return (p - (a + ab * t)).norm();
+}
+
+constexpr int kMaxSweepSteps = 32;
+
+}  // namespace
+
+uint32_t collide_particles(const MovingCollider& collider, const CollisionParams& params, float h,
+                           const float* kinematic, uint32_t begin, uint32_t end, Vec3Soa& x, Vec3Soa& v) {
+    const Shape& shape = *collider.shape;
+    const float thickness = params.thickness;
+    const bool bounded = std::isfinite(shape.bound_radius);
+    const Vec3 center_start = collider.start.apply(shape.bound_center);
+    const Vec3 center_end = collider.end.apply(shape.bound_center);
+    // The centre's path under slerp is an arc; half its chord bounds how far
+    // the arc strays from the chord.
+    const float reach = shape.bound_radius + thickness + 0.5f * (center_end - center_start).norm();
+    // Sphere tracing stops this close to the thickness surface.
+    const float tolerance = 1e-5f + 1e-3f * thickness;
+    uint32_t contacts = 0;
+
+    for (uint32_t i = begin; i < end; ++i) {
+        if (kinematic[i] != 0.0f) continue;
+        const Vec3 x_end = x.get(i);
+        const Vec3 velocity = v.get(i);
+        const Vec3 x_start = x_end - velocity * h;
+        const float travel = (x_end - x_start).norm();
+        if (bounded && distance_to_segment(x_end, center_start, center_end) - travel > reach) continue;
+
+        // The path in the collider's moving frame.
+        const Vec3 local_start = collider.start.apply_inverse(x_start);
+        const Vec3 local_end = collider.end.apply_inverse(x_end);
+        const Vec3 path = local_end - local_start;
+        const float length = path.norm();
+        const float radius = thickness + std::max(length, shape.query_step);
+
+        bool hit = false;
+        Vec3 contact = local_end;
+        Vec3 normal = Vec3::UnitY();
+        // From a contact point on the thickness surface: the particle ends
+        // where its path ends, but not below the contact plane (so a
+        // collider that moves past in one substep carries it), and outside
+        // the thickness. The motion along the plane is kept: a particle that
+        // touches the surface slides on it instead of being held where it
+        // touched (friction acts on the velocity below).
+        auto slide = [&](const Vec3& on_surface, const Vec3& plane_normal) {
+            const float below = (local_end - on_surface).dot(plane_normal);
+            Vec3 p = local_end;
+            normal = plane_normal;
+            if (below < 0) {
+                p -= plane_normal * below;
+                hit = true;
+            }
+            const SurfaceQuery q = query_shape(shape, p, radius);
+            if (q.distance < thickness) {
+                p += q.normal * (thickness - q.distance);
+                hit = true;
+                normal = q.normal;
+            }
+            contact = p;
+        };
+        const SurfaceQuery at_start = query_shape(shape, local_start, radius);
+        const SurfaceQuery at_end = query_shape(shape, local_end, radius);
+        if (at_start.distance < thickness) {
+            // In contact at the start: slide from the start point.
+            slide(local_start + at_start.normal * (thickness - at_start.distance), at_start.normal);
+        } else if (length > 0 && (at_end.distance < thickness ||
+                                  length > (at_start.distance - thickness) + (at_end.distance - thickness))) {
+            // Started clear: sphere-trace along the path to the first point
+            // within the thickness.
+            float t = 0;
+            SurfaceQuery q = at_start;
+            Vec3 p = local_start;
+            for (int step = 0; step < kMaxSweepSteps; ++step) {
+                const float gap = q.distance - thickness;
+                if (gap <= tolerance) {
+                    // Reached the surface: slide on from there.
+                    slide(p + q.normal * (thickness - q.distance), q.normal);
+                    hit = true;
+                    break;
+                }
+                t += gap / length;
+                if (t >= 1.0f) break;
+                p = local_start + path * t;
+                q = query_shape(shape, p, radius);
+            }
+            if (!hit && at_end.distance < thickness) {
+                hit = true;
+                contact = local_end + at_end.normal * (thickness - at_end.distance);
+                normal = at_end.normal;
+            }
+        }
+        if (!hit) continue;
+
+        ++contacts;
+        const Vec3 x_new = collider.end.apply(contact);
+        const Vec3 n = collider.end.rotation * normal;
+        const Vec3 surface_velocity = collider.body ? collider.body->point_velocity(x_new) : Vec3::Zero();
+        Vec3 relative = velocity - surface_velocity;
+        const float approach = relative.dot(n);
+        if (approach < 0) {
+            // Remove the approaching normal velocity; Coulomb friction takes
+            // up to friction * |removed| off the tangential velocity.
+            const Vec3 tangential = relative - n * approach;
+            const float tangential_speed = tangential.norm();
+            const float scale = tangential_speed > 0
+                                    ? std::max(0.0f, 1.0f - params.friction * -approach / tangential_speed)
+                                    : 0.0f;
+            relative = tangential * scale;
+        }
+        x.set(i, x_new);
+        v.set(i, surface_velocity + relative);
+    }
+    return contacts;
+}
+
+}  // namespace cloth

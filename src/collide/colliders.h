@@ -1,0 +1,149 @@
+// Collision shapes the cloth's particles stay out of, and the collision
+// stage that keeps them out.
+//
+// Every shape answers one query in its local frame: the signed distance of
+// a point (negative inside) and the outward normal at the closest surface
+// point. Convex shapes are exact solids; triangle meshes are one-sided
+// solids of shallow depth (behind a triangle only within the query radius);
+// height fields are solid below. The collision stage (collide_particles) is
+// a loop over a particle range, per collider: the particle's path over the
+// substep is taken into the collider's moving frame (start pose at the
+// substep start, end pose at its end), so a collider that crosses a particle
+// within one substep is found by sphere tracing along that path rather than
+// missed. Each particle is independent: any split of the range gives the
+// same bits.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "base/host_allocator.h"
+#include "base/math.h"
+#include "base/soa.h"
+#include "base/status.h"
+#include "collide/bodies.h"
+
+namespace cloth {
+
+enum class ShapeKind : uint8_t { kSphere, kCapsule, kBox, kPlane, kConvexHull, kTriangleMesh, kHeightfield };
+
+// Closest-surface answer of a shape query.
+struct SurfaceQuery {
+    float distance = 0;           // signed, m; negative inside; a lower bound when >= the query radius
+    Vec3 normal = Vec3::UnitY();  // outward unit normal at the closest surface point
+};
+
+// A convex polytope as outward triangles (from hull_build in collider_hull.cpp).
+struct HullShape {
+    explicit HullShape(const HostMemory* memory)
+        : vertices(HostAllocator<Vec3>(memory)),
+          triangles(HostAllocator<uint32_t>(memory)),
+          normals(HostAllocator<Vec3>(memory)),
+          offsets(HostAllocator<float>(memory)) {}
+    HostVector<Vec3> vertices;
+    HostVector<uint32_t> triangles;  // 3 per face, counter-clockwise seen from outside
+    HostVector<Vec3> normals;        // per face, unit
+    HostVector<float> offsets;       // per face: dot(normal, p) = offset on the face plane
+};
+
+// A triangle mesh with a uniform grid over its bounds (built once).
+struct MeshShape {
+    explicit MeshShape(const HostMemory* memory)
+        : vertices(HostAllocator<Vec3>(memory)),
+          triangles(HostAllocator<uint32_t>(memory)),
+          normals(HostAllocator<Vec3>(memory)),
+          cell_begin(HostAllocator<uint32_t>(memory)),
+          cell_items(HostAllocator<uint32_t>(memory)) {}
+    HostVector<Vec3> vertices;
+    HostVector<uint32_t> triangles;  // 3 per triangle
+    HostVector<Vec3> normals;        // per triangle, unit (front side)
+    Vec3 grid_min = Vec3::Zero();
+    float cell_size = 1;
+    uint32_t cells[3] = {1, 1, 1};
+    HostVector<uint32_t> cell_begin;  // CSR over cells (x fastest), size cells + 1
+    HostVector<uint32_t> cell_items;  // triangle indices
+};
+
+struct HeightfieldShape {
+    explicit HeightfieldShape(const HostMemory* memory) : heights(HostAllocator<float>(memory)) {}
+    uint32_t columns = 2, rows = 2;
+    float spacing_x = 1, spacing_z = 1;
+    HostVector<float> heights;  // row-major
+    float height(uint32_t c, uint32_t r) const { return heights[static_cast<size_t>(r) * columns + c]; }
+};
+
+// The immutable geometry of a collider, in its local frame.
+struct Shape {
+    explicit Shape(const HostMemory* memory) : hull(memory), mesh(memory), heightfield(memory) {}
+
+    ShapeKind kind = ShapeKind::kSphere;
+    float radius = 0;                   // sphere, capsule
+    float half_height = 0;              // capsule (along local y)
+    Vec3 half_extents = Vec3::Zero();   // box
+    Vec3 plane_normal = Vec3::UnitY();  // plane (unit)
+    float plane_offset = 0;             // plane: dot(n, p) <= offset is inside
+    HullShape hull;
+    MeshShape mesh;
+    HeightfieldShape heightfield;
+    // Local bounds: a sphere around the shape (unbounded shapes: infinite).
+    Vec3 bound_center = Vec3::Zero();
+    float bound_radius = 0;
+    // Meshes and height fields only know distances up to a query radius;
+    // this is the radius a sweep should use (about one grid cell).
+    float query_step = 0;
+};
+
+// The signed distance of local point p to the shape (see SurfaceQuery).
+// Distances beyond `radius` may be reported as any lower bound >= radius
+// (meshes, height fields and hulls stop looking there).
+SurfaceQuery query_shape(const Shape& shape, const Vec3& p, float radius);
+
+// Shape builders: validate, fill `shape` (bounds included) and return OK, or
+// return the error and leave `shape` unusable. Defined with their shapes.
+Status build_sphere(float radius, Shape& shape);
+Status build_capsule(float radius, float half_height, Shape& shape);
+Status build_box(const Vec3& half_extents, Shape& shape);
+Status build_plane(const Vec3& normal, float offset, Shape& shape);
+Status build_convex_hull(const float* points_xyz, uint32_t point_count, Shape& shape);
+Status build_triangle_mesh(const float* vertices_xyz, uint32_t vertex_count, const uint32_t* indices,
+                           uint32_t triangle_count, Shape& shape);
+Status build_heightfield(uint32_t columns, uint32_t rows, float spacing_x, float spacing_z,
+                         const float* heights, Shape& shape);
+
+// Per-shape queries (collider_shapes.cpp, collider_hull.cpp, collider_mesh.cpp).
+SurfaceQuery query_hull(const HullShape& hull, const Vec3& p, float radius);
+SurfaceQuery query_mesh(const MeshShape& mesh, const Vec3& p, float radius);
+SurfaceQuery query_heightfield(const HeightfieldShape& field, const Vec3& p, float radius);
+
+// Closest point to p on triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+// A collider placed in a world: shape, local pose, the body it rides on.
+struct Collider {
+    std::shared_ptr<const Shape> shape;
+    Pose local;                  // relative to the body (or the world)
+    uint32_t body = UINT32_MAX;  // body slot, or UINT32_MAX: static
+    uint32_t group_bits = 1;
+};
+
+// A collider as the collision stage sees it over one substep.
+struct MovingCollider {
+    const Shape* shape = nullptr;
+    Pose start, end;             // world poses at the substep's start and end
+    const Body* body = nullptr;  // for the surface velocity (friction); null if static
+};
+
+struct CollisionParams {
+    float thickness = 0.01f;
+    float friction = 0.3f;
+    uint32_t collider_mask = 0xFFFFFFFFu;
+};
+
+// Push particles [begin, end) out of one moving collider. x and v are the
+// positions and velocities after integration of a substep of length h (so
+// a particle's substep start is x - h v); kinematic particles (kinematic[i]
+// != 0) are skipped. Returns the number of particles that were in contact.
+uint32_t collide_particles(const MovingCollider& collider, const CollisionParams& params, float h,
+                           const float* kinematic, uint32_t begin, uint32_t end, Vec3Soa& x, Vec3Soa& v);
+
+}  // namespace cloth

@@ -1,0 +1,405 @@
+#include "fabric/fabric.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace cloth {
+
+Fabric::Fabric(const HostMemory* memory)
+    : memory(memory),
+      rest_positions(HostAllocator<Vec3>(memory)),
+      rest_area(HostAllocator<float>(memory)),
+      triangles(HostAllocator<uint32_t>(memory)),
+      spring_first(HostAllocator<uint32_t>(memory)),
+      spring_second(HostAllocator<uint32_t>(memory)),
+      spring_rest_length(HostAllocator<float>(memory)),
+      spring_kind(HostAllocator<uint8_t>(memory)),
+      incidence_offset(HostAllocator<uint32_t>(memory)),
+      incidence_spring(HostAllocator<uint32_t>(memory)),
+      triangle_incidence_offset(HostAllocator<uint32_t>(memory)),
+      triangle_incidence(HostAllocator<uint32_t>(memory)),
+      spring_slots(memory),
+      triangle_slots(memory),
+      grid_families(HostAllocator<SpringFamily>(memory)),
+      grid_triangle_shapes(HostAllocator<uint32_t>(memory)),
+      grid_cell_mask(HostAllocator<float>(memory)),
+      particle_of_vertex(HostAllocator<uint32_t>(memory)),
+      vertex_of_particle(HostAllocator<uint32_t>(memory)) {}
+
+namespace {
+
+struct SpringSpec {
+    uint32_t i, j;
+    SpringKind kind;
+};
+
+// Build CSR lists: for each particle, the items (in increasing item order)
+// that touch it. `ends(item, out)` writes the particles an item touches.
+template <class Ends>
+void build_incidence(uint32_t particle_count, uint32_t item_count, int ends_per_item, Ends ends,
+                     HostVector<uint32_t>& offset, HostVector<uint32_t>& items) {
+    offset.assign(particle_count + 1, 0);
+    uint32_t touched[3];
+    for (uint32_t item = 0; item < item_count; ++item) {
+        ends(item, touched);
+        for (int e = 0; e < ends_per_item; ++e) ++offset[touched[e] + 1];
+    }
+    for (uint32_t p = 0; p < particle_count; ++p) offset[p + 1] += offset[p];
+    items.resize(offset[particle_count]);
+    std::vector<uint32_t> cursor(offset.begin(), offset.end() - 1);
+    for (uint32_t item = 0; item < item_count; ++item) {
+        ends(item, touched);
+        for (int e = 0; e < ends_per_item; ++e) items[cursor[touched[e]]++] = item;
+    }
+}
+
+// Lays out CSR lists as padded slots (PaddedSlots) and calls
+// put(slot, p, e) for every slot of particle p: e is its CSR entry, or
+// UINT32_MAX for padding.
+template <class Put>
+void build_slots(const HostVector<uint32_t>& offset, bool with_other_and_sign, PaddedSlots& slots, Put put) {
+    const uint32_t n = static_cast<uint32_t>(offset.size() - 1);
+    const uint32_t chunks = (n + PaddedSlots::kChunk - 1) / PaddedSlots::kChunk;
+    slots.begin.resize(chunks);
+    slots.width.resize(chunks);
+    size_t total = 0;
+    for (uint32_t c = 0; c < chunks; ++c) {
+        const uint32_t first = c * PaddedSlots::kChunk, last = std::min(n, first + PaddedSlots::kChunk);
+        uint32_t width = 0;
+        for (uint32_t p = first; p < last; ++p) width = std::max(width, offset[p + 1] - offset[p]);
+        slots.begin[c] = total;
+        slots.width[c] = width;
+        total += static_cast<size_t>(width) * (last - first);
+    }
+    slots.item.resize(total);
+    if (with_other_and_sign) {
+        slots.other.resize(total);
+        slots.sign.resize(total);
+    }
+    slots.for_each_slot(n, 0, n, [&](uint32_t lo, uint32_t hi, int64_t base, uint32_t k) {
+        for (uint32_t p = lo; p < hi; ++p) {
+            put(static_cast<size_t>(base + p), p, offset[p] + k < offset[p + 1] ? offset[p] + k : UINT32_MAX);
+        }
+    });
+}
+
+// Shared tail of every builder: validates the geometry, computes rest
+// lengths, lumped areas and the incidence lists.
+Status finish_fabric(const std::vector<SpringSpec>& springs, Fabric& f) {
+    const uint32_t n = f.particle_count();
+    const uint32_t t_count = f.triangle_count();
+
+    f.rest_area.assign(n, 0.0f);
+    for (uint32_t t = 0; t < t_count; ++t) {
+        const uint32_t a = f.triangles[3 * t], b = f.triangles[3 * t + 1], c = f.triangles[3 * t + 2];
+        const Vec3 e1 = f.rest_positions[b] - f.rest_positions[a];
+        const Vec3 e2 = f.rest_positions[c] - f.rest_positions[a];
+        const float area = 0.5f * e1.cross(e2).norm();
+        const float longest = std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()});
+        if (!(area > 1e-6f * longest)) {
+            return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY, "triangle %u (%u, %u, %u) has zero area", t,
+                                 a, b, c);
+        }
+        for (uint32_t v : {a, b, c}) f.rest_area[v] += area / 3.0f;
+    }
+    for (uint32_t p = 0; p < n; ++p) {
+        if (f.rest_area[p] == 0.0f) {
+            return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY,
+                                 "vertex %u belongs to no triangle (it would have no mass)", p);
+        }
+    }
+
+    const auto count = static_cast<uint32_t>(springs.size());
+    f.spring_first.resize(count);
+    f.spring_second.resize(count);
+    f.spring_rest_length.resize(count);
+    f.spring_kind.resize(count);
+    for (uint32_t s = 0; s < count; ++s) {
+        const SpringSpec& spec = springs[s];
+        const float length = (f.rest_positions[spec.j] - f.rest_positions[spec.i]).norm();
+        if (!(length > 0.0f)) {
+            return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY,
+                                 "particles %u and %u coincide (zero-length spring)", spec.i, spec.j);
+        }
+        f.spring_first[s] = spec.i;
+        f.spring_second[s] = spec.j;
+        f.spring_rest_length[s] = length;
+        f.spring_kind[s] = spec.kind;
+        ++f.springs_of_kind[spec.kind];
+    }
+
+    build_incidence(
+        n, count, 2,
+        [&](uint32_t s, uint32_t* out) {
+            out[0] = f.spring_first[s];
+            out[1] = f.spring_second[s];
+        },
+        f.incidence_offset, f.incidence_spring);
+    // Padding: the dummy spring `count`, the particle itself at the other end, sign 0.
+    build_slots(f.incidence_offset, true, f.spring_slots, [&](size_t slot, uint32_t p, uint32_t e) {
+        const uint32_t spring = e == UINT32_MAX ? count : f.incidence_spring[e];
+        const bool first = e != UINT32_MAX && f.spring_first[spring] == p;
+        f.spring_slots.item[slot] = spring;
+        f.spring_slots.other[slot] = e == UINT32_MAX ? p
+                                     : first         ? f.spring_second[spring]
+                                                     : f.spring_first[spring];
+        f.spring_slots.sign[slot] = e == UINT32_MAX ? 0.0f : first ? 1.0f : -1.0f;
+    });
+    build_incidence(
+        n, t_count, 3,
+        [&](uint32_t t, uint32_t* out) {
+            for (int k = 0; k < 3; ++k) out[k] = f.triangles[3 * t + k];
+        },
+        f.triangle_incidence_offset, f.triangle_incidence);
+    build_slots(f.triangle_incidence_offset, false, f.triangle_slots, [&](size_t slot, uint32_t, uint32_t e) {
+        f.triangle_slots.item[slot] = e == UINT32_MAX ? t_count : f.triangle_incidence[e];
+    });
+    return {};
+}
+
+bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
+
+}  // namespace
+
+Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
+    const uint32_t cols = desc.columns, rows = desc.rows;
+    if (cols < 2 || rows < 2) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT,
+                             "grid needs at least 2 columns and 2 rows (got %u x %u)", cols, rows);
+    }
+    if (static_cast<uint64_t>(cols) * rows > kMaxParticles) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "grid of %u x %u exceeds %u particles", cols, rows,
+                             kMaxParticles);
+    }
+    if (!finite3(desc.origin) || !finite3(desc.u) || !finite3(desc.v)) {
+        return Status::error(CLOTH_ERROR_NOT_FINITE, "grid origin, u or v is not finite");
+    }
+    if (desc.spring_kinds & ~static_cast<uint32_t>(CLOTH_SPRING_ALL)) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown spring kind bits 0x%x", desc.spring_kinds);
+    }
+    const Vec3 origin(desc.origin[0], desc.origin[1], desc.origin[2]);
+    const Vec3 u(desc.u[0], desc.u[1], desc.u[2]);
+    const Vec3 v(desc.v[0], desc.v[1], desc.v[2]);
+    if (!(u.cross(v).norm() > 1e-6f * u.norm() * v.norm())) {
+        return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY, "grid edges u and v are zero or parallel");
+    }
+
+    auto index = [cols](uint32_t c, uint32_t r) { return r * cols + c; };
+    f.rest_positions.resize(static_cast<size_t>(cols) * rows);
+    for (uint32_t r = 0; r < rows; ++r) {
+        for (uint32_t c = 0; c < cols; ++c) {
+            f.rest_positions[index(c, r)] = origin +
+                                            u * (static_cast<float>(c) / static_cast<float>(cols - 1)) +
+                                            v * (static_cast<float>(r) / static_cast<float>(rows - 1));
+        }
+    }
+    // Two triangles per cell, split along the same diagonal everywhere:
+    // every interior particle then touches six triangles and gets the same
+    // lumped mass, and the triangles of cell p are two fixed shapes at p.
+    const uint32_t shapes[2][3] = {{0, 1, cols + 1}, {0, cols + 1, cols}};
+    f.grid_triangle_shapes.assign(&shapes[0][0], &shapes[0][0] + 6);
+    f.grid_cell_mask.assign(static_cast<size_t>(cols) * rows, 0.0f);
+    f.triangles.reserve(static_cast<size_t>(cols - 1) * (rows - 1) * 6);
+    for (uint32_t r = 0; r + 1 < rows; ++r) {
+        for (uint32_t c = 0; c + 1 < cols; ++c) {
+            const uint32_t p = index(c, r);
+            f.grid_cell_mask[p] = 1.0f;
+            for (const auto& shape : shapes) {
+                for (uint32_t corner : shape) f.triangles.push_back(p + corner);
+            }
+        }
+    }
+
+    // Spring families: (column step, row step, kind).
+    struct Direction {
+        int dc, dr;
+        SpringKind kind;
+        uint32_t bit;
+    };
+    const Direction directions[] = {{1, 0, kStructural, CLOTH_SPRING_STRUCTURAL},
+                                    {0, 1, kStructural, CLOTH_SPRING_STRUCTURAL},
+                                    {1, 1, kShear, CLOTH_SPRING_SHEAR},
+                                    {-1, 1, kShear, CLOTH_SPRING_SHEAR},
+                                    {2, 0, kBend, CLOTH_SPRING_BEND},
+                                    {0, 2, kBend, CLOTH_SPRING_BEND}};
+    for (const Direction& d : directions) {
+        if (!(desc.spring_kinds & d.bit)) continue;
+        SpringFamily& family = f.grid_families.emplace_back(f.memory);
+        family.offset = static_cast<uint32_t>(d.dr * static_cast<int>(cols) + d.dc);
+        family.kind = d.kind;
+        family.rest_length = (u * (static_cast<float>(d.dc) / static_cast<float>(cols - 1)) +
+                              v * (static_cast<float>(d.dr) / static_cast<float>(rows - 1)))
+                                 .norm();
+        family.mask.assign(static_cast<size_t>(cols) * rows, 0.0f);
+        for (uint32_t r = 0; r + d.dr < rows; ++r) {
+            for (uint32_t c = 0; c < cols; ++c) {
+                const int to = static_cast<int>(c) + d.dc;
+                if (to >= 0 && to < static_cast<int>(cols)) family.mask[index(c, r)] = 1.0f;
+            }
+        }
+    }
+
+    std::vector<SpringSpec> springs;
+    const uint32_t kinds = desc.spring_kinds;
+    for (uint32_t r = 0; r < rows; ++r) {
+        for (uint32_t c = 0; c < cols; ++c) {
+            const uint32_t p = index(c, r);
+            if (kinds & CLOTH_SPRING_STRUCTURAL) {
+                if (c + 1 < cols) springs.push_back({p, index(c + 1, r), kStructural});
+                if (r + 1 < rows) springs.push_back({p, index(c, r + 1), kStructural});
+            }
+            if ((kinds & CLOTH_SPRING_SHEAR) && c + 1 < cols && r + 1 < rows) {
+                springs.push_back({p, index(c + 1, r + 1), kShear});
+                springs.push_back({index(c + 1, r), index(c, r + 1), kShear});
+            }
+            if (kinds & CLOTH_SPRING_BEND) {
+                if (c + 2 < cols) springs.push_back({p, index(c + 2, r), kBend});
+                if (r + 2 < rows) springs.push_back({p, index(c, r + 2), kBend});
+            }
+        }
+    }
+    return finish_fabric(springs, f);
+}
+
+namespace {
+
+// Builds a mesh fabric with the particles in the given vertex order.
+Status build_mesh_in_given_order(const float* positions, uint32_t vertex_count, const uint32_t* indices,
+                                 uint32_t triangle_count, uint32_t spring_kinds, Fabric& f) {
+    if (!positions || !indices)
+        return Status::error(CLOTH_ERROR_NULL_POINTER, "mesh positions or indices is NULL");
+    if (vertex_count < 3 || vertex_count > kMaxParticles) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "mesh vertex_count %u is not in 3..%u", vertex_count,
+                             kMaxParticles);
+    }
+    if (triangle_count == 0 || triangle_count > 4 * kMaxParticles) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "mesh triangle_count %u is not in 1..%u",
+                             triangle_count, 4 * kMaxParticles);
+    }
+    if (spring_kinds & ~static_cast<uint32_t>(CLOTH_SPRING_ALL)) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown spring kind bits 0x%x", spring_kinds);
+    }
+    for (uint32_t p = 0; p < vertex_count; ++p) {
+        if (!finite3(positions + 3 * p))
+            return Status::error(CLOTH_ERROR_NOT_FINITE, "vertex %u is not finite", p);
+    }
+    for (uint32_t t = 0; t < triangle_count; ++t) {
+        const uint32_t* tri = indices + 3 * t;
+        for (int k = 0; k < 3; ++k) {
+            if (tri[k] >= vertex_count) {
+                return Status::error(CLOTH_ERROR_INDEX_OUT_OF_RANGE, "triangle %u uses vertex %u of %u", t,
+                                     tri[k], vertex_count);
+            }
+        }
+        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+            return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY, "triangle %u repeats a vertex (%u, %u, %u)",
+                                 t, tri[0], tri[1], tri[2]);
+        }
+    }
+
+    f.rest_positions.resize(vertex_count);
+    for (uint32_t p = 0; p < vertex_count; ++p) {
+        f.rest_positions[p] = Vec3(positions[3 * p], positions[3 * p + 1], positions[3 * p + 2]);
+    }
+    f.triangles.assign(indices, indices + 3 * static_cast<size_t>(triangle_count));
+
+    // Every edge with the vertex opposite it, sorted so that the two
+    // triangles sharing an edge sit next to each other (fixed order).
+    struct EdgeUse {
+        uint32_t lo, hi, opposite;
+        bool operator<(const EdgeUse& o) const {
+            return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : opposite < o.opposite;
+        }
+    };
+    std::vector<EdgeUse> uses;
+    uses.reserve(3 * static_cast<size_t>(triangle_count));
+    for (uint32_t t = 0; t < triangle_count; ++t) {
+        const uint32_t* tri = indices + 3 * t;
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = tri[k], b = tri[(k + 1) % 3], o = tri[(k + 2) % 3];
+            uses.push_back({std::min(a, b), std::max(a, b), o});
+        }
+    }
+    std::sort(uses.begin(), uses.end());
+
+    std::vector<SpringSpec> springs;
+    for (size_t begin = 0; begin < uses.size();) {
+        size_t end = begin + 1;
+        while (end < uses.size() && uses[end].lo == uses[begin].lo && uses[end].hi == uses[begin].hi) ++end;
+        if (spring_kinds & CLOTH_SPRING_STRUCTURAL)
+            springs.push_back({uses[begin].lo, uses[begin].hi, kStructural});
+        // An edge shared by exactly two triangles: bend spring across it.
+        if ((spring_kinds & CLOTH_SPRING_BEND) && end - begin == 2 &&
+            uses[begin].opposite != uses[begin + 1].opposite) {
+            springs.push_back({uses[begin].opposite, uses[begin + 1].opposite, kBend});
+        }
+        begin = end;
+    }
+    return finish_fabric(springs, f);
+}
+
+// Spreads the low 10 bits of v so that two zero bits follow each bit.
+uint32_t spread_bits(uint32_t v) {
+    v &= 0x3FFu;
+    v = (v | (v << 16)) & 0x030000FFu;
+    v = (v | (v << 8)) & 0x0300F00Fu;
+    v = (v | (v << 4)) & 0x030C30C3u;
+    v = (v | (v << 2)) & 0x09249249u;
+    return v;
+}
+
+// Vertices sorted by the Morton (Z-order) code of their rest positions in
+// the mesh's bounding box, ties by index: consecutive runs are compact
+// patches of the surface, whatever order the mesh came in.
+std::vector<uint32_t> spatial_order(const float* positions, uint32_t vertex_count) {
+    Vec3 lo(positions[0], positions[1], positions[2]), hi = lo;
+    for (uint32_t v = 0; v < vertex_count; ++v) {
+        const Vec3 p(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    }
+    const float extent = std::max((hi - lo).maxCoeff(), 1e-30f);
+    std::vector<std::pair<uint32_t, uint32_t>> keyed(vertex_count);
+    for (uint32_t v = 0; v < vertex_count; ++v) {
+        uint32_t code = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            const float t = (positions[3 * v + axis] - lo[axis]) / extent;  // 0..1
+            code |= spread_bits(static_cast<uint32_t>(std::min(t, 1.0f) * 1023.0f)) << axis;
+        }
+        keyed[v] = {code, v};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<uint32_t> order(vertex_count);
+    for (uint32_t k = 0; k < vertex_count; ++k) order[k] = keyed[k].second;
+    return order;
+}
+
+}  // namespace
+
+Status build_mesh_fabric(const float* positions, uint32_t vertex_count, const uint32_t* indices,
+                         uint32_t triangle_count, uint32_t spring_kinds, Fabric& f) {
+    // Validate in the host's order, so that messages name its vertices and
+    // triangles; then build again in the spatial order.
+    {
+        Fabric check(f.memory);
+        Status s =
+            build_mesh_in_given_order(positions, vertex_count, indices, triangle_count, spring_kinds, check);
+        if (!s.ok()) return s;
+    }
+    const std::vector<uint32_t> order = spatial_order(positions, vertex_count);
+    f.particle_of_vertex.resize(vertex_count);
+    f.vertex_of_particle.assign(order.begin(), order.end());
+    for (uint32_t k = 0; k < vertex_count; ++k) f.particle_of_vertex[order[k]] = k;
+    std::vector<float> sorted_positions(3 * static_cast<size_t>(vertex_count));
+    for (uint32_t k = 0; k < vertex_count; ++k) {
+        for (int axis = 0; axis < 3; ++axis) sorted_positions[3 * k + axis] = positions[3 * order[k] + axis];
+    }
+    std::vector<uint32_t> sorted_indices(3 * static_cast<size_t>(triangle_count));
+    for (size_t i = 0; i < sorted_indices.size(); ++i) sorted_indices[i] = f.particle_of_vertex[indices[i]];
+    return build_mesh_in_given_order(sorted_positions.data(), vertex_count, sorted_indices.data(),
+                                     triangle_count, spring_kinds, f);
+}
+
+}  // namespace cloth

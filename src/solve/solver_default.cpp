@@ -1,0 +1,41 @@
+#include "solve/solver_default.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cloth {
+
+float stiffness_over_mass(const Material& material, const float* mass, const float* pinned, uint32_t count) {
+    float k = 0;
+    for (const SpringParams& s : material.springs) k = std::max(k, s.stiffness);
+    float m = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        if (pinned[i] != 0.0f) continue;
+        m = m == 0 ? mass[i] : std::min(m, mass[i]);
+    }
+    return m > 0 ? k / m : 0.0f;
+}
+
+SolverSettings resolve_solver(const SolverSettings& requested, float dt, float stiffness_per_mass) {
+    if (requested.kind != CLOTH_SOLVER_DEFAULT) return requested;
+    SolverSettings out = requested;
+    out.kind = CLOTH_SOLVER_PCG;
+    out.iterations = kDefaultPcgIterations;
+    out.cg_tolerance = kDefaultPcgTolerance;
+    // Substeps: the fewest that bring the substep's gamma to kDefaultSubstepGamma
+    // (gamma falls with the square of the substep count). The gamma is the
+    // springs' own: a taut strain cable is 101 times as stiff, and the choice
+    // does not count it (it would multiply the cost of every stiff cloth);
+    // docs/stability.md measures where this holds, and the few cells of
+    // 1/30-1/10 s steps of soft, heavy cloth where it gains energy.
+    const double gamma = static_cast<double>(dt) * dt * stiffness_per_mass;
+    const double wanted = std::ceil(std::sqrt(gamma / kDefaultSubstepGamma));
+    const uint32_t substeps = static_cast<uint32_t>(
+        std::min<double>(std::max(wanted, 1.0), static_cast<double>(kDefaultMaxSubsteps)));
+    out.substeps = std::max(requested.substeps, substeps);
+    if (out.strain_limit.max_strain == 0)
+        out.strain_limit = StrainLimit{kDefaultStrainLimit, kDefaultStrainLimitPasses};
+    return out;
+}
+
+}  // namespace cloth

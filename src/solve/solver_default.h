@@ -1,0 +1,44 @@
+// What CLOTH_SOLVER_DEFAULT runs. The choice depends on the stiffest
+// spring over the lightest free particle through
+//     gamma = h^2 k_max / m_min   (algorithm.md 6),
+// the number that decides whether a cheap step holds. See docs/accuracy.md
+// for the measurements behind the thresholds.
+#pragma once
+
+#include "forces/material.h"
+#include "solve/solver_settings.h"
+
+namespace cloth {
+
+// max over spring kinds of k, over the lightest free particle's mass (0 if
+// every particle is pinned or no spring is stiff).
+float stiffness_over_mass(const Material& material, const float* mass, const float* pinned, uint32_t count);
+
+// The default: PCG with at most kDefaultPcgIterations iterations (stopping
+// early at kDefaultPcgTolerance) and S = ceil(sqrt(gamma / kDefaultSubstepGamma))
+// substeps, gamma = dt^2 k_max / m_min of the whole frame, so that each
+// substep's gamma is at most kDefaultSubstepGamma (up to kDefaultMaxSubsteps).
+// Measured in docs/accuracy.md: a substep gamma of ~700 with 16 PCG
+// iterations keeps a 1 kg cloth under 10 % strain without energy gain at
+// 64x64 and k = 1e4 N/m. Softer springs stretch more than 10 % near the pins
+// even when solved exactly (a corner spring of a 64x64, 1 kg cloth at
+// 1e3 N/m carries ~5 N: strain ~ F / (k l0) ~ 0.3), so the default also
+// limits strain to kDefaultStrainLimit unless the user set a limit.
+constexpr uint32_t kDefaultPcgIterations = 16;
+constexpr float kDefaultPcgTolerance = 1e-4f;
+constexpr double kDefaultSubstepGamma = 700.0;
+constexpr uint32_t kDefaultMaxSubsteps = 16;
+constexpr float kDefaultStrainLimit = 0.08f;
+constexpr uint32_t kDefaultStrainLimitPasses = 4;
+// The strain cable's stiffness as a multiple of the spring's own
+// (springs.h): at 10x a 128 x 128 cloth at 1e3 N/m still reached 9.5 %
+// strain with the 8 % limit, at 100x 8.3 %, and the implicit solvers stay
+// as stable as without it (docs/accuracy.md).
+constexpr float kStrainCableStiffness = 100.0f;
+
+// The settings a step of `dt` runs with: `requested` itself unless its kind
+// is CLOTH_SOLVER_DEFAULT, in which case kind, iterations and substeps
+// follow from gamma as above (requested.substeps is a lower bound).
+SolverSettings resolve_solver(const SolverSettings& requested, float dt, float stiffness_per_mass);
+
+}  // namespace cloth

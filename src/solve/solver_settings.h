@@ -1,0 +1,41 @@
+// How a cloth's substep system is solved: the solver kind and its budget,
+// the strain limit, and what a solve reports.
+#pragma once
+
+#include <cloth/cloth.h>
+
+#include <cstdint>
+
+namespace cloth {
+
+// Provot-style strain limiting after each substep (strain_limit.h): off
+// unless max_strain > 0.
+struct StrainLimit {
+    // (L - l0) / l0 allowed: the implicit solvers' strain cable (springs.h)
+    // holds it on every spring, bend included; the projection passes on
+    // structural and shear springs.
+    float max_strain = 0;
+    uint32_t iterations = 4;  // Jacobi-style projection passes per substep
+};
+
+struct SolverSettings {
+    // The core's own default is the paper's method, which internal tests
+    // build on; the public default (cloth_default_solver_settings) is
+    // CLOTH_SOLVER_DEFAULT, resolved per frame (solver_default.h).
+    cloth_solver_kind kind = CLOTH_SOLVER_JACOBI;
+    uint32_t iterations = 1;
+    uint32_t substeps = 1;
+    float cg_tolerance = 1e-6f;
+    uint32_t cg_max_iterations = 1000;
+    bool compression_safe_jacobian = true;
+    StrainLimit strain_limit;  // set with cloth_set_strain_limit, kept by cloth_set_solver
+};
+
+// What the last solve reported (for stats and tests).
+struct SolveReport {
+    uint32_t iterations = 0;
+    float residual = 0;
+    bool converged = true;
+};
+
+}  // namespace cloth

@@ -1,0 +1,294 @@
+// One simulated cloth: per-instance state over a shared Fabric (Jolt's
+// SoftBodyMotionProperties, NvCloth's Cloth). Owns its material, solver
+// settings and scratch buffers. A frame is a sequence of named stages
+// (step_stage.h), each a loop over the cloth's particle groups; the world
+// runs the stages of all its cloths together on one task system
+// (World::step), and step() runs one cloth alone.
+#pragma once
+
+#include <cloth/cloth.h>
+
+#include <algorithm>
+#include <memory>
+
+#include "base/host_allocator.h"
+#include "base/math.h"
+#include "base/soa.h"
+#include "base/status.h"
+#include "collide/cloth_contact.h"
+#include "fabric/fabric.h"
+#include "forces/aerodynamics.h"
+#include "forces/material.h"
+#include "forces/springs.h"
+#include "jobs/task_system.h"
+#include "solve/solver_settings.h"
+#include "solve/solvers.h"
+#include "step/step_stage.h"
+
+namespace cloth {
+
+class SpringTerms;
+class SelfCollision;
+struct SelfCollisionSettings;
+
+// When a cloth at rest goes to sleep (ClothInstance::set_sleep).
+struct SleepSettings {
+    bool enabled = true;
+    float max_speed = 1e-3f;  // m/s: every particle slower than this...
+    uint32_t frames = 60;     // ...for this many consecutive frames
+};
+
+// Bounds within which a world's frame budget may change a cloth's solver
+// iterations and substeps (budget_policy.h). Off by default.
+struct QualityPolicy {
+    bool enabled = false;
+    uint32_t min_iterations = 1, max_iterations = 8;
+    uint32_t min_substeps = 1, max_substeps = 4;
+};
+
+class ClothInstance {
+  public:
+    ClothInstance(const HostMemory* memory, std::shared_ptr<const Fabric> fabric, const Material& material,
+                  const SolverSettings& solver, const AeroParams& aero);
+
+    const Fabric& fabric() const { return *fabric_; }
+    uint32_t particle_count() const { return fabric_->particle_count(); }
+
+    // Advance by one frame of `dt` seconds (settings().substeps substeps),
+    // running the stages on `tasks` (serially if null). Returns
+    // CLOTH_ERROR_NONFINITE_STATE after restoring the state from before the
+    // call if the result was not finite.
+    Status step(float dt, const Vec3& gravity, TaskSystem* tasks = nullptr);
+
+    // The frame protocol World::step drives (step() is the same loop for
+    // one cloth). Serial calls are made on the stepping thread; run_task
+    // on any worker, concurrently for different tasks of one stage:
+    //   begin_frame(dt, gravity)
+    //   while (!frame_done()) {
+    //       prepare_stage();                               // serial
+    //       run_task(t, worker) for t in [0, task_count()) // parallel
+    //       finish_stage();                                // serial, after the barrier
+    //   }
+    //   end_frame()
+    void begin_frame(float dt, const Vec3& gravity);
+    bool frame_done() const { return frame_done_; }
+    Stage stage() const { return cursor_.stage; }
+    uint32_t substep() const { return cursor_.substep; }
+    void prepare_stage();
+    uint32_t task_count() const;
+    void run_task(uint32_t task, uint32_t worker);
+    void finish_stage();
+    Status end_frame();
+
+    // Sleep: a cloth whose particles all stay below sleep().max_speed for
+    // sleep().frames frames stops (velocities zero) and is skipped by the
+    // step until wake(). Everything that changes what the cloth would do
+    // wakes it: pins and their targets, positions, material, and (through
+    // the C API) solver, air and wind, gravity, self-collision; contact
+    // features call wake() when their colliders or attachments move.
+    void set_sleep(const SleepSettings& settings);
+    const SleepSettings& sleep() const { return sleep_; }
+    bool sleeping() const { return sleeping_; }
+    void wake();
+    // Origin rebasing: subtract `shift` from the positions and pin targets
+    // (between frames; everything else is relative or per frame);
+    // can_shift_origin: whether every result stays finite.
+    bool can_shift_origin(const Vec3& shift) const;
+    void shift_origin(const Vec3& shift);
+
+    // Frame-budget policy bounds; enabling clamps the solver into them.
+    void set_quality_policy(const QualityPolicy& policy);
+    const QualityPolicy& quality_policy() const { return quality_; }
+
+    // Snapshots (cloth_snapshot.cpp): the dynamic state in a flat buffer.
+    size_t snapshot_size() const;
+    void save_snapshot(void* out) const;
+    // Validates everything before changing anything.
+    Status restore_snapshot(const void* in, size_t size);
+
+    // Particle groups: [group * kGroupSize, min(n, (group + 1) * kGroupSize)).
+    // Every per-particle stage runs one task per group, so tasks carry about
+    // the same work; a group is a row band on grids (row-major order).
+    static constexpr uint32_t kGroupSize = PaddedSlots::kChunk;
+    uint32_t group_count() const { return group_count_; }
+
+    void set_material(const Material& material);  // recomputes masses
+    const Material& material() const { return material_; }
+    // How the last frame shaped its springs (compression-safe Jacobian,
+    // strain cable: springs.h).
+    SpringModel spring_model() const;
+    SolverSettings& solver() { return solver_; }
+    const SolverSettings& solver() const { return solver_; }
+    AeroParams& aero() { return aero_; }
+    const AeroParams& aero() const { return aero_; }
+
+    // Pin (kinematic, at their current positions) or release particles,
+    // given by particle index or (as the C API does) by the host's vertex
+    // index (Fabric::particle). Allocates nothing: the pinned list has room
+    // for every particle.
+    void set_pinned(const uint32_t* indices, uint32_t count, bool pinned, bool vertex_indices = false);
+    void pin(uint32_t particle) { set_pinned(&particle, 1, true); }
+    void unpin(uint32_t particle) { set_pinned(&particle, 1, false); }
+    bool is_pinned(uint32_t particle) const { return pinned_[particle] != 0.0f; }
+    void set_pin_target(uint32_t particle, const Vec3& target) {
+        pin_target_.set(particle, target);
+        wake();
+    }
+    // Teleport a particle: new position, zero velocity (and pin target).
+    void set_position(uint32_t particle, const Vec3& x);
+
+    const Vec3Soa& positions() const { return x_; }
+    const Vec3Soa& velocities() const { return v_; }
+    const HostVector<float>& masses() const { return mass_; }
+    // Unit area-weighted vertex normals of the current positions.
+    const Vec3Soa& normals() const;
+
+    // Self-collision (self_collision.h): off (null, nothing allocated) until
+    // enabled; `settings` null turns it off and frees it. Allocates when on.
+    void set_self_collision(const SelfCollisionSettings* settings);
+    const SelfCollision* self_collision() const { return self_collision_.get(); }
+    // Collision settings, attachments and carrier (cloth_contact.h).
+    ClothContact& contact() { return contact_; }
+    const ClothContact& contact() const { return contact_; }
+
+    const SolveReport& last_solve() const { return last_solve_; }
+    cloth_result last_step_result() const { return last_step_result_; }
+
+  private:
+    // Stage bodies for one task (step_stage.h lists what each does).
+    void run_air(uint32_t group);
+    void run_forces(uint32_t group);
+    void run_assemble(uint32_t group);
+    void run_jacobi_sweep(uint32_t group);
+    void run_serial_solve();
+    void run_iterative_solver(uint32_t group);  // kIterativeSolve, in its current phase
+    void run_strain_limit(uint32_t group);      // kStrainLimit
+    // Serial bookkeeping of the iterative solvers after their stages' barrier.
+    void finish_iterative_stage();
+    Stage stage_after_collisions() const;
+    LinearSystem system() const;
+    void run_integrate(uint32_t group);
+    void run_explicit(uint32_t group);
+    void run_self_collision(uint32_t group);  // the kSelf* stages
+    void run_collisions(uint32_t group);
+    void land_pins(uint32_t begin, uint32_t end, Vec3Soa& x);
+    void check_finite(uint32_t group);
+    // Puts back the state the frame started from (end_frame, on failure).
+    void restore_frame_start();
+    // Where the integration stage writes: the spare buffers while the
+    // frame-start state is still in x_ and v_ (Backup::kFirstIntegration).
+    Vec3Soa& integration_x() { return backup_ == Backup::kFirstIntegration ? backup_x_ : x_; }
+    Vec3Soa& integration_v() { return backup_ == Backup::kFirstIntegration ? backup_v_ : v_; }
+    // The stage after the current one (the plan of a frame).
+    Stage next_stage(Stage current) const;
+    Stage first_stage_of_substep() const;
+    // Item range [begin, end) of `group` when `items` items are split over
+    // the groups (springs, triangles: each has one owning group).
+    void group_items(uint32_t group, uint32_t items, uint32_t& begin, uint32_t& end) const;
+    uint32_t group_begin(uint32_t group) const { return group * kGroupSize; }
+    uint32_t group_end(uint32_t group) const { return std::min(particle_count(), (group + 1) * kGroupSize); }
+    bool has_air() const;
+    bool state_is_finite() const;
+    // Where pinned particle i is at `frame_fraction` of the current frame.
+    Vec3 pin_position(uint32_t i, float frame_fraction) const;
+
+    std::shared_ptr<const Fabric> fabric_;
+    Material material_;
+    SolverSettings solver_;
+    SolverSettings frame_solver_;  // what this frame runs: solver_ with CLOTH_SOLVER_DEFAULT resolved
+    AeroParams aero_;
+
+    // State.
+    Vec3Soa x_, v_;
+    HostVector<float> mass_;
+    HostVector<float> pinned_;          // 1 pinned, 0 free (a factor in branch-free loops)
+    HostVector<uint32_t> pinned_list_;  // the pinned particles, ascending
+    Vec3Soa pin_target_;                // where a pinned particle is at the end of the next frame
+    Vec3Soa pin_start_;                 // where it was at the start of this frame
+
+    // Scratch, sized once at creation (no allocation per step).
+    Vec3Soa external_force_;                // per particle
+    Vec3Soa triangle_force_;                // per triangle, share of each corner
+    std::shared_ptr<SpringTerms> springs_;  // per-spring f~ and A_s, in the layout that suits the fabric
+    Sym3Soa diagonal_;                      // per particle: W_ii
+    Sym3Soa diagonal_inverse_;              // per particle: W_ii^-1 (zero if pinned)
+    Vec3Soa rhs_;                           // per particle: b_i = h f~_i
+    Vec3Soa dv_, dv_scratch_;               // per particle
+    SolverWorkspace solver_work_;  // PCG / Chebyshev vectors and block partials, strain-limit scratch
+    mutable Vec3Soa normals_;      // per particle, filled by normals()
+
+    // The state a frame started from, for a failed frame to go back to.
+    // Copying x and v every frame costs more than a step's smaller stages,
+    // so the copy is taken only when something rewrites them wholesale
+    // before integration (a carrier) or integrates in place (explicit).
+    // Otherwise the stages before integration change only the velocities
+    // of pinned particles (saved in pin_velocity_start_), the frame's first
+    // integration writes into backup_x_ and backup_v_ and the buffers are
+    // swapped: the frame-start state then sits in backup_x_ and backup_v_.
+    enum class Backup : uint8_t {
+        kCopied,            // backup_x_, backup_v_ hold a copy taken in begin_frame
+        kFirstIntegration,  // x_, v_ still hold it (but pinned v); integration writes to the backups
+        kSwapped,           // backup_x_, backup_v_ hold it (but pinned v)
+    };
+    Backup backup_ = Backup::kCopied;
+    Vec3Soa backup_x_, backup_v_;
+    Vec3Soa pin_velocity_start_;  // per particle, valid for pinned ones: v at the start of the frame
+
+    std::shared_ptr<SelfCollision> self_collision_;  // null while off
+    bool self_overlapping_ = false;                  // the last projection pass left overlaps
+
+    SolveReport last_solve_;
+    cloth_result last_step_result_ = CLOTH_OK;
+
+    // The frame in progress.
+    struct Cursor {
+        Stage stage = Stage::kForces;
+        uint32_t substep = 0;
+        uint32_t sweep = 0;  // Jacobi sweep / PCG or Chebyshev iteration / strain-limit pass
+    };
+    // Scalars of the iterative solve in progress (set after each barrier).
+    struct IterativeSolve {
+        enum class Phase : uint8_t {
+            kPcgStart,
+            kPcgProduct,
+            kPcgUpdate,
+            kPcgDirection,
+            kChebyshevBound,
+            kChebyshevStart,
+            kChebyshevProduct,
+            kChebyshevDirection,
+            kChebyshevEnergy,
+            kChebyshevScale
+        };
+        Phase phase = Phase::kPcgStart;
+        Phase next = Phase::kPcgStart;
+        double rz0 = 0, rz = 0, alpha = 0, beta = 0;  // PCG
+        double sigma = 0, delta = 0, rho = 0;         // Chebyshev
+        double step_scale = 1;                        // Chebyshev: the energy-minimising step length
+        bool go_on = false;                           // another iteration follows
+    };
+    IterativeSolve iterative_;
+    uint32_t group_count_ = 0;
+    Cursor cursor_;
+    bool frame_done_ = true;
+    float h_ = 0;
+    uint32_t substeps_ = 1;
+    Vec3 gravity_ = Vec3::Zero();
+    bool frame_converged_ = true;
+    bool frame_out_of_memory_ = false;       // set by the serial solve task
+    Vec3Soa* sweep_current_ = nullptr;       // Jacobi: the iterate being read
+    Vec3Soa* sweep_next_ = nullptr;          // and the one being written
+    HostVector<uint8_t> group_finite_;       // per group, written by the last stage of a frame
+    HostVector<float> group_speed_squared_;  // per group: largest |v|^2, written with group_finite_
+
+    void update_sleep();  // end of a successful frame
+    SleepSettings sleep_;
+    QualityPolicy quality_;
+    bool sleeping_ = false;
+    uint32_t rest_frames_ = 0;  // consecutive frames below sleep_.max_speed
+
+    ClothContact contact_;   // colliders, attachments, carrier
+    bool collides_ = false;  // this frame runs the collision stage
+};
+
+}  // namespace cloth

@@ -1,0 +1,296 @@
+#include "step/world.h"
+
+#include <algorithm>
+#include <climits>
+#include <cstdlib>
+
+namespace cloth {
+
+World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
+    : gravity(desc.gravity[0], desc.gravity[1], desc.gravity[2]),
+      memory_{desc.alloc, desc.free, desc.user},
+      log_(desc.log),
+      index_(index),
+      generation_(generation),
+      fabrics_(HostAllocator<Slot<Fabric>>(&memory_)),
+      cloths_(HostAllocator<Slot<ClothInstance>>(&memory_)),
+      contact_(&memory_),
+      tasks_(&serial_tasks_),
+      host_tasks_(desc.enqueue_task, desc.finish_task, desc.task_user, desc.worker_count),
+      pool_(desc.enqueue_task ? 1 : desc.worker_count),
+      stepping_(HostAllocator<uint32_t>(&memory_)),
+      round_(HostAllocator<RoundTask>(&memory_)),
+      round_times_(HostAllocator<TaskTime>(&memory_)),
+      cloth_cost_ns_(HostAllocator<int64_t>(&memory_)),
+      profile_(&memory_),
+      budget_cloths_(HostAllocator<BudgetCloth>(&memory_)) {
+    fabrics_.resize(desc.max_fabrics);
+    cloths_.resize(desc.max_cloths);
+    stepping_.reserve(desc.max_cloths);
+    cloth_cost_ns_.assign(desc.max_cloths, 0);
+    budget_cloths_.reserve(desc.max_cloths);
+    profile_.origin_ns = now_ns();
+    if (desc.enqueue_task) {
+        tasks_ = &host_tasks_;
+    } else if (desc.worker_count > 1) {
+        tasks_ = &pool_;  // its threads keep their state on the C++ heap
+    }
+    profile_.worker_busy_ns.assign(tasks_->worker_count(), 0);
+}
+
+void World::log(cloth_log_level level, cloth_result code, const char* message) const {
+    if (log_) log_(level, code, message, memory_.user);
+}
+
+namespace {
+
+template <class T, class Id>
+T* lookup(const HostVector<Slot<T>>& slots, Id id) {
+    if (id.index1 == 0 || id.index1 > slots.size()) return nullptr;
+    const Slot<T>& slot = slots[id.index1 - 1];
+    if (!slot.object || slot.generation != id.generation) return nullptr;
+    return slot.object.get();
+}
+
+template <class T>
+void release(Slot<T>& slot) {
+    slot.object.reset();
+    slot.generation = static_cast<uint16_t>(slot.generation + 1 == 0 ? 1 : slot.generation + 1);
+}
+
+}  // namespace
+
+std::shared_ptr<const Fabric> World::find_fabric(cloth_fabric_id id) const {
+    if (!lookup(fabrics_, id)) return nullptr;
+    return fabrics_[id.index1 - 1].object;
+}
+
+Status World::destroy_fabric(cloth_fabric_id id) {
+    if (!lookup(fabrics_, id)) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is not live");
+    release(fabrics_[id.index1 - 1]);
+    return {};
+}
+
+Status World::create_cloth(std::shared_ptr<const Fabric> fabric, const Material& material,
+                           const SolverSettings& solver, const AeroParams& aero,
+                           const float* initial_positions, cloth_id* out) {
+    const uint32_t slot = find_free_slot(cloths_);
+    if (slot == UINT32_MAX) {
+        return Status::error(CLOTH_ERROR_CAPACITY, "world has no free cloth slot (max_cloths = %zu)",
+                             cloths_.size());
+    }
+    auto cloth = std::allocate_shared<ClothInstance>(HostAllocator<ClothInstance>(&memory_), &memory_,
+                                                     std::move(fabric), material, solver, aero);
+    if (initial_positions) {
+        for (uint32_t i = 0; i < cloth->particle_count(); ++i) {
+            const uint32_t v = cloth->fabric().vertex(i);  // the host's vertex order
+            cloth->set_position(i, Vec3(initial_positions[3 * v], initial_positions[3 * v + 1],
+                                        initial_positions[3 * v + 2]));
+        }
+    }
+    reserve_round_tasks(cloth->group_count());
+    cloth->contact().bind(&contact_);
+    cloths_[slot].object = std::move(cloth);
+    *out = cloth_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1),
+                    cloths_[slot].generation, generation_};
+    return {};
+}
+
+ClothInstance* World::find_cloth(cloth_id id) const { return lookup(cloths_, id); }
+
+Status World::destroy_cloth(cloth_id id) {
+    if (!lookup(cloths_, id)) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "cloth handle is not live");
+    release(cloths_[id.index1 - 1]);
+    return {};
+}
+
+// The step allocates nothing: a round holds at most one task per group
+// of every cloth (a serial stage has one task).
+void World::reserve_round_tasks(size_t extra_groups) {
+    size_t groups = extra_groups;
+    for (const Slot<ClothInstance>& slot : cloths_) {
+        if (slot.object) groups += slot.object->group_count();
+    }
+    round_.reserve(groups);
+    round_times_.resize(std::max(round_times_.size(), groups));
+}
+
+void World::set_profiling(uint32_t max_tasks) {
+    if (max_tasks == 0) {
+        HostVector<TaskRecord>{HostAllocator<TaskRecord>(&memory_)}.swap(profile_.tasks);
+    } else {
+        HostVector<TaskRecord> records{HostAllocator<TaskRecord>(&memory_)};
+        records.reserve(max_tasks);
+        profile_.tasks.swap(records);
+    }
+}
+
+void World::set_zone_callbacks(cloth_zone_begin_fn* begin, cloth_zone_end_fn* end, void* user) {
+    zone_begin_ = begin;
+    zone_end_ = end;
+    zone_user_ = user;
+}
+
+void World::run_round_range(uint32_t begin, uint32_t end, uint32_t worker) {
+    if (!timing() && !zone_begin_) {
+        for (uint32_t t = begin; t < end; ++t) round_[t].cloth->run_task(round_[t].task, worker);
+        return;
+    }
+    // A host may pass any worker index; keep it inside the profile's arrays.
+    worker = std::min(worker, static_cast<uint32_t>(profile_.worker_busy_ns.size()) - 1);
+    for (uint32_t t = begin; t < end; ++t) {
+        const char* name = stage_name(round_[t].stage);
+        if (zone_begin_) zone_begin_(name, worker, zone_user_);
+        const int64_t start = now_ns();
+        round_[t].cloth->run_task(round_[t].task, worker);
+        round_times_[t] = TaskTime{start, now_ns(), worker};
+        if (zone_end_) zone_end_(name, worker, zone_user_);
+    }
+}
+
+void World::account_round(uint32_t count) {
+    int64_t first[kStageCount], last[kStageCount];
+    std::fill(std::begin(first), std::end(first), INT64_MAX);
+    std::fill(std::begin(last), std::end(last), INT64_MIN);
+    for (uint32_t t = 0; t < count; ++t) {
+        const RoundTask& task = round_[t];
+        const TaskTime& time = round_times_[t];
+        const uint32_t s = static_cast<uint32_t>(task.stage);
+        const int64_t duration = time.end_ns - time.start_ns;
+        cloth_cost_ns_[task.slot] += duration;
+        profile_.worker_busy_ns[time.worker] += duration;
+        profile_.stage_tasks[s] += 1;
+        first[s] = std::min(first[s], time.start_ns);
+        last[s] = std::max(last[s], time.end_ns);
+        if (profile_.tasks.size() < profile_.tasks.capacity()) {
+            profile_.tasks.push_back(TaskRecord{task.slot, cloths_[task.slot].generation, task.stage,
+                                                task.task, time.worker, task.substep, time.start_ns,
+                                                time.end_ns});
+        } else if (profile_.tasks.capacity() > 0) {
+            ++profile_.tasks_dropped;
+        }
+    }
+    for (uint32_t s = 0; s < kStageCount; ++s) {
+        if (first[s] > last[s]) continue;
+        if (profile_.stage_ns[s] == 0) profile_.stage_first_start_ns[s] = first[s];
+        profile_.stage_ns[s] += last[s] - first[s];
+    }
+}
+
+void World::destroy_body(uint32_t body) {
+    for (const Slot<ClothInstance>& slot : cloths_) {
+        ClothInstance* cloth = slot.object.get();
+        if (!cloth) continue;
+        ClothContact& contact = cloth->contact();
+        if (contact.carrier().body() == body) contact.carrier().clear();
+        for (uint32_t i = 0; i < cloth->particle_count(); ++i) {
+            if (contact.is_attached(i) && contact.attached_body(i) == body) cloth->unpin(i);
+        }
+    }
+    contact_.destroy_body(body);
+}
+
+// Tasks (particle groups of kGroupSize) a worker takes at least at a time.
+// A round of a few groups runs on one thread: waking a second worker costs
+// more than it saves there (Jobs/Overhead32: a 32 x 32 flag, 4 groups, ran
+// 1.6x slower on 2 workers than on 1 with ranges of one group).
+constexpr uint32_t kMinTasksPerRange = 4;
+
+Status World::shift_origin(const Vec3& shift) {
+    bool fits = contact_.can_shift_origin(shift);
+    for (const Slot<ClothInstance>& slot : cloths_)
+        fits = fits && (!slot.object || slot.object->can_shift_origin(shift));
+    if (!fits) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE,
+                             "the shift would move a position out of float range; nothing was moved");
+    }
+    for (Slot<ClothInstance>& slot : cloths_) {
+        if (slot.object) slot.object->shift_origin(shift);
+    }
+    contact_.shift_origin(shift);
+    return {};
+}
+
+Status World::step(float dt) {
+    const int64_t start = now_ns();
+    if (zone_begin_) zone_begin_("cloth_step", 0, zone_user_);
+    profile_.begin(++frame_, start, budget_ms_);
+    const bool timed = timing();
+    stepping_.clear();
+    for (uint32_t s = 0; s < cloths_.size(); ++s) {
+        ClothInstance* cloth = cloths_[s].object.get();
+        if (!cloth) continue;
+        cloth_cost_ns_[s] = 0;
+        if (cloth->sleeping() && cloth->contact().follows_bodies()) cloth->wake();  // bodies move freely
+        if (cloth->sleeping()) {
+            ++profile_.sleeping_cloths;
+            continue;
+        }
+        cloth->begin_frame(dt, gravity);
+        cloth_cost_ns_[s] = 0;
+        stepping_.push_back(s);
+    }
+    profile_.awake_cloths = static_cast<uint32_t>(stepping_.size());
+    auto run_range = [this](uint32_t begin, uint32_t end, uint32_t worker) {
+        run_round_range(begin, end, worker);
+    };
+    for (;;) {
+        round_.clear();
+        for (uint32_t s : stepping_) {
+            ClothInstance* cloth = cloths_[s].object.get();
+            if (cloth->frame_done()) continue;
+            cloth->prepare_stage();
+            const uint32_t count = cloth->task_count();
+            for (uint32_t t = 0; t < count; ++t) {
+                round_.push_back(RoundTask{cloth, t, s, cloth->stage(), cloth->substep()});
+            }
+        }
+        if (round_.empty()) break;
+        const uint32_t count = static_cast<uint32_t>(round_.size());
+        parallel_for(*tasks_, count, kMinTasksPerRange, run_range);
+        if (timed) account_round(count);
+        for (uint32_t s : stepping_) {
+            ClothInstance* cloth = cloths_[s].object.get();
+            if (!cloth->frame_done()) cloth->finish_stage();
+        }
+    }
+
+    Status first_failure;
+    for (uint32_t s : stepping_) {
+        ClothInstance* cloth = cloths_[s].object.get();
+        Status status = cloth->end_frame();
+        if (status.ok()) continue;
+        // A cloth that had to be restored outranks a solver warning.
+        auto restored = [](cloth_result code) {
+            return code == CLOTH_ERROR_NONFINITE_STATE || code == CLOTH_ERROR_OUT_OF_MEMORY;
+        };
+        if (first_failure.ok() || (restored(status.code) && !restored(first_failure.code))) {
+            first_failure = Status::error(status.code, "cloth slot %u: %.360s", s + 1, status.message);
+        }
+    }
+    contact_.end_step();  // bodies start the next step where they are now
+    profile_.end_ns = now_ns();
+    if (budget_ms_ > 0) {
+        // An overrun is reported in the profile and, unless a cloth failed
+        // (which says more), by the step's result.
+        profile_.overrun = profile_.step_ms() > budget_ms_;
+        if (profile_.overrun) {
+            ++overrun_frames_;
+            if (first_failure.ok()) {
+                first_failure = Status::error(
+                    CLOTH_ERROR_OVER_BUDGET,
+                    "the step took %.3g ms, over the frame budget of %.3g ms; every cloth advanced",
+                    profile_.step_ms(), budget_ms_);
+            }
+        }
+        budget_cloths_.clear();
+        for (uint32_t s : stepping_)
+            budget_cloths_.push_back(BudgetCloth{cloths_[s].object.get(), cloth_cost_ns_[s]});
+        budget_policy_.after_frame(budget_ms_, profile_.step_ms(), budget_cloths_.data(),
+                                   static_cast<uint32_t>(budget_cloths_.size()));
+    }
+    if (zone_end_) zone_end_("cloth_step", 0, zone_user_);
+    return first_failure;
+}
+
+}  // namespace cloth

@@ -1,0 +1,169 @@
+// World: owns the fabrics and cloths of one host scene, the host's
+// callbacks, gravity, and the step over all its cloths.
+//
+// Objects live in slot tables sized once at creation (capacity from the
+// description); a handle is a slot index plus the slot's generation, which
+// is bumped on destroy, so a stale handle is detected and never followed.
+#pragma once
+
+#include <cloth/cloth.h>
+
+#include <memory>
+
+#include "base/host_allocator.h"
+#include "base/status.h"
+#include "collide/contact_world.h"
+#include "fabric/fabric.h"
+#include "jobs/host_tasks.h"
+#include "jobs/task_system.h"
+#include "jobs/thread_pool.h"
+#include "step/budget_policy.h"
+#include "step/cloth_instance.h"
+#include "step/frame_profile.h"
+
+namespace cloth {
+
+template <class T>
+struct Slot {
+    std::shared_ptr<T> object;
+    uint16_t generation = 1;
+};
+
+class World {
+  public:
+    World(const cloth_world_desc& desc, uint16_t index, uint16_t generation);
+
+    const HostMemory* memory() const { return &memory_; }
+    TaskSystem& tasks() { return *tasks_; }
+    uint16_t index() const { return index_; }
+
+    Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);
+
+    // Fabrics. `build` fills a fresh Fabric and returns its status.
+    template <class Build>
+    Status create_fabric(Build build, cloth_fabric_id* out);
+    std::shared_ptr<const Fabric> find_fabric(cloth_fabric_id id) const;
+    Status destroy_fabric(cloth_fabric_id id);
+
+    Status create_cloth(std::shared_ptr<const Fabric> fabric, const Material& material,
+                        const SolverSettings& solver, const AeroParams& aero, const float* initial_positions,
+                        cloth_id* out);
+    ClothInstance* find_cloth(cloth_id id) const;
+    // Wake every cloth (gravity changed).
+    void wake_all() {
+        for (Slot<ClothInstance>& slot : cloths_) {
+            if (slot.object) slot.object->wake();
+        }
+    }
+    Status destroy_cloth(cloth_id id);
+    // Origin rebasing (cloth_world_shift_origin): subtract `shift` from
+    // every world-frame position of the world's cloths, bodies and static
+    // colliders. A shift that would take one of them out of float range
+    // is refused and changes nothing.
+    Status shift_origin(const Vec3& shift);
+
+    // Step every cloth; a cloth that goes non-finite is restored and
+    // reported, the others advance. All cloths advance together, stage by
+    // stage: each round runs the current stage of every unfinished cloth
+    // as one parallel_for over all their groups (cloths with fewer stages
+    // finish in fewer rounds), so many small cloths share the workers.
+    Status step(float dt);
+
+    void log(cloth_log_level level, cloth_result code, const char* message) const;
+
+    // Profiling (frame_profile.h). Recording keeps up to max_tasks task
+    // records per frame (0: off, frees them).
+    void set_profiling(uint32_t max_tasks);
+    // cloth_world_set_worker_spin: the built-in pool's polling time.
+    void set_worker_spin(uint32_t microseconds) { pool_.set_spin(microseconds); }
+    const FrameProfile& frame_profile() const { return profile_; }
+    // Per-frame CPU budget in milliseconds (0: none); with one, every frame
+    // reports overrun and the budget policy adjusts policy-enabled cloths.
+    void set_frame_budget(double ms) { budget_ms_ = ms; }
+    uint64_t overrun_frames() const { return overrun_frames_; }
+    void set_zone_callbacks(cloth_zone_begin_fn* begin, cloth_zone_end_fn* end, void* user);
+    // The id of the cloth in `slot` (for task records).
+    cloth_id cloth_id_of(uint32_t slot, uint16_t generation) const {
+        return cloth_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1), generation,
+                        generation_};
+    }
+    // Bodies and colliders (contact_world.h). Destroying a body detaches
+    // every particle attached to it and removes it as a carrier first.
+    ContactWorld& contact() { return contact_; }
+    const ContactWorld& contact() const { return contact_; }
+    void destroy_body(uint32_t slot);
+
+  private:
+    // Whether tasks are timed this frame (profiling or a budget needs it).
+    bool timing() const { return profile_.tasks.capacity() > 0 || budget_ms_ > 0; }
+    // Run tasks [begin, end) of the current round, as `worker`.
+    void run_round_range(uint32_t begin, uint32_t end, uint32_t worker);
+    // After a round's barrier: fold its task times into the profile and
+    // the per-cloth costs.
+    void account_round(uint32_t count);
+
+    template <class T>
+    static uint32_t find_free_slot(const HostVector<Slot<T>>& slots);
+
+    HostMemory memory_;
+    cloth_log_fn* log_ = nullptr;
+    uint16_t index_;
+    uint16_t generation_;
+    HostVector<Slot<Fabric>> fabrics_;
+    HostVector<Slot<ClothInstance>> cloths_;
+    ContactWorld contact_;
+
+    // One task of a round: group `task` of `cloth`'s current stage.
+    struct RoundTask {
+        ClothInstance* cloth;
+        uint32_t task;
+        uint32_t slot;
+        Stage stage;
+        uint32_t substep;
+    };
+    void reserve_round_tasks(size_t extra_groups);
+    TaskSystem* tasks_ = nullptr;  // never null after construction: one of the three below
+    SerialTasks serial_tasks_;
+    HostTasks host_tasks_;
+    ThreadPool pool_;  // starts no thread unless the world asked for workers and has no host callbacks
+    HostVector<uint32_t> stepping_;      // slots of the cloths of the frame in progress
+    HostVector<RoundTask> round_;        // sized for every group of every cloth
+    HostVector<TaskTime> round_times_;   // one slot per task of the round, written by its worker
+    HostVector<int64_t> cloth_cost_ns_;  // per cloth slot: task time of the last frame
+
+    FrameProfile profile_;
+    uint64_t frame_ = 0;
+    double budget_ms_ = 0;
+    uint64_t overrun_frames_ = 0;
+    BudgetPolicy budget_policy_;
+    HostVector<BudgetCloth> budget_cloths_;  // reserved for every cloth slot
+    cloth_zone_begin_fn* zone_begin_ = nullptr;
+    cloth_zone_end_fn* zone_end_ = nullptr;
+    void* zone_user_ = nullptr;
+};
+
+template <class T>
+uint32_t World::find_free_slot(const HostVector<Slot<T>>& slots) {
+    for (uint32_t i = 0; i < slots.size(); ++i) {
+        if (!slots[i].object) return i;
+    }
+    return UINT32_MAX;
+}
+
+template <class Build>
+Status World::create_fabric(Build build, cloth_fabric_id* out) {
+    const uint32_t slot = find_free_slot(fabrics_);
+    if (slot == UINT32_MAX) {
+        return Status::error(CLOTH_ERROR_CAPACITY, "world has no free fabric slot (max_fabrics = %zu)",
+                             fabrics_.size());
+    }
+    auto fabric = std::allocate_shared<Fabric>(HostAllocator<Fabric>(&memory_), &memory_);
+    Status status = build(*fabric);
+    if (!status.ok()) return status;
+    fabrics_[slot].object = std::move(fabric);
+    *out = cloth_fabric_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1),
+                           fabrics_[slot].generation, generation_};
+    return {};
+}
+
+}  // namespace cloth

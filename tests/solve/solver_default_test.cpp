@@ -1,0 +1,198 @@
+// The default settings hold the scenes (a 1 m, 1 kg cloth pinned at
+// two top corners, 1/60 s frames): no energy gain beyond the work of
+// gravity, max strain under 10 %. Here a short version runs in every build
+// (32x32 at both stiffnesses; 64x64 at both outside sanitizer builds);
+// `tradeoff default`
+// runs the full 600-step matrix up to 128x128 (docs/accuracy.md).
+#include "solve/solver_default.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "scenes.h"
+#include "solve/strain_limit.h"
+
+namespace {
+
+using cloth_samples::Scene;
+using cloth_samples::SceneConfig;
+using cloth_samples::SceneKind;
+
+const cloth::HostMemory& memory() {
+    static const cloth::HostMemory heap{};
+    return heap;
+}
+
+struct Outcome {
+    bool ok = true;
+    double max_strain = 0, energy_gain = 0;
+};
+
+Outcome run(SceneKind kind, uint32_t resolution, float stiffness, int frames) {
+    SceneConfig config;
+    config.kind = kind;
+    config.resolution = resolution;
+    config.stiffness = stiffness;
+    Scene scene(config);
+    Outcome out;
+    if (!scene.ok()) {
+        out.ok = false;
+        return out;
+    }
+    auto energy = [](const cloth_stats& s) { return s.kinetic_energy + s.gravity_energy + s.elastic_energy; };
+    const double e0 = energy(scene.stats());
+    for (int f = 0; f < frames; ++f) {
+        if (scene.step(1.0f / 60.0f) != CLOTH_OK) {
+            out.ok = false;
+            break;
+        }
+        const cloth_stats s = scene.stats();
+        out.max_strain = std::max(out.max_strain, double(s.max_strain));
+        out.energy_gain = std::max(out.energy_gain, energy(s) - e0);
+    }
+    return out;
+}
+
+TEST(DefaultSolver, HangingAndFallingFlatHoldStrainAndGainNoEnergy) {
+    struct Case {
+        uint32_t resolution;
+        float stiffness;
+        int frames;
+    };
+#ifdef CLOTH_SANITIZED_BUILD
+    // Sanitizers check memory and UB, which the 32 x 32 cases exercise the
+    // same way; the 64 x 64 case costs minutes there.
+    const Case cases[] = {Case{32, 1e3f, 90}, Case{32, 1e4f, 90}};
+#else
+    // 64 x 64 at 1e3 N/m: 45 frames take in the hanging cloth's peak strain
+    // (frame 5) and the falling one's (frames 26-31), which the strain
+    // cable holds (0.107 and 0.110 with projection passes alone).
+    const Case cases[] = {Case{32, 1e3f, 90}, Case{32, 1e4f, 90}, Case{64, 1e4f, 40}, Case{64, 1e3f, 45}};
+#endif
+    for (const Case c : cases) {
+        for (SceneKind kind : {SceneKind::kHanging, SceneKind::kFallingFlat}) {
+            SCOPED_TRACE(::testing::Message()
+                         << cloth_samples::scene_name(kind) << " " << c.resolution << " k " << c.stiffness);
+            const Outcome o = run(kind, c.resolution, c.stiffness, c.frames);
+            EXPECT_TRUE(o.ok);
+            EXPECT_LT(o.max_strain, 0.10);
+            EXPECT_LT(o.energy_gain, 1e-2) << "J; a 1 kg cloth only loses energy without wind";
+        }
+    }
+}
+
+TEST(DefaultSolver, FlagInWindHoldsStrain) {
+    const Outcome o = run(SceneKind::kFlagInWind, 32, 1e3f, 90);
+    EXPECT_TRUE(o.ok);
+    EXPECT_LT(o.max_strain, 0.10);
+}
+
+// JACOBI k=1 at the same settings is what the default replaces: it
+// over-stretches and gains energy (algorithm.md 6), so the test above
+// distinguishes a holding solver from the paper's one-iteration step.
+TEST(DefaultSolver, ThePaperStepFailsWhereTheDefaultHolds) {
+    SceneConfig config;
+    config.kind = SceneKind::kFallingFlat;
+    config.resolution = 32;
+    config.solver.kind = CLOTH_SOLVER_JACOBI;
+    Scene scene(config);
+    ASSERT_TRUE(scene.ok());
+    double max_strain = 0;
+    for (int f = 0; f < 90; ++f) {
+        if (scene.step(1.0f / 60.0f) != CLOTH_OK) break;
+        max_strain = std::max(max_strain, double(scene.stats().max_strain));
+    }
+    EXPECT_GT(max_strain, 0.5);
+}
+
+TEST(DefaultSolver, SubstepsFollowGamma) {
+    cloth::SolverSettings requested;
+    requested.kind = CLOTH_SOLVER_DEFAULT;
+    // gamma = dt^2 k / m; one substep while gamma <= kDefaultSubstepGamma.
+    const float dt = 1.0f / 60.0f;
+    const float low =
+        float(cloth::kDefaultSubstepGamma) / (dt * dt);  // k/m giving gamma exactly at the limit
+    EXPECT_EQ(cloth::resolve_solver(requested, dt, 0.99f * low).substeps, 1u);
+    EXPECT_EQ(cloth::resolve_solver(requested, dt, 1.2f * low).substeps, 2u);
+    EXPECT_EQ(cloth::resolve_solver(requested, dt, 3.9f * low).substeps, 2u);
+    EXPECT_EQ(cloth::resolve_solver(requested, dt, 8.9f * low).substeps, 3u);
+    EXPECT_EQ(cloth::resolve_solver(requested, dt, 1e12f * low).substeps, cloth::kDefaultMaxSubsteps);
+    EXPECT_EQ(cloth::resolve_solver(requested, dt, low).kind, CLOTH_SOLVER_PCG);
+    requested.substeps = 3;
+    EXPECT_EQ(cloth::resolve_solver(requested, dt, 0.99f * low).substeps, 3u)
+        << "the user's substeps are a floor";
+    requested.kind = CLOTH_SOLVER_JACOBI;
+    EXPECT_EQ(cloth::resolve_solver(requested, dt, 1e12f * low).substeps, 3u)
+        << "explicit kinds are untouched";
+}
+
+TEST(StrainLimitApi, BadLimitsAreRejectedAndChangeNothing) {
+    SceneConfig config;
+    Scene scene(config);
+    ASSERT_TRUE(scene.ok());
+    cloth_strain_limit good = cloth_default_strain_limit();
+    good.max_strain = 0.05f;
+    ASSERT_EQ(cloth_set_strain_limit(scene.cloth(), &good), CLOTH_OK);
+    cloth_strain_limit bad = good;
+    bad.struct_size = 3;
+    EXPECT_EQ(cloth_set_strain_limit(scene.cloth(), &bad), CLOTH_ERROR_INVALID_DESC);
+    bad = good;
+    bad.max_strain = -0.1f;
+    EXPECT_EQ(cloth_set_strain_limit(scene.cloth(), &bad), CLOTH_ERROR_INVALID_VALUE);
+    bad.max_strain = NAN;
+    EXPECT_EQ(cloth_set_strain_limit(scene.cloth(), &bad), CLOTH_ERROR_NOT_FINITE);
+    bad = good;
+    bad.iterations = 0;
+    EXPECT_EQ(cloth_set_strain_limit(scene.cloth(), &bad), CLOTH_ERROR_INVALID_VALUE);
+    EXPECT_EQ(cloth_set_strain_limit(scene.cloth(), nullptr), CLOTH_ERROR_NULL_POINTER);
+    cloth_strain_limit out{};
+    ASSERT_EQ(cloth_get_strain_limit(scene.cloth(), &out), CLOTH_OK);
+    EXPECT_EQ(out.max_strain, 0.05f);
+    EXPECT_EQ(out.iterations, good.iterations);
+    // cloth_set_solver keeps the limit.
+    cloth_solver_settings solver = cloth_default_solver_settings();
+    ASSERT_EQ(cloth_set_solver(scene.cloth(), &solver), CLOTH_OK);
+    ASSERT_EQ(cloth_get_strain_limit(scene.cloth(), &out), CLOTH_OK);
+    EXPECT_EQ(out.max_strain, 0.05f);
+}
+
+// Limiting passes pull a uniformly over-stretched cloth (every spring 30 %
+// long, one corner pinned) towards the limit and never move the pinned
+// particle. The passes are Jacobi (every particle at once), so opposite
+// pulls on interior particles cancel and the shrink spreads in from the
+// edges one particle per pass: 64 passes on 8x8 take the strain from 0.30
+// to about 0.25 (measured), which is why the limiter is a safety net
+// and the default holds strain mainly with substeps (docs/accuracy.md).
+TEST(StrainLimit, PassesPullOverStretchedSpringsTowardsTheLimit) {
+    auto fabric = std::make_shared<cloth::Fabric>(&memory());
+    cloth_grid_desc grid = cloth_default_grid_desc();
+    grid.columns = grid.rows = 8;
+    ASSERT_TRUE(cloth::build_grid_fabric(grid, *fabric).ok());
+    const uint32_t n = fabric->particle_count();
+    cloth::Vec3Soa x(&memory()), v(&memory()), scratch(&memory());
+    for (cloth::Vec3Soa* a : {&x, &v, &scratch}) a->resize(n);
+    for (uint32_t i = 0; i < n; ++i) x.set(i, fabric->rest_positions[i] * 1.3f);
+    std::vector<float> mass(n, 0.01f), pinned(n, 0.0f);
+    pinned[0] = 1.0f;
+    const cloth::Vec3 corner = x.get(0);
+    auto max_strain = [&] {
+        float worst = 0;
+        for (uint32_t s = 0; s < fabric->spring_count(); ++s) {
+            if (fabric->spring_kind[s] != cloth::kStructural) continue;
+            const float length = (x.get(fabric->spring_second[s]) - x.get(fabric->spring_first[s])).norm();
+            worst = std::max(worst, length / fabric->spring_rest_length[s] - 1.0f);
+        }
+        return worst;
+    };
+    ASSERT_NEAR(max_strain(), 0.3f, 1e-4f);
+    const cloth::StrainLimitPass pass{fabric.get(), mass.data(), pinned.data(), 0.05f};
+    cloth::StrainLimit limit;
+    limit.max_strain = 0.05f;
+    limit.iterations = 64;
+    cloth::limit_strain(pass, limit, 1.0f / 60.0f, x, v, scratch);
+    EXPECT_LT(max_strain(), 0.27f);
+    EXPECT_EQ(x.get(0), corner);
+}
+
+}  // namespace
