@@ -22,6 +22,12 @@ struct Vec3Soa {
         y.resize(n);
         z.resize(n);
     }
+    // Exchanges the buffers with other's (no copy).
+    void swap_buffers(Vec3Soa& other) {
+        x.swap(other.x);
+        y.swap(other.y);
+        z.swap(other.z);
+    }
     void fill(const Vec3& value) {
         std::fill(x.begin(), x.end(), value.x());
         std::fill(y.begin(), y.end(), value.y());

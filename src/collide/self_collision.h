@@ -4,9 +4,10 @@
 // response (push apart to the thickness theta_c, remove the approaching
 // part of the relative velocity, eq. 13), with optional Coulomb friction.
 //
-// Stages, each a loop over a range with a barrier after it (a job system
-// may split any range; results do not depend on the split). In the step
-// they are the Stage::kSelf* stages of step_stage.h:
+// A staged algorithm (base/staged.h): rounds, each a loop over a range with
+// a barrier after it (a job system may split any range; results do not
+// depend on the split). In the step they are the Stage::kSelf* stages of
+// step_stage.h:
 //   1. check_regions(regions)     per region: is it still collision-free?
 //      compute_keys(particles)    per particle: hash cell and bucket
 //   2. sort_into_buckets(x)       serial O(n) counting sort
@@ -42,6 +43,7 @@
 
 #include "base/host_allocator.h"
 #include "base/soa.h"
+#include "base/staged.h"
 #include "collide/spatial_hash.h"
 #include "fabric/fabric.h"
 
@@ -68,7 +70,7 @@ float mean_rest_edge(const Fabric& fabric);
 // to kMaxRings rings, which must cover every particle within theta_c).
 float max_self_collision_thickness(const Fabric& fabric);
 
-class SelfCollision {
+class SelfCollision final : public StagedAlgorithm {
   public:
     static constexpr uint32_t kMaxContacts = 16;   // per particle; the nearest are kept
     static constexpr uint32_t kMaxRings = 4;       // rest-neighbour rings, at most
@@ -108,8 +110,19 @@ class SelfCollision {
     void apply_velocities(Vec3Soa& v);
     const Vec3Soa& next_velocities() const { return next_v_; }
 
-    // All stages in order on one thread (the reference schedule).
-    void run(Vec3Soa& x, Vec3Soa& v, const float* mass, const float* pinned);
+    // The rounds, in order (the file comment's stages 1-5).
+    enum class Round : uint8_t { kHash, kSort, kContacts, kProject, kRespond, kDone };
+    // Starts the rounds on x, v (which outlive them), resolving this substep's contacts.
+    void begin(Vec3Soa& x, Vec3Soa& v, const float* mass, const float* pinned);
+    Round round() const { return round_; }
+    bool done() const override { return round_ == Round::kDone; }
+    bool single_task() const override { return round_ == Round::kSort; }
+    bool last_round() const override { return round_ == Round::kRespond; }
+    void run(const GroupTask& task) override;
+    void finish_round() override;
+
+    // The same rounds on this thread.
+    void run_serially(Vec3Soa& x, Vec3Soa& v, const float* mass, const float* pinned);
 
     // Fixed-order sums of the per-particle and per-region results.
     SelfCollisionStats stats() const;
@@ -164,6 +177,13 @@ class SelfCollision {
     HostVector<float> inverse_mass_;
     Vec3Soa next_x_, next_v_;
     uint32_t last_passes_ = 0;
+
+    // The rounds in progress.
+    Round round_ = Round::kDone;
+    Vec3Soa* x_ = nullptr;
+    Vec3Soa* v_ = nullptr;
+    const float* mass_ = nullptr;
+    const float* pinned_ = nullptr;
 };
 
 }  // namespace cloth

@@ -16,6 +16,7 @@
 
 #include "base/host_allocator.h"
 #include "base/math.h"
+#include "base/staged.h"
 #include "base/status.h"
 
 namespace cloth {
@@ -44,7 +45,7 @@ struct SpringFamily {
 // identically however a particle range is split. Padding per chunk keeps a
 // single high-valence vertex (a fan, a pole) from padding the whole mesh.
 struct PaddedSlots {
-    static constexpr uint32_t kChunk = 256;
+    static constexpr uint32_t kChunk = kGroupSize;  // a chunk is a particle group
 
     explicit PaddedSlots(const HostMemory* memory)
         : begin(HostAllocator<size_t>(memory)),

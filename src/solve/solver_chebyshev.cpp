@@ -110,30 +110,4 @@ void chebyshev_scale(float scale, uint32_t begin, uint32_t end, Vec3Soa& dv) {
     }
 }
 
-SolveReport solve_chebyshev(const LinearSystem& system, const AssemblyPass& pass, uint32_t iterations,
-                            Vec3Soa& dv, SolverWorkspace& work) {
-    const uint32_t n = system.particle_count;
-    // Interval [a, 2] of the eigenvalues of D^-1 W (solvers.h).
-    const double a = chebyshev_lower_bound(system, pass, 0, n), b = 2.0;
-    const double theta = 0.5 * (b + a), delta = 0.5 * (b - a), sigma = theta / delta;
-    double rho = 1.0 / sigma;
-    chebyshev_start(system, dv, static_cast<float>(1.0 / theta), 0, n, work);
-    for (uint32_t k = 0; k < iterations; ++k) {
-        chebyshev_product(system, 0, n, dv, work);
-        if (k + 1 == iterations) break;
-        const double rho_next = 1.0 / (2.0 * sigma - rho);
-        chebyshev_direction(system, static_cast<float>(rho_next * rho),
-                            static_cast<float>(2.0 * rho_next / delta), 0, n, work);
-        rho = rho_next;
-    }
-    if (iterations > 0) {
-        chebyshev_energy(system, dv, 0, n, work);
-        const double scale = chebyshev_step_scale(work);
-        if (scale != 1.0) chebyshev_scale(static_cast<float>(scale), 0, n, dv);
-    }
-    SolveReport report;
-    report.iterations = iterations;
-    return report;
-}
-
 }  // namespace cloth

@@ -122,29 +122,4 @@ CLOTH_HOT_LOOP void pcg_direction(double beta, uint32_t begin, uint32_t end, Sol
     });
 }
 
-SolveReport solve_pcg(const LinearSystem& system, uint32_t max_iterations, float tolerance, Vec3Soa& dv,
-                      SolverWorkspace& work) {
-    const uint32_t n = system.particle_count;
-    SolveReport report;
-    pcg_start(system, dv, 0, n, work);
-    const double rz0 = sum_partials(work);
-    double rz = rz0;
-    const double stop = static_cast<double>(tolerance) * tolerance * rz0;
-    uint32_t k = 0;
-    while (k < max_iterations && rz > stop && rz > 0) {
-        pcg_product(system, 0, n, work);
-        const double pq = sum_partials(work);
-        if (!(pq > 0)) break;  // W is positive definite; pq <= 0 only from round-off at convergence
-        pcg_update(system, rz / pq, 0, n, dv, work);
-        const double rz_next = sum_partials(work);
-        ++k;
-        if (k < max_iterations) pcg_direction(rz_next / rz, 0, n, work);
-        rz = rz_next;
-    }
-    report.iterations = k;
-    report.residual = rz0 > 0 ? static_cast<float>(std::sqrt(std::max(rz, 0.0) / rz0)) : 0.0f;
-    report.converged = true;
-    return report;
-}
-
 }  // namespace cloth

@@ -63,13 +63,6 @@ double sum_partials(const SolverWorkspace& work);
 // so the step starts from p; tests use it as a far-from-answer start.
 void external_force_guess(const AssemblyPass& pass, uint32_t begin, uint32_t end, Vec3Soa& dv);
 
-// Jacobi (algorithm.md 3): dv^(k+1)_i = W_ii^-1 (b_i + sum_s A_s dv^(k)_other),
-// `iterations` sweeps from the dv given on entry (the step passes p = W^-1 b,
-// the paper's eqs. 8-10).
-// Per iteration one per-particle gather; no global solve. `scratch` holds
-// particle_count vectors; it and dv may trade buffers.
-SolveReport solve_jacobi(const LinearSystem& system, uint32_t iterations, Vec3Soa& dv, Vec3Soa& scratch);
-
 // Conjugate gradient on the same system with Eigen's sparse solver
 // (Baraff-Witkin), in double precision, to a relative residual of
 // `tolerance`: the accuracy reference. It builds an Eigen sparse matrix

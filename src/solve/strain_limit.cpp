@@ -49,13 +49,30 @@ void strain_limit_apply(const Vec3Soa& correction, float h, uint32_t begin, uint
     }
 }
 
+void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, float h, Vec3Soa& x, Vec3Soa& v,
+                          Vec3Soa& correction) {
+    pass_ = pass;
+    iterations_ = iterations;
+    round_ = 0;
+    h_ = h;
+    x_ = &x;
+    v_ = &v;
+    correction_ = &correction;
+}
+
+void StrainLimiter::run(const GroupTask& task) {
+    if (applying()) {
+        strain_limit_apply(*correction_, h_, task.begin, task.end, *x_, *v_);
+    } else {
+        strain_limit_corrections(pass_, *x_, task.begin, task.end, *correction_);
+    }
+}
+
 void limit_strain(const StrainLimitPass& pass, const StrainLimit& limit, float h, Vec3Soa& x, Vec3Soa& v,
                   Vec3Soa& scratch) {
-    const uint32_t n = pass.fabric->particle_count();
-    for (uint32_t k = 0; k < limit.iterations; ++k) {
-        strain_limit_corrections(pass, x, 0, n, scratch);
-        strain_limit_apply(scratch, h, 0, n, x, v);
-    }
+    StrainLimiter limiter;
+    limiter.begin(pass, limit.iterations, h, x, v, scratch);
+    run_serially(limiter, pass.fabric->particle_count());
 }
 
 }  // namespace cloth

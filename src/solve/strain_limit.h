@@ -8,6 +8,7 @@
 #pragma once
 
 #include "base/soa.h"
+#include "base/staged.h"
 #include "fabric/fabric.h"
 #include "forces/material.h"
 #include "solve/solver_settings.h"
@@ -33,7 +34,32 @@ void strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa& x, uin
 void strain_limit_apply(const Vec3Soa& correction, float h, uint32_t begin, uint32_t end, Vec3Soa& x,
                         Vec3Soa& v);
 
-// `limit.iterations` rounds of both passes over all particles.
+// The passes as a staged algorithm (base/staged.h): `iterations` times a
+// round of corrections, then a round applying them. A frame runs the
+// colliders after each applying round (step/frame_plan.cpp).
+class StrainLimiter final : public StagedAlgorithm {
+  public:
+    // x, v and the scratch `correction` (one entry per particle) outlive it.
+    void begin(const StrainLimitPass& pass, uint32_t iterations, float h, Vec3Soa& x, Vec3Soa& v,
+               Vec3Soa& correction);
+    // The current round moves particles (it applies corrections).
+    bool applying() const { return round_ % 2 == 1; }
+
+    bool done() const override { return round_ >= 2 * iterations_; }
+    bool last_round() const override { return round_ + 1 == 2 * iterations_; }
+    void run(const GroupTask& task) override;
+    void finish_round() override { ++round_; }
+
+  private:
+    StrainLimitPass pass_{};
+    uint32_t iterations_ = 0, round_ = 0;
+    float h_ = 0;
+    Vec3Soa* x_ = nullptr;
+    Vec3Soa* v_ = nullptr;
+    Vec3Soa* correction_ = nullptr;
+};
+
+// The same rounds on this thread, over all particles.
 void limit_strain(const StrainLimitPass& pass, const StrainLimit& limit, float h, Vec3Soa& x, Vec3Soa& v,
                   Vec3Soa& scratch);
 

@@ -1,9 +1,13 @@
 // One simulated cloth: per-instance state over a shared Fabric (Jolt's
 // SoftBodyMotionProperties, NvCloth's Cloth). Owns its material, solver
-// settings and scratch buffers. A frame is a sequence of named stages
-// (step_stage.h), each a loop over the cloth's particle groups; the world
-// runs the stages of all its cloths together on one task system
-// (World::step), and step() runs one cloth alone.
+// settings and scratch buffers. A frame is a sequence of named stages, each
+// a loop over the cloth's particle groups, in the order frame_plan.cpp
+// writes down once; the world runs the stages of all its cloths together on
+// one task system (World::step), and step() runs one cloth alone.
+//
+// The code of a cloth: cloth_instance.cpp (state, setters, sleep),
+// frame_plan.cpp (the plan of a substep and the machine that runs it),
+// cloth_stages.cpp (each stage's body), cloth_snapshot.cpp.
 #pragma once
 
 #include <cloth/cloth.h>
@@ -14,6 +18,7 @@
 #include "base/host_allocator.h"
 #include "base/math.h"
 #include "base/soa.h"
+#include "base/staged.h"
 #include "base/status.h"
 #include "collide/cloth_contact.h"
 #include "fabric/fabric.h"
@@ -21,8 +26,10 @@
 #include "forces/material.h"
 #include "forces/springs.h"
 #include "jobs/task_system.h"
+#include "solve/iterative_solve.h"
 #include "solve/solver_settings.h"
 #include "solve/solvers.h"
+#include "solve/strain_limit.h"
 #include "step/step_stage.h"
 
 namespace cloth {
@@ -60,8 +67,9 @@ class ClothInstance {
     // call if the result was not finite.
     Status step(float dt, const Vec3& gravity, TaskSystem* tasks = nullptr);
 
-    // The frame protocol World::step drives (step() is the same loop for
-    // one cloth). Serial calls are made on the stepping thread; run_task
+    // The frame protocol (frame_plan.cpp), driven by run_frames
+    // (frame_rounds.h) for one cloth here and for all of a world's cloths in
+    // World::step. Serial calls are made on the stepping thread; run_task
     // on any worker, concurrently for different tasks of one stage:
     //   begin_frame(dt, gravity)
     //   while (!frame_done()) {
@@ -72,7 +80,7 @@ class ClothInstance {
     //   end_frame()
     void begin_frame(float dt, const Vec3& gravity);
     bool frame_done() const { return frame_done_; }
-    Stage stage() const { return cursor_.stage; }
+    Stage stage() const;  // the stage the current round belongs to
     uint32_t substep() const { return cursor_.substep; }
     void prepare_stage();
     uint32_t task_count() const;
@@ -109,7 +117,7 @@ class ClothInstance {
     // Particle groups: [group * kGroupSize, min(n, (group + 1) * kGroupSize)).
     // Every per-particle stage runs one task per group, so tasks carry about
     // the same work; a group is a row band on grids (row-major order).
-    static constexpr uint32_t kGroupSize = PaddedSlots::kChunk;
+    static constexpr uint32_t kGroupSize = cloth::kGroupSize;
     uint32_t group_count() const { return group_count_; }
 
     void set_material(const Material& material);  // recomputes masses
@@ -155,38 +163,70 @@ class ClothInstance {
     cloth_result last_step_result() const { return last_step_result_; }
 
   private:
-    // Stage bodies for one task (step_stage.h lists what each does).
-    void run_air(uint32_t group);
-    void run_forces(uint32_t group);
-    void run_assemble(uint32_t group);
-    void run_jacobi_sweep(uint32_t group);
-    void run_serial_solve();
-    void run_iterative_solver(uint32_t group);  // kIterativeSolve, in its current phase
-    void run_strain_limit(uint32_t group);      // kStrainLimit
-    // Serial bookkeeping of the iterative solvers after their stages' barrier.
-    void finish_iterative_stage();
-    Stage stage_after_collisions() const;
-    LinearSystem system() const;
-    void run_integrate(uint32_t group);
-    void run_explicit(uint32_t group);
-    void run_self_collision(uint32_t group);  // the kSelf* stages
-    void run_collisions(uint32_t group);
-    void land_pins(uint32_t begin, uint32_t end, Vec3Soa& x);
+    // ---- The plan of a substep (frame_plan.cpp)
+    // One stage of the plan: `run` does one task of a round; `finish`, when
+    // set, is the serial work after each round's barrier; a stage with
+    // `rounds` is a staged algorithm (base/staged.h) whose rounds repeat the
+    // stage until it is done, otherwise the stage is one round.
+    struct PlannedStage {
+        Stage stage;
+        void (ClothInstance::*run)(const GroupTask& task);
+        void (ClothInstance::*finish)();
+        StagedAlgorithm* rounds;
+    };
+    static constexpr uint32_t kMaxPlannedStages = 12;
+    // Writes this substep's stages into plan_, in run order.
+    void plan_substep();
+    void plan(Stage stage, void (ClothInstance::*run)(const GroupTask&),
+              void (ClothInstance::*finish)() = nullptr, StagedAlgorithm* rounds = nullptr);
+    const PlannedStage& planned() const { return plan_[cursor_.entry]; }
+    // Whether the round about to run is the last of the frame (it checks the state).
+    bool final_round() const;
+    // Box2D-style order check: a stage body runs only as its planned stage.
+    void expect_stage(Stage stage) const;
+
+    // ---- The stages (cloth_stages.cpp), in plan order; each runs one group.
+    /// Pinned particles get the velocity that lands them on this substep's targets (serial).
+    void move_pins();
+    /// Wind drag and lift per triangle, a share for each corner.
+    void apply_air(const GroupTask& task);
+    /// External forces (air gather, gravity, linear drag), then each spring's f~, J and A_s.
+    void evaluate_forces(const GroupTask& task);
+    /// EXPLICIT: gather spring forces, symplectic Euler; pins land.
+    void integrate_explicitly(const GroupTask& task);
+    void report_explicit_solve();
+    /// W_ii, W_ii^-1, b_i and the first iterate p_i = W_ii^-1 b_i (paper Code 1).
+    void assemble_system(const GroupTask& task);
+    /// CG reference: the whole system on one task (Eigen).
+    void solve_by_cg(const GroupTask& task);
+    void record_cg_result();
+    /// JACOBI, PCG, CHEBYSHEV: one round of the iterative solve (iterative_solve.h).
+    void iterate_solver(const GroupTask& task);
+    void record_iterative_result();
+    /// v += dv, x += h v; pins land (the frame's first integration writes the spare buffers).
+    void integrate_implicitly(const GroupTask& task);
+    void adopt_first_integration();
+    /// Particles against the world's colliders over this substep.
+    void collide(const GroupTask& task);
+    /// One round of strain limiting; after each applying round, the colliders again.
+    void limit_strain(const GroupTask& task);
+    /// One round of self-collision (hash, sort, contacts, project, respond).
+    void resolve_self_contacts(const GroupTask& task);
+    /// Checks the group's new state for NaN and Inf (in the frame's last round).
     void check_finite(uint32_t group);
+
+    LinearSystem system() const;
+    AssemblyPass assembly() const;
+    void land_pins(uint32_t begin, uint32_t end, Vec3Soa& x);
     // Puts back the state the frame started from (end_frame, on failure).
     void restore_frame_start();
     // Where the integration stage writes: the spare buffers while the
     // frame-start state is still in x_ and v_ (Backup::kFirstIntegration).
     Vec3Soa& integration_x() { return backup_ == Backup::kFirstIntegration ? backup_x_ : x_; }
     Vec3Soa& integration_v() { return backup_ == Backup::kFirstIntegration ? backup_v_ : v_; }
-    // The stage after the current one (the plan of a frame).
-    Stage next_stage(Stage current) const;
-    Stage first_stage_of_substep() const;
-    // Item range [begin, end) of `group` when `items` items are split over
-    // the groups (springs, triangles: each has one owning group).
-    void group_items(uint32_t group, uint32_t items, uint32_t& begin, uint32_t& end) const;
-    uint32_t group_begin(uint32_t group) const { return group * kGroupSize; }
-    uint32_t group_end(uint32_t group) const { return std::min(particle_count(), (group + 1) * kGroupSize); }
+    GroupTask group_task(uint32_t group) const {
+        return GroupTask::of(group, group_count_, particle_count());
+    }
     bool has_air() const;
     bool state_is_finite() const;
     // Where pinned particle i is at `frame_fraction` of the current frame.
@@ -235,39 +275,20 @@ class ClothInstance {
     Vec3Soa pin_velocity_start_;  // per particle, valid for pinned ones: v at the start of the frame
 
     std::shared_ptr<SelfCollision> self_collision_;  // null while off
-    bool self_overlapping_ = false;                  // the last projection pass left overlaps
 
     SolveReport last_solve_;
     cloth_result last_step_result_ = CLOTH_OK;
 
-    // The frame in progress.
+    // The frame in progress: substep, entry of plan_, round within it.
     struct Cursor {
-        Stage stage = Stage::kForces;
         uint32_t substep = 0;
-        uint32_t sweep = 0;  // Jacobi sweep / PCG or Chebyshev iteration / strain-limit pass
+        uint32_t entry = 0;
+        uint32_t round = 0;
     };
-    // Scalars of the iterative solve in progress (set after each barrier).
-    struct IterativeSolve {
-        enum class Phase : uint8_t {
-            kPcgStart,
-            kPcgProduct,
-            kPcgUpdate,
-            kPcgDirection,
-            kChebyshevBound,
-            kChebyshevStart,
-            kChebyshevProduct,
-            kChebyshevDirection,
-            kChebyshevEnergy,
-            kChebyshevScale
-        };
-        Phase phase = Phase::kPcgStart;
-        Phase next = Phase::kPcgStart;
-        double rz0 = 0, rz = 0, alpha = 0, beta = 0;  // PCG
-        double sigma = 0, delta = 0, rho = 0;         // Chebyshev
-        double step_scale = 1;                        // Chebyshev: the energy-minimising step length
-        bool go_on = false;                           // another iteration follows
-    };
-    IterativeSolve iterative_;
+    PlannedStage plan_[kMaxPlannedStages] = {};
+    uint32_t plan_size_ = 0;
+    IterativeSolve iterative_;  // JACOBI, PCG, CHEBYSHEV
+    StrainLimiter strain_limiter_;
     uint32_t group_count_ = 0;
     Cursor cursor_;
     bool frame_done_ = true;
@@ -276,8 +297,7 @@ class ClothInstance {
     Vec3 gravity_ = Vec3::Zero();
     bool frame_converged_ = true;
     bool frame_out_of_memory_ = false;       // set by the serial solve task
-    Vec3Soa* sweep_current_ = nullptr;       // Jacobi: the iterate being read
-    Vec3Soa* sweep_next_ = nullptr;          // and the one being written
+    const Vec3Soa* solution_ = nullptr;      // the solver's dv, which integration reads
     HostVector<uint8_t> group_finite_;       // per group, written by the last stage of a frame
     HostVector<float> group_speed_squared_;  // per group: largest |v|^2, written with group_finite_
 

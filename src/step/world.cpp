@@ -4,6 +4,8 @@
 #include <climits>
 #include <cstdlib>
 
+#include "step/frame_rounds.h"
+
 namespace cloth {
 
 World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
@@ -19,6 +21,7 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       host_tasks_(desc.enqueue_task, desc.finish_task, desc.task_user, desc.worker_count),
       pool_(desc.enqueue_task ? 1 : desc.worker_count),
       stepping_(HostAllocator<uint32_t>(&memory_)),
+      stepping_cloths_(HostAllocator<ClothInstance*>(&memory_)),
       round_(HostAllocator<RoundTask>(&memory_)),
       round_times_(HostAllocator<TaskTime>(&memory_)),
       cloth_cost_ns_(HostAllocator<int64_t>(&memory_)),
@@ -27,6 +30,7 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
     fabrics_.resize(desc.max_fabrics);
     cloths_.resize(desc.max_cloths);
     stepping_.reserve(desc.max_cloths);
+    stepping_cloths_.reserve(desc.max_cloths);
     cloth_cost_ns_.assign(desc.max_cloths, 0);
     budget_cloths_.reserve(desc.max_cloths);
     profile_.origin_ns = now_ns();
@@ -217,6 +221,7 @@ Status World::step(float dt) {
     profile_.begin(++frame_, start, budget_ms_);
     const bool timed = timing();
     stepping_.clear();
+    stepping_cloths_.clear();
     for (uint32_t s = 0; s < cloths_.size(); ++s) {
         ClothInstance* cloth = cloths_[s].object.get();
         if (!cloth) continue;
@@ -229,31 +234,27 @@ Status World::step(float dt) {
         cloth->begin_frame(dt, gravity);
         cloth_cost_ns_[s] = 0;
         stepping_.push_back(s);
+        stepping_cloths_.push_back(cloth);
     }
     profile_.awake_cloths = static_cast<uint32_t>(stepping_.size());
     auto run_range = [this](uint32_t begin, uint32_t end, uint32_t worker) {
         run_round_range(begin, end, worker);
     };
-    for (;;) {
+    // One round: the current stage of every cloth still in its frame.
+    run_frames(stepping_cloths_.data(), static_cast<uint32_t>(stepping_cloths_.size()), [&] {
         round_.clear();
         for (uint32_t s : stepping_) {
             ClothInstance* cloth = cloths_[s].object.get();
             if (cloth->frame_done()) continue;
-            cloth->prepare_stage();
             const uint32_t count = cloth->task_count();
             for (uint32_t t = 0; t < count; ++t) {
                 round_.push_back(RoundTask{cloth, t, s, cloth->stage(), cloth->substep()});
             }
         }
-        if (round_.empty()) break;
         const uint32_t count = static_cast<uint32_t>(round_.size());
         parallel_for(*tasks_, count, kMinTasksPerRange, run_range);
         if (timed) account_round(count);
-        for (uint32_t s : stepping_) {
-            ClothInstance* cloth = cloths_[s].object.get();
-            if (!cloth->frame_done()) cloth->finish_stage();
-        }
-    }
+    });
 
     Status first_failure;
     for (uint32_t s : stepping_) {

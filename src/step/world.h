@@ -126,10 +126,11 @@ class World {
     SerialTasks serial_tasks_;
     HostTasks host_tasks_;
     ThreadPool pool_;  // starts no thread unless the world asked for workers and has no host callbacks
-    HostVector<uint32_t> stepping_;      // slots of the cloths of the frame in progress
-    HostVector<RoundTask> round_;        // sized for every group of every cloth
-    HostVector<TaskTime> round_times_;   // one slot per task of the round, written by its worker
-    HostVector<int64_t> cloth_cost_ns_;  // per cloth slot: task time of the last frame
+    HostVector<uint32_t> stepping_;               // slots of the cloths of the frame in progress
+    HostVector<ClothInstance*> stepping_cloths_;  // and those cloths, in the same order
+    HostVector<RoundTask> round_;                 // sized for every group of every cloth
+    HostVector<TaskTime> round_times_;            // one slot per task of the round, written by its worker
+    HostVector<int64_t> cloth_cost_ns_;           // per cloth slot: task time of the last frame
 
     FrameProfile profile_;
     uint64_t frame_ = 0;

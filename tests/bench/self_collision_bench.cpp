@@ -113,7 +113,7 @@ void BM_SelfCollision_Stage(benchmark::State& state) {
         // arrays, small next to the stage).
         f.x = x0;
         f.v = v0;
-        f.collision->run(f.x, f.v, f.mass.data(), f.pinned.data());
+        f.collision->run_serially(f.x, f.v, f.mass.data(), f.pinned.data());
     }
     per_particle(state, f);
     state.counters["passes"] = f.collision->stats().passes;

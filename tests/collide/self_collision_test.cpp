@@ -158,7 +158,7 @@ TEST(SelfCollision, RestNeighboursNeverRepel) {
         EXPECT_TRUE(c.is_rest_neighbour(fabric->spring_first[s], fabric->spring_second[s]));
     }
     std::vector<float> mass(144, 0.01f), pinned(144, 0.0f);
-    c.run(x, v, mass.data(), pinned.data());
+    c.run_serially(x, v, mass.data(), pinned.data());
     for (uint32_t i = 0; i < 144; ++i) EXPECT_EQ(x.get(i), fabric->rest_positions[i]) << i;
     EXPECT_EQ(c.stats().contacts, 0u);
 }
@@ -190,7 +190,7 @@ TEST(SelfCollision, ResponsePushesApartAndRemovesApproach) {
             v.set(p(i), i < 3 ? Vec3(0, 0, 0) : Vec3(1.0f, -2.0f, 0));
         }
         std::vector<float> mass(6, 0.1f), pinned(6, 0.0f);
-        c.run(x, v, mass.data(), pinned.data());
+        c.run_serially(x, v, mass.data(), pinned.data());
         Vec3 momentum = Vec3::Zero();
         for (uint32_t i = 0; i < 3; ++i) {
             EXPECT_NEAR((x.get(p(i + 3)) - x.get(p(i))).norm(), 0.1f, 1e-3f);
@@ -230,7 +230,7 @@ TEST(SelfCollision, PinnedParticlesStayAndTheirPartnerTakesTheWholePush) {
         v.set(p(i), Vec3(0, i < 3 ? 0.0f : -1.0f, 0));
         pinned[p(i)] = i < 3 ? 1.0f : 0.0f;
     }
-    c.run(x, v, mass.data(), pinned.data());
+    c.run_serially(x, v, mass.data(), pinned.data());
     for (uint32_t i = 0; i < 3; ++i) {
         EXPECT_EQ(x.get(p(i)), fabric.rest_positions[p(i)]);
         EXPECT_NEAR(x.get(p(i + 3)).y(), 0.1f, 1e-4f);
@@ -252,7 +252,7 @@ TEST(SelfCollision, RangeSplitGivesIdenticalBits) {
 
     SelfCollision serial(testing::heap(), *fabric, s);
     Vec3Soa xs = start, vs = v0;
-    serial.run(xs, vs, mass.data(), pinned.data());
+    serial.run_serially(xs, vs, mass.data(), pinned.data());
 
     SelfCollision split(testing::heap(), *fabric, s);
     Vec3Soa xp = start, vp = v0;

@@ -1,0 +1,239 @@
+// The stages of a substep, each the body of one task (one particle group)
+// unless it says otherwise; frame_plan.cpp says in which order they run.
+// Each body starts by checking that it runs as its planned stage.
+#include <algorithm>
+#include <cmath>
+#include <new>
+
+#include "base/lanes.h"
+#include "collide/self_collision.h"
+#include "forces/aerodynamics.h"
+#include "forces/spring_terms.h"
+#include "solve/integrate.h"
+#include "solve/solver_default.h"
+#include "step/cloth_instance.h"
+
+namespace cloth {
+
+LinearSystem ClothInstance::system() const {
+    return LinearSystem{springs_.get(), particle_count(), &diagonal_, &diagonal_inverse_,
+                        &rhs_,          pinned_.data()};
+}
+
+AssemblyPass ClothInstance::assembly() const {
+    return AssemblyPass{springs_.get(),   &external_force_, mass_.data(), pinned_.data(), h_,
+                        aero_.linear_drag};
+}
+
+SpringModel ClothInstance::spring_model() const {
+    SpringModel model = SpringModel::make(frame_solver_.compression_safe_jacobian);
+    // The strain cable (springs.h) with a strain limit and an implicit
+    // solver; the explicit integrator, whose step a spring 100 times
+    // stiffer would blow up, relies on the projection passes alone.
+    if (frame_solver_.strain_limit.max_strain > 0 && frame_solver_.kind != CLOTH_SOLVER_EXPLICIT) {
+        model.cable_stretch = 1.0f + frame_solver_.strain_limit.max_strain;
+        model.cable_factor = kStrainCableStiffness;
+    }
+    return model;
+}
+
+bool ClothInstance::has_air() const {
+    return aero_.air_density > 0 && (aero_.drag_coefficient > 0 || aero_.lift_coefficient > 0);
+}
+
+Vec3 ClothInstance::pin_position(uint32_t i, float frame_fraction) const {
+    if (contact_.is_attached(i)) return contact_.attached_position(i, frame_fraction);
+    return pin_start_.get(i) + (pin_target_.get(i) - pin_start_.get(i)) * frame_fraction;
+}
+
+void ClothInstance::land_pins(uint32_t begin, uint32_t end, Vec3Soa& x) {
+    // Pinned particles land exactly on their substep targets.
+    const float fraction_end = static_cast<float>(cursor_.substep + 1) / static_cast<float>(substeps_);
+    auto first = std::lower_bound(pinned_list_.begin(), pinned_list_.end(), begin);
+    for (auto it = first; it != pinned_list_.end() && *it < end; ++it) {
+        x.set(*it, pin_position(*it, fraction_end));
+    }
+}
+
+// ---------------------------------------------------------------- stages, in plan order
+
+void ClothInstance::move_pins() {
+    // Pinned particles move linearly towards their frame-end targets.
+    const float fraction_end = static_cast<float>(cursor_.substep + 1) / static_cast<float>(substeps_);
+    for (uint32_t i : pinned_list_) v_.set(i, (pin_position(i, fraction_end) - x_.get(i)) / h_);
+}
+
+void ClothInstance::apply_air(const GroupTask& task) {
+    expect_stage(Stage::kAir);
+    uint32_t begin, end;
+    task.items(air_item_count(*fabric_), begin, end);
+    evaluate_air(*fabric_, aero_, x_, v_, begin, end, triangle_force_);
+}
+
+CLOTH_HOT_LOOP void ClothInstance::evaluate_forces(const GroupTask& task) {
+    expect_stage(Stage::kForces);
+    const uint32_t begin = task.begin, end = task.end;
+    // External forces: air (only when the scene has air), gravity, linear drag.
+    if (has_air()) {
+        gather_air(*fabric_, triangle_force_, begin, end, external_force_);
+    } else {
+        for (HostVector<float>* a : {&external_force_.x, &external_force_.y, &external_force_.z}) {
+            std::fill(a->begin() + begin, a->begin() + end, 0.0f);
+        }
+    }
+    const float linear_drag = aero_.linear_drag;
+    const Vec3 gravity = gravity_;
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        const typename L::type m = L::load(&mass_[i]), drag = m * linear_drag;
+        L::store(&external_force_.x[i],
+                 L::load(&external_force_.x[i]) + m * gravity.x() - L::load(&v_.x[i]) * drag);
+        L::store(&external_force_.y[i],
+                 L::load(&external_force_.y[i]) + m * gravity.y() - L::load(&v_.y[i]) * drag);
+        L::store(&external_force_.z[i],
+                 L::load(&external_force_.z[i]) + m * gravity.z() - L::load(&v_.z[i]) * drag);
+    });
+    // Springs: each spring (grid: each first particle) belongs to one group.
+    uint32_t spring_begin, spring_end;
+    task.items(springs_->item_count(), spring_begin, spring_end);
+    const float h = frame_solver_.kind == CLOTH_SOLVER_EXPLICIT ? 0.0f : h_;  // h = 0: plain forces
+    springs_->evaluate(x_, v_, h, spring_model(), spring_begin, spring_end);
+}
+
+void ClothInstance::integrate_explicitly(const GroupTask& task) {
+    expect_stage(Stage::kExplicit);
+    // Plain spring forces (evaluated with h = 0), then symplectic Euler.
+    springs_->gather(task.begin, task.end, external_force_, nullptr);
+    integrate_explicit(external_force_, mass_.data(), pinned_.data(), h_, task.begin, task.end, v_, x_);
+    land_pins(task.begin, task.end, x_);
+}
+
+void ClothInstance::report_explicit_solve() { last_solve_ = SolveReport{}; }
+
+void ClothInstance::assemble_system(const GroupTask& task) {
+    expect_stage(Stage::kAssemble);
+    // dv_ = p on exit: the solvers' first iterate.
+    assemble_particles(assembly(), task.begin, task.end, diagonal_, diagonal_inverse_, rhs_, dv_);
+}
+
+void ClothInstance::solve_by_cg(const GroupTask&) {
+    expect_stage(Stage::kSerialSolve);
+    try {
+        last_solve_ = solve_cg(system(), frame_solver_.cg_tolerance, frame_solver_.cg_max_iterations, dv_);
+    } catch (const std::bad_alloc&) {
+        frame_out_of_memory_ = true;  // end_frame restores the cloth
+    }
+}
+
+void ClothInstance::record_cg_result() { frame_converged_ = frame_converged_ && last_solve_.converged; }
+
+void ClothInstance::iterate_solver(const GroupTask& task) {
+    expect_stage(frame_solver_.kind == CLOTH_SOLVER_JACOBI ? Stage::kJacobiSweep : Stage::kIterativeSolve);
+    iterative_.run(task);
+}
+
+void ClothInstance::record_iterative_result() {
+    if (!iterative_.done()) return;
+    last_solve_ = iterative_.report();
+    solution_ = &iterative_.solution();
+}
+
+void ClothInstance::integrate_implicitly(const GroupTask& task) {
+    expect_stage(Stage::kIntegrate);
+    // dv is zero on pinned particles; they are placed below. Writes to x_, v_
+    // or, on the frame's first integration, to the spare buffers.
+    Vec3Soa& x_out = integration_x();
+    integrate_implicit(x_, v_, *solution_, h_, task.begin, task.end, x_out, integration_v());
+    land_pins(task.begin, task.end, x_out);
+}
+
+void ClothInstance::adopt_first_integration() {
+    if (backup_ != Backup::kFirstIntegration) return;
+    // The new state is in the backups, the frame-start state in x_, v_: swap.
+    x_.swap_buffers(backup_x_);
+    v_.swap_buffers(backup_v_);
+    backup_ = Backup::kSwapped;
+}
+
+void ClothInstance::collide(const GroupTask& task) {
+    // Also run by limit_strain after each applying round.
+    // Particles against the world's colliders over this substep (colliders.h).
+    const float from = static_cast<float>(cursor_.substep) / static_cast<float>(substeps_);
+    const float to = static_cast<float>(cursor_.substep + 1) / static_cast<float>(substeps_);
+    contact_.collide(h_, from, to, pinned_.data(), task.begin, task.end, x_, v_);
+}
+
+void ClothInstance::limit_strain(const GroupTask& task) {
+    expect_stage(Stage::kStrainLimit);
+    const bool applying = strain_limiter_.applying();
+    strain_limiter_.run(task);
+    // Contact and strain limit are resolved together: each round's moves
+    // (along straight springs) are taken back out of the colliders at once,
+    // so the next round sees where the particles really are. Limiting after
+    // the colliders alone would pull a spring that wraps a thin collider
+    // (the flag round its pole) through it; colliders after the limiter
+    // alone would push both ends back out on their own sides every substep,
+    // undoing the limit.
+    if (applying && collides_) collide(task);
+}
+
+void ClothInstance::resolve_self_contacts(const GroupTask& task) {
+    expect_stage(Stage::kSelfCollision);
+    self_collision_->run(task);
+}
+
+// ---------------------------------------------------------------- finite check
+
+namespace {
+
+// Whether x and v are finite on [begin, end) (x * 0 is 0 for finite x and
+// NaN otherwise; NaN survives any sum), and the largest squared speed
+// there, in one pass. The maximum does not depend on the order.
+CLOTH_HOT_LOOP bool range_is_finite(const Vec3Soa& x, const Vec3Soa& v, uint32_t begin, uint32_t end,
+                                    float& max_speed_squared) {
+    float sum[VectorLanes::width] = {}, top[VectorLanes::width] = {};
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        using T = typename L::type;
+        const T vx = L::load(&v.x[i]), vy = L::load(&v.y[i]), vz = L::load(&v.z[i]);
+        T acc = L::load(sum);
+        acc += L::load(&x.x[i]) * 0.0f + L::load(&x.y[i]) * 0.0f + L::load(&x.z[i]) * 0.0f;
+        acc += vx * 0.0f + vy * 0.0f + vz * 0.0f;
+        L::store(sum, acc);
+        const T speed_squared = vx * vx + vy * vy + vz * vz, m = L::load(top);
+        L::store(top, m < speed_squared ? speed_squared : m);
+    });
+    float total = 0, m = 0;
+    for (uint32_t lane = 0; lane < VectorLanes::width; ++lane) {
+        total += sum[lane];
+        m = std::max(m, top[lane]);
+    }
+    max_speed_squared = m;
+    return std::isfinite(total);
+}
+
+}  // namespace
+
+void ClothInstance::check_finite(uint32_t group) {
+    // The state the last round wrote, which becomes x_, v_ after the barrier:
+    // self-collision's response velocities, or the first integration's output.
+    const Stage stage = planned().stage;
+    const bool integrated = stage == Stage::kIntegrate;
+    const Vec3Soa& x = integrated ? integration_x() : x_;
+    const Vec3Soa& v = stage == Stage::kSelfCollision ? self_collision_->next_velocities()
+                       : integrated                   ? integration_v()
+                                                      : v_;
+    const GroupTask task = group_task(group);
+    float speed_squared = 0;
+    group_finite_[group] = range_is_finite(x, v, task.begin, task.end, speed_squared) ? 1 : 0;
+    group_speed_squared_[group] = speed_squared;
+}
+
+bool ClothInstance::state_is_finite() const {
+    for (uint8_t finite : group_finite_) {
+        if (!finite) return false;
+    }
+    return true;
+}
+
+}  // namespace cloth

@@ -1,0 +1,221 @@
+// The plan of a frame, written once: plan_substep lists a substep's stages
+// in run order, and the machine below runs them.
+//
+// A frame of `dt` runs `substeps` substeps of h = dt / substeps. Each stage
+// is a loop over the cloth's particle groups (one task per group, on any
+// worker) that reads only what earlier stages wrote, so the end of a stage
+// is a barrier and nothing inside one needs a lock or an atomic: every
+// per-particle sum is a gather in the fabric's fixed order. That makes the
+// step parallel and bit-identical for any split of the groups over
+// workers. The world runs the current stage of every cloth in one round
+// (World::step), so many cloths share the workers.
+//
+// A new stage gets a line in plan_substep, behind the condition that
+// enables it (a feature that is off adds no pass), and a body in
+// cloth_stages.cpp that starts with expect_stage.
+#include <algorithm>
+#include <cassert>
+#include <cstdio>
+#include <cstdlib>
+
+#include "collide/self_collision.h"
+#include "solve/solver_default.h"
+#include "step/cloth_instance.h"
+#include "step/frame_rounds.h"
+
+namespace cloth {
+
+// A staged reduction writes one partial sum per particle group into the
+// block-ordered arrays of solvers.h: a group must be exactly one block.
+static_assert(kGroupSize == kReductionBlock, "one particle group per reduction block");
+
+using C = ClothInstance;
+
+// ---------------------------------------------------------------- the plan
+
+// One substep, top to bottom (algorithm.md 4; paper section III). Before
+// the first stage, move_pins gives pinned particles their substep velocity.
+void ClothInstance::plan_substep() {
+    plan_size_ = 0;
+    solution_ = &dv_;  // where the solver leaves dv (JACOBI: record_iterative_result says)
+    const cloth_solver_kind kind = frame_solver_.kind;
+    if (has_air()) plan(Stage::kAir, &C::apply_air);
+    plan(Stage::kForces, &C::evaluate_forces);
+    if (kind == CLOTH_SOLVER_EXPLICIT) {
+        plan(Stage::kExplicit, &C::integrate_explicitly, &C::report_explicit_solve);
+    } else {
+        plan(Stage::kAssemble, &C::assemble_system);
+        if (kind == CLOTH_SOLVER_CG) {
+            plan(Stage::kSerialSolve, &C::solve_by_cg, &C::record_cg_result);
+        } else {
+            iterative_.begin(kind, frame_solver_.iterations, frame_solver_.cg_tolerance,
+                             {system(), assembly(), &dv_, &solver_work_, &dv_scratch_});
+            const Stage stage = kind == CLOTH_SOLVER_JACOBI ? Stage::kJacobiSweep : Stage::kIterativeSolve;
+            plan(stage, &C::iterate_solver, &C::record_iterative_result, &iterative_);
+        }
+        plan(Stage::kIntegrate, &C::integrate_implicitly, &C::adopt_first_integration);
+    }
+    // After integration, where contact plugs in.
+    if (collides_) plan(Stage::kCollisions, &C::collide);
+    const StrainLimit& limit = frame_solver_.strain_limit;
+    if (limit.max_strain > 0 && limit.iterations > 0) {
+        const StrainLimitPass pass{fabric_.get(), mass_.data(), pinned_.data(), limit.max_strain};
+        strain_limiter_.begin(pass, limit.iterations, h_, x_, v_, solver_work_.r);
+        plan(Stage::kStrainLimit, &C::limit_strain, nullptr, &strain_limiter_);
+    }
+    if (self_collision_) {
+        self_collision_->begin(x_, v_, mass_.data(), pinned_.data());
+        plan(Stage::kSelfCollision, &C::resolve_self_contacts, nullptr, self_collision_.get());
+    }
+}
+
+void ClothInstance::plan(Stage stage, void (C::*run)(const GroupTask&), void (C::*finish)(),
+                         StagedAlgorithm* rounds) {
+    assert(plan_size_ < kMaxPlannedStages);
+    plan_[plan_size_++] = PlannedStage{stage, run, finish, rounds};
+}
+
+// ---------------------------------------------------------------- the machine
+
+Status ClothInstance::step(float dt, const Vec3& gravity, TaskSystem* tasks) {
+    SerialTasks serial;
+    TaskSystem& runner = tasks ? *tasks : serial;
+    if (sleeping_ && contact_.follows_bodies()) wake();  // bodies move without a call on the cloth
+    if (sleeping_) return {};
+    begin_frame(dt, gravity);
+    ClothInstance* self = this;
+    auto body = [this](uint32_t begin, uint32_t end, uint32_t worker) {
+        for (uint32_t t = begin; t < end; ++t) run_task(t, worker);
+    };
+    run_frames(&self, 1, [&] { parallel_for(runner, task_count(), 1, body); });
+    return end_frame();
+}
+
+void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
+    // Only the default solver's choice depends on k / m (a pass over every particle).
+    const float stiffness_per_mass =
+        solver_.kind == CLOTH_SOLVER_DEFAULT
+            ? stiffness_over_mass(material_, mass_.data(), pinned_.data(), particle_count())
+            : 0.0f;
+    frame_solver_ = resolve_solver(solver_, dt, stiffness_per_mass);
+    if (contact_.carrier().active() || frame_solver_.kind == CLOTH_SOLVER_EXPLICIT) {
+        backup_ = Backup::kCopied;
+        backup_x_ = x_;
+        backup_v_ = v_;
+    } else {
+        backup_ = Backup::kFirstIntegration;
+        for (uint32_t i : pinned_list_) pin_velocity_start_.set(i, v_.get(i));
+    }
+    contact_.begin_step(dt, pinned_.data(), x_, v_);  // carrier (no pass without one)
+    collides_ = contact_.collides();
+    for (uint32_t i : pinned_list_) pin_start_.set(i, x_.get(i));
+    substeps_ = frame_solver_.substeps;
+    h_ = dt / static_cast<float>(substeps_);
+    gravity_ = gravity;
+    frame_converged_ = true;
+    frame_out_of_memory_ = false;
+    std::fill(group_finite_.begin(), group_finite_.end(), uint8_t{1});
+    cursor_ = Cursor{};
+    plan_substep();
+    frame_done_ = false;
+}
+
+Stage ClothInstance::stage() const {
+    const PlannedStage& s = planned();
+    if (s.stage != Stage::kSelfCollision) return s.stage;
+    switch (self_collision_->round()) {  // self-collision's rounds have stages of their own
+        case SelfCollision::Round::kSort:
+            return Stage::kSelfSort;
+        case SelfCollision::Round::kContacts:
+            return Stage::kSelfContacts;
+        case SelfCollision::Round::kProject:
+            return Stage::kSelfProject;
+        case SelfCollision::Round::kRespond:
+            return Stage::kSelfRespond;
+        default:
+            return Stage::kSelfCollision;
+    }
+}
+
+void ClothInstance::prepare_stage() {
+    if (cursor_.entry == 0 && cursor_.round == 0) move_pins();
+}
+
+uint32_t ClothInstance::task_count() const {
+    const PlannedStage& s = planned();
+    const bool one_task = s.stage == Stage::kSerialSolve || (s.rounds && s.rounds->single_task());
+    return one_task ? 1 : group_count_;
+}
+
+bool ClothInstance::final_round() const {
+    const PlannedStage& s = planned();
+    return cursor_.substep + 1 == substeps_ && cursor_.entry + 1 == plan_size_ &&
+           (!s.rounds || s.rounds->last_round());
+}
+
+// Always on: one comparison per task. A mismatch is a bug in this file
+// (a body wired to the wrong stage), never the caller's doing.
+void ClothInstance::expect_stage(Stage stage) const {
+    if (planned().stage == stage) return;
+    std::fprintf(stderr, "cloth: stage body %s ran as planned stage %s\n", stage_name(stage),
+                 stage_name(planned().stage));
+    std::abort();
+}
+
+void ClothInstance::run_task(uint32_t task, uint32_t) {
+    (this->*planned().run)(group_task(task));
+    // The last round of the frame checks its group for NaN and Inf.
+    if (final_round()) check_finite(task);
+}
+
+void ClothInstance::finish_stage() {
+    if (frame_out_of_memory_) {
+        frame_done_ = true;
+        return;
+    }
+    const PlannedStage& s = planned();
+    if (s.rounds) s.rounds->finish_round();
+    if (s.finish) (this->*s.finish)();
+    if (s.rounds && !s.rounds->done()) {
+        ++cursor_.round;  // the staged algorithm's next round
+        return;
+    }
+    cursor_.round = 0;
+    if (++cursor_.entry < plan_size_) return;
+    if (++cursor_.substep == substeps_) {
+        frame_done_ = true;
+        return;
+    }
+    cursor_.entry = 0;
+    plan_substep();
+}
+
+Status ClothInstance::end_frame() {
+    frame_done_ = true;
+    if (frame_out_of_memory_) {
+        // Only the CG reference solver allocates during a step.
+        restore_frame_start();
+        last_step_result_ = CLOTH_ERROR_OUT_OF_MEMORY;
+        return Status::error(
+            CLOTH_ERROR_OUT_OF_MEMORY,
+            "the solver could not allocate; the cloth was restored to its state before the step");
+    }
+    if (!state_is_finite()) {
+        restore_frame_start();
+        last_step_result_ = CLOTH_ERROR_NONFINITE_STATE;
+        return Status::error(
+            CLOTH_ERROR_NONFINITE_STATE,
+            "the step produced a non-finite state; the cloth was restored to its state before "
+            "the step (lower dt, raise substeps or iterations, or use a sturdier solver)");
+    }
+    last_step_result_ = frame_converged_ ? CLOTH_OK : CLOTH_ERROR_SOLVER_FAILED;
+    update_sleep();
+    if (!frame_converged_) {
+        return Status::error(CLOTH_ERROR_SOLVER_FAILED,
+                             "conjugate gradient stopped at its iteration limit (residual %g)",
+                             static_cast<double>(last_solve_.residual));
+    }
+    return {};
+}
+
+}  // namespace cloth
