@@ -1,16 +1,20 @@
 // Shared machinery of the C API's files: the process-wide world table,
-// handle lookups, and api_call, which turns every outcome (including
-// exceptions, which never cross the ABI) into a cloth_result plus a message.
+// api_call, which turns every outcome (including exceptions, which never
+// cross the ABI) into a cloth_result plus a message, and the with_* calls
+// that open every function taking a handle: they look the handle up and
+// run the function's body only on a live object, so no function can
+// forget the check.
 #pragma once
 
 #include <cloth/cloth.h>
 
-#include <array>
 #include <cstdio>
 #include <exception>
 #include <mutex>
 #include <new>
+#include <type_traits>
 
+#include "base/id_pool.h"
 #include "errors.h"
 #include "step/world.h"
 
@@ -22,12 +26,15 @@ inline constexpr uint32_t kMaxWorkers = 256;
 // ---------------------------------------------------------------- worlds
 
 // Process-wide table of worlds, so that a world id can be checked before
-// use (a stale or foreign id is an error, not a dangling pointer). Only
-// create, destroy and lookup touch it, under the mutex.
+// use (a stale or foreign id is an error, not a dangling pointer). Its
+// slots come from the C heap (no world's allocator outlives the table).
+// Only create, destroy and lookup touch it, under the mutex.
 struct WorldTable {
     std::mutex mutex;
-    std::array<World*, kMaxWorlds> worlds{};
-    std::array<uint16_t, kMaxWorlds> generations{};
+    HostMemory heap;
+    IdPool<World*> worlds{&heap, kMaxWorlds};
+
+    WorldTable() { worlds.make_all_slots(); }
 };
 
 inline WorldTable& world_table() {
@@ -36,15 +43,13 @@ inline WorldTable& world_table() {
 }
 
 inline World* find_world(cloth_world_id id) {
-    if (id.index1 == 0 || id.index1 > kMaxWorlds) return nullptr;
     WorldTable& table = world_table();
     std::lock_guard<std::mutex> lock(table.mutex);
-    World* world = table.worlds[id.index1 - 1];
-    if (!world || table.generations[id.index1 - 1] != id.generation) return nullptr;
-    return world;
+    World** world = table.worlds.get(id.index1, id.generation);
+    return world ? *world : nullptr;
 }
 
-// The world a fabric or cloth id names, if that world is still alive.
+// The world a fabric, cloth, body or collider id names, if that world is still alive.
 template <class Id>
 inline World* find_owning_world(Id id) {
     return find_world(cloth_world_id{id.world1, id.world_generation});
@@ -88,32 +93,96 @@ inline Status null_error(const char* what) {
     return Status::error(CLOTH_ERROR_NULL_POINTER, "%s is NULL", what);
 }
 
+inline Status handle_error(const char* kind) {
+    return Status::error(CLOTH_ERROR_INVALID_HANDLE, "%s handle is null, destroyed or unknown", kind);
+}
+
 // ---------------------------------------------------------------- lookups
 
-inline Status get_world(cloth_world_id id, World*& world, const World*& log_world) {
-    world = find_world(id);
-    if (!world)
-        return Status::error(CLOTH_ERROR_INVALID_HANDLE, "world handle is null, destroyed or unknown");
-    log_world = world;
-    return {};
+// The live object an id names in its world, or null.
+inline ClothInstance* find_object(World& world, cloth_id id) { return world.find_cloth(id); }
+inline const Fabric* find_object(World& world, cloth_fabric_id id) { return world.find_fabric(id).get(); }
+inline BodyState* find_object(World& world, cloth_body_id id) {
+    return world.contact().find_body(id.index1, id.generation);
+}
+inline Collider* find_object(World& world, cloth_collider_id id) {
+    return world.contact().find_collider(id.index1, id.generation);
 }
 
-inline Status get_cloth(cloth_id id, ClothInstance*& cloth, const World*& log_world) {
+// Whether `id` names a live object (the cloth_*_is_valid functions).
+template <class Id>
+bool is_live(Id id) {
     World* world = find_owning_world(id);
-    cloth = world ? world->find_cloth(id) : nullptr;
-    if (!cloth)
-        return Status::error(CLOTH_ERROR_INVALID_HANDLE, "cloth handle is null, destroyed or unknown");
-    log_world = world;
+    return world && find_object(*world, id);
+}
+
+// The body a cloth refers to, which must live in the cloth's world.
+inline Status find_body_of_cloth(cloth_id cloth, cloth_body_id id, const BodyState*& body) {
+    World* world = find_owning_world(id);
+    body = world ? find_object(*world, id) : nullptr;
+    if (!body) return handle_error("body");
+    if (id.world1 != cloth.world1 || id.world_generation != cloth.world_generation) {
+        return Status::error(CLOTH_ERROR_INVALID_HANDLE, "body belongs to another world than the cloth");
+    }
     return {};
 }
 
-inline Status get_fabric(cloth_fabric_id id, std::shared_ptr<const Fabric>& fabric, World*& world,
-                         const World*& log_world) {
-    world = find_owning_world(id);
-    fabric = world ? world->find_fabric(id) : nullptr;
-    if (!fabric)
-        return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is null, destroyed or unknown");
-    log_world = world;
-    return {};
+// Runs `body(world)` on the live world `id` names; else the call fails
+// with CLOTH_ERROR_INVALID_HANDLE and `body` does not run.
+template <class Body>
+cloth_result with_world(const char* function, cloth_world_id id, Body body) {
+    return api_call(function, [&](const World*& log_world) -> Status {
+        World* world = find_world(id);
+        if (!world) return handle_error("world");
+        log_world = world;
+        return body(*world);
+    });
+}
+
+// Runs `body(world)` on the live world a fabric or cloth id names, for the
+// destroy calls, whose World method checks the object itself.
+template <class Id, class Body>
+cloth_result with_owning_world(const char* function, Id id, const char* kind, Body body) {
+    return api_call(function, [&](const World*& log_world) -> Status {
+        World* world = find_owning_world(id);
+        if (!world) return handle_error(kind);
+        log_world = world;
+        return body(*world);
+    });
+}
+
+// Runs `body(object)`, or `body(object, world)`, on the live object `id`
+// names (ClothInstance, const Fabric, BodyState or Collider); else the
+// call fails with CLOTH_ERROR_INVALID_HANDLE and `body` does not run.
+template <class Id, class Body>
+cloth_result with_object(const char* function, Id id, const char* kind, Body body) {
+    return api_call(function, [&](const World*& log_world) -> Status {
+        World* world = find_owning_world(id);
+        auto* object = world ? find_object(*world, id) : nullptr;
+        if (!object) return handle_error(kind);
+        log_world = world;
+        if constexpr (std::is_invocable_v<Body&, decltype(*object), World&>) {
+            return body(*object, *world);
+        } else {
+            return body(*object);
+        }
+    });
+}
+
+template <class Body>
+cloth_result with_cloth(const char* function, cloth_id id, Body body) {
+    return with_object(function, id, "cloth", body);
+}
+template <class Body>
+cloth_result with_fabric(const char* function, cloth_fabric_id id, Body body) {
+    return with_object(function, id, "fabric", body);
+}
+template <class Body>
+cloth_result with_body(const char* function, cloth_body_id id, Body body) {
+    return with_object(function, id, "body", body);
+}
+template <class Body>
+cloth_result with_collider(const char* function, cloth_collider_id id, Body body) {
+    return with_object(function, id, "collider", body);
 }
 }  // namespace cloth::api

@@ -137,6 +137,36 @@ inline Status check_points(const float* xyz, uint32_t count, const char* what) {
     return {};
 }
 
+// A unit quaternion (x, y, z, w) within 1e-2, normalised into *out.
+inline Status check_rotation(const float* q, const char* what, Quat* out) {
+    if (!q) return null_error(what);
+    for (int k = 0; k < 4; ++k) {
+        if (!std::isfinite(q[k])) return Status::error(CLOTH_ERROR_NOT_FINITE, "%s is not finite", what);
+    }
+    const float length = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (std::abs(length - 1.0f) > 1e-2f) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE,
+                             "%s has length %g; a unit quaternion (x, y, z, w) is needed", what,
+                             double(length));
+    }
+    *out = Quat(q[3], q[0], q[1], q[2]).normalized();
+    return {};
+}
+
+inline Status check_vector(const float* v, const char* what, Vec3* out) {
+    if (!v) return null_error(what);
+    if (!finite3(v)) return Status::error(CLOTH_ERROR_NOT_FINITE, "%s is not finite", what);
+    *out = Vec3(v[0], v[1], v[2]);
+    return {};
+}
+
+inline Status check_pose(const float* position, const float* rotation, const char* position_name,
+                         const char* rotation_name, Pose* out) {
+    Status s = check_vector(position, position_name, &out->position);
+    if (s.ok()) s = check_rotation(rotation, rotation_name, &out->rotation);
+    return s;
+}
+
 inline Status check_capacity(const void* out, uint32_t capacity, size_t needed) {
     if (!out) return null_error("output buffer");
     if (capacity < needed) {
@@ -156,7 +186,7 @@ inline SolverSettings to_core(const cloth_solver_settings& s) {
     out.substeps = s.substeps;
     out.cg_tolerance = s.cg_tolerance;
     out.cg_max_iterations = s.cg_max_iterations;
-    out.compression_safe_jacobian = s.compression_safe_jacobian;
+    out.compression_safe_jacobian = s.compression_safe_jacobian != 0;
     return out;
 }
 

@@ -1,5 +1,5 @@
-// C API: cloth instances (create, read back, pins, solver and material
-// settings, stats).
+// C API: cloth instances (create, destroy, read back, teleport particles,
+// material and air, stats).
 #include <cloth/cloth.h>
 
 #include <cmath>
@@ -11,22 +11,40 @@
 using namespace cloth;
 using namespace cloth::api;
 
-extern "C" {
+namespace {
 
-// ================================================================ cloth
-
-CLOTH_API cloth_solver_settings cloth_default_solver_settings(void) {
-    const SolverSettings core;
-    cloth_solver_settings s{};
-    s.struct_size = sizeof(cloth_solver_settings);
-    s.kind = CLOTH_SOLVER_DEFAULT;  // resolved per frame from gamma (src/solver_default.h)
-    s.iterations = core.iterations;
-    s.substeps = core.substeps;
-    s.cg_tolerance = core.cg_tolerance;
-    s.cg_max_iterations = core.cg_max_iterations;
-    s.compression_safe_jacobian = core.compression_safe_jacobian;
+Status check_cloth_desc(const cloth_desc& desc, const Fabric& fabric) {
+    if (!std::isfinite(desc.area_density))
+        return Status::error(CLOTH_ERROR_NOT_FINITE, "area_density is not finite");
+    if (!(desc.area_density > 0)) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "area_density %g must be > 0",
+                             double(desc.area_density));
+    }
+    Status s = check_non_negative(desc.particle_mass, "particle_mass");
+    if (s.ok()) s = check_spring_params(desc.structural, "structural");
+    if (s.ok()) s = check_spring_params(desc.shear, "shear");
+    if (s.ok()) s = check_spring_params(desc.bend, "bend");
+    if (s.ok()) s = check_solver(desc.solver);
+    if (s.ok()) s = check_aero(desc.aero);
+    if (s.ok() && desc.initial_positions) {
+        s = check_points(desc.initial_positions, fabric.particle_count(), "initial_positions");
+    }
     return s;
 }
+
+template <class Read>
+cloth_result read_vectors(const char* function, cloth_id id, float* out, uint32_t capacity, Read read) {
+    return with_cloth(function, id, [&](ClothInstance& cloth) -> Status {
+        Status s = check_capacity(out, capacity, 3 * static_cast<size_t>(cloth.particle_count()));
+        if (!s.ok()) return s;
+        copy_out(read(cloth), cloth.fabric(), out);
+        return {};
+    });
+}
+
+}  // namespace
+
+extern "C" {
 
 CLOTH_API cloth_desc cloth_default_desc(void) {
     const Material material;
@@ -48,35 +66,17 @@ CLOTH_API cloth_desc cloth_default_desc(void) {
 }
 
 CLOTH_API cloth_result cloth_create(cloth_world_id id, const cloth_desc* desc, cloth_id* out_cloth) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world;
-        Status s = get_world(id, world, log_world);
-        if (!s.ok()) return s;
+    return with_world(__func__, id, [&](World& world) -> Status {
         if (!desc) return null_error("desc");
         if (!out_cloth) return null_error("out_cloth");
-        s = check_desc(desc->struct_size, sizeof(cloth_desc), desc->internal_cookie, "cloth_desc");
+        Status s = check_desc(desc->struct_size, sizeof(cloth_desc), desc->internal_cookie, "cloth_desc");
         if (!s.ok()) return s;
         if (desc->fabric.world1 != id.index1 || desc->fabric.world_generation != id.generation) {
             return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle belongs to another world");
         }
-        std::shared_ptr<const Fabric> fabric = world->find_fabric(desc->fabric);
-        if (!fabric)
-            return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is null, destroyed or unknown");
-        if (!std::isfinite(desc->area_density))
-            return Status::error(CLOTH_ERROR_NOT_FINITE, "area_density is not finite");
-        if (!(desc->area_density > 0)) {
-            return Status::error(CLOTH_ERROR_INVALID_VALUE, "area_density %g must be > 0",
-                                 double(desc->area_density));
-        }
-        s = check_non_negative(desc->particle_mass, "particle_mass");
-        if (s.ok()) s = check_spring_params(desc->structural, "structural");
-        if (s.ok()) s = check_spring_params(desc->shear, "shear");
-        if (s.ok()) s = check_spring_params(desc->bend, "bend");
-        if (s.ok()) s = check_solver(desc->solver);
-        if (s.ok()) s = check_aero(desc->aero);
-        if (s.ok() && desc->initial_positions) {
-            s = check_points(desc->initial_positions, fabric->particle_count(), "initial_positions");
-        }
+        std::shared_ptr<const Fabric> fabric = world.find_fabric(desc->fabric);
+        if (!fabric) return handle_error("fabric");
+        s = check_cloth_desc(*desc, *fabric);
         if (!s.ok()) return s;
 
         Material material;
@@ -85,52 +85,25 @@ CLOTH_API cloth_result cloth_create(cloth_world_id id, const cloth_desc* desc, c
         material.springs[kBend] = {desc->bend.stiffness, desc->bend.damping};
         material.area_density = desc->area_density;
         material.particle_mass = desc->particle_mass;
-        return world->create_cloth(std::move(fabric), material, to_core(desc->solver), to_core(desc->aero),
-                                   desc->initial_positions, out_cloth);
+        return world.create_cloth(std::move(fabric), material, to_core(desc->solver), to_core(desc->aero),
+                                  desc->initial_positions, out_cloth);
     });
 }
 
 CLOTH_API cloth_result cloth_destroy(cloth_id id) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world = find_owning_world(id);
-        if (!world)
-            return Status::error(CLOTH_ERROR_INVALID_HANDLE, "cloth handle is null, destroyed or unknown");
-        log_world = world;
-        return world->destroy_cloth(id);
-    });
+    return with_owning_world(__func__, id, "cloth",
+                             [&](World& world) -> Status { return world.destroy_cloth(id); });
 }
+
+CLOTH_API bool cloth_is_valid(cloth_id id) { return is_live(id); }
 
 CLOTH_API cloth_result cloth_get_particle_count(cloth_id id, uint32_t* out_count) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
         if (!out_count) return null_error("out_count");
-        *out_count = cloth->particle_count();
+        *out_count = cloth.particle_count();
         return {};
     });
 }
-
-}  // extern "C"
-
-namespace {
-
-template <class Read>
-cloth_result read_vectors(const char* function, cloth_id id, float* out, uint32_t capacity, Read read) {
-    return api_call(function, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
-        s = check_capacity(out, capacity, 3 * static_cast<size_t>(cloth->particle_count()));
-        if (!s.ok()) return s;
-        copy_out(read(*cloth), cloth->fabric(), out);
-        return {};
-    });
-}
-
-}  // namespace
-
-extern "C" {
 
 CLOTH_API cloth_result cloth_read_positions(cloth_id id, float* out_xyz, uint32_t capacity) {
     return read_vectors(__func__, id, out_xyz, capacity,
@@ -149,185 +122,73 @@ CLOTH_API cloth_result cloth_read_normals(cloth_id id, float* out_xyz, uint32_t 
 
 CLOTH_API cloth_result cloth_set_positions(cloth_id id, const uint32_t* indices, const float* positions_xyz,
                                            uint32_t count) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (s.ok()) s = check_indices(indices, count, cloth->particle_count());
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+        Status s = check_indices(indices, count, cloth.particle_count());
         if (s.ok()) s = check_points(positions_xyz, count, "positions");
         if (!s.ok()) return s;
         for (uint32_t k = 0; k < count; ++k) {
             const float* p = positions_xyz + 3 * k;
-            cloth->set_position(cloth->fabric().particle(indices[k]), Vec3(p[0], p[1], p[2]));
+            cloth.set_position(cloth.fabric().particle(indices[k]), Vec3(p[0], p[1], p[2]));
         }
-        return {};
-    });
-}
-
-CLOTH_API cloth_result cloth_pin(cloth_id id, const uint32_t* indices, uint32_t count) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (s.ok()) s = check_indices(indices, count, cloth->particle_count());
-        if (!s.ok()) return s;
-        cloth->set_pinned(indices, count, true, /*vertex_indices=*/true);
-        return {};
-    });
-}
-
-CLOTH_API cloth_result cloth_unpin(cloth_id id, const uint32_t* indices, uint32_t count) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (s.ok()) s = check_indices(indices, count, cloth->particle_count());
-        if (!s.ok()) return s;
-        cloth->set_pinned(indices, count, false, /*vertex_indices=*/true);
-        return {};
-    });
-}
-
-CLOTH_API cloth_result cloth_set_pin_targets(cloth_id id, const uint32_t* indices, const float* targets_xyz,
-                                             uint32_t count) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (s.ok()) s = check_indices(indices, count, cloth->particle_count());
-        if (s.ok()) s = check_points(targets_xyz, count, "targets");
-        if (!s.ok()) return s;
-        const Fabric& fabric = cloth->fabric();
-        for (uint32_t k = 0; k < count; ++k) {
-            if (!cloth->is_pinned(fabric.particle(indices[k]))) {
-                return Status::error(CLOTH_ERROR_INVALID_VALUE, "particle %u is not pinned", indices[k]);
-            }
-            if (cloth->contact().is_attached(fabric.particle(indices[k]))) {
-                return Status::error(CLOTH_ERROR_INVALID_VALUE, "particle %u is attached to a body",
-                                     indices[k]);
-            }
-        }
-        for (uint32_t k = 0; k < count; ++k) {
-            const float* p = targets_xyz + 3 * k;
-            cloth->set_pin_target(fabric.particle(indices[k]), Vec3(p[0], p[1], p[2]));
-        }
-        return {};
-    });
-}
-
-CLOTH_API cloth_result cloth_is_pinned(cloth_id id, uint32_t index, bool* out_pinned) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
-        if (!out_pinned) return null_error("out_pinned");
-        if (index >= cloth->particle_count()) {
-            return Status::error(CLOTH_ERROR_INDEX_OUT_OF_RANGE, "index %u, but the cloth has %u particles",
-                                 index, cloth->particle_count());
-        }
-        *out_pinned = cloth->is_pinned(cloth->fabric().particle(index));
-        return {};
-    });
-}
-
-CLOTH_API cloth_result cloth_set_solver(cloth_id id, const cloth_solver_settings* settings) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
-        if (!settings) return null_error("settings");
-        s = check_solver(*settings);
-        if (!s.ok()) return s;
-        SolverSettings core = to_core(*settings);
-        core.strain_limit = cloth->solver().strain_limit;
-        cloth->solver() = core;
-        cloth->wake();
-        return {};
-    });
-}
-
-CLOTH_API cloth_result cloth_get_solver(cloth_id id, cloth_solver_settings* out) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
-        if (!out) return null_error("out_settings");
-        const SolverSettings& core = cloth->solver();
-        *out = cloth_default_solver_settings();
-        out->kind = core.kind;
-        out->iterations = core.iterations;
-        out->substeps = core.substeps;
-        out->cg_tolerance = core.cg_tolerance;
-        out->cg_max_iterations = core.cg_max_iterations;
-        out->compression_safe_jacobian = core.compression_safe_jacobian;
         return {};
     });
 }
 
 CLOTH_API cloth_result cloth_set_spring_params(cloth_id id, uint32_t kinds, cloth_spring_params params) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
         if (kinds == 0 || (kinds & ~static_cast<uint32_t>(CLOTH_SPRING_ALL))) {
             return Status::error(CLOTH_ERROR_INVALID_VALUE,
                                  "spring kinds 0x%x is not a non-empty set of kinds", kinds);
         }
-        s = check_spring_params(params, "spring");
+        Status s = check_spring_params(params, "spring");
         if (!s.ok()) return s;
-        Material material = cloth->material();
+        Material material = cloth.material();
         for (int k = 0; k < kSpringKindCount; ++k) {
             if (kinds & (1u << k)) material.springs[k] = {params.stiffness, params.damping};
         }
-        cloth->set_material(material);
+        cloth.set_material(material);
         return {};
     });
 }
 
 CLOTH_API cloth_result cloth_set_aero(cloth_id id, const cloth_aero_params* params) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
         if (!params) return null_error("params");
-        s = check_aero(*params);
+        Status s = check_aero(*params);
         if (!s.ok()) return s;
-        cloth->aero() = to_core(*params);
-        cloth->wake();
+        cloth.aero() = to_core(*params);
+        cloth.wake();
         return {};
     });
 }
 
 CLOTH_API cloth_result cloth_set_wind(cloth_id id, const float wind[3]) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
         if (!wind) return null_error("wind");
         if (!finite3(wind)) return Status::error(CLOTH_ERROR_NOT_FINITE, "wind is not finite");
-        cloth->aero().wind = Vec3(wind[0], wind[1], wind[2]);
-        cloth->wake();
+        cloth.aero().wind = Vec3(wind[0], wind[1], wind[2]);
+        cloth.wake();
         return {};
     });
 }
 
 CLOTH_API cloth_result cloth_get_stats(cloth_id id, cloth_stats* out) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
+    return with_cloth(__func__, id, [&](ClothInstance& cloth, World& world) -> Status {
         if (!out) return null_error("out_stats");
         if (out->struct_size != sizeof(cloth_stats)) {
             return Status::error(CLOTH_ERROR_INVALID_DESC, "cloth_stats.struct_size is %u, expected %zu",
                                  out->struct_size, sizeof(cloth_stats));
         }
-        const World* world = log_world;
-        const ClothMeasure m = measure(*cloth, world->gravity);
+        const ClothMeasure m = measure(cloth, world.gravity);
         out->kinetic_energy = m.kinetic_energy;
         out->gravity_energy = m.gravity_energy;
         out->elastic_energy = m.elastic_energy;
         out->max_strain = m.max_strain;
         out->mean_strain = m.mean_strain;
         out->max_speed = m.max_speed;
-        out->last_solver_iterations = cloth->last_solve().iterations;
-        out->last_solver_residual = cloth->last_solve().residual;
-        out->last_step_result = cloth->last_step_result();
+        out->last_solver_iterations = cloth.last_solve().iterations;
+        out->last_solver_residual = cloth.last_solve().residual;
+        out->last_step_result = cloth.last_step_result();
         return {};
     });
 }

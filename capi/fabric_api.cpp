@@ -35,29 +35,25 @@ CLOTH_API cloth_mesh_desc cloth_default_mesh_desc(void) {
 
 CLOTH_API cloth_result cloth_fabric_create_grid(cloth_world_id id, const cloth_grid_desc* desc,
                                                 cloth_fabric_id* out_fabric) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world;
-        Status s = get_world(id, world, log_world);
-        if (!s.ok()) return s;
+    return with_world(__func__, id, [&](World& world) -> Status {
         if (!desc) return null_error("desc");
         if (!out_fabric) return null_error("out_fabric");
-        s = check_desc(desc->struct_size, sizeof(cloth_grid_desc), desc->internal_cookie, "cloth_grid_desc");
+        Status s =
+            check_desc(desc->struct_size, sizeof(cloth_grid_desc), desc->internal_cookie, "cloth_grid_desc");
         if (!s.ok()) return s;
-        return world->create_fabric([&](Fabric& f) { return build_grid_fabric(*desc, f); }, out_fabric);
+        return world.create_fabric([&](Fabric& f) { return build_grid_fabric(*desc, f); }, out_fabric);
     });
 }
 
 CLOTH_API cloth_result cloth_fabric_create_mesh(cloth_world_id id, const cloth_mesh_desc* desc,
                                                 cloth_fabric_id* out_fabric) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world;
-        Status s = get_world(id, world, log_world);
-        if (!s.ok()) return s;
+    return with_world(__func__, id, [&](World& world) -> Status {
         if (!desc) return null_error("desc");
         if (!out_fabric) return null_error("out_fabric");
-        s = check_desc(desc->struct_size, sizeof(cloth_mesh_desc), desc->internal_cookie, "cloth_mesh_desc");
+        Status s =
+            check_desc(desc->struct_size, sizeof(cloth_mesh_desc), desc->internal_cookie, "cloth_mesh_desc");
         if (!s.ok()) return s;
-        return world->create_fabric(
+        return world.create_fabric(
             [&](Fabric& f) {
                 return build_mesh_fabric(desc->positions, desc->vertex_count, desc->indices,
                                          desc->triangle_count, desc->spring_kinds, f);
@@ -68,65 +64,47 @@ CLOTH_API cloth_result cloth_fabric_create_mesh(cloth_world_id id, const cloth_m
 
 CLOTH_API cloth_result cloth_fabric_create_obj(cloth_world_id id, const char* path, uint32_t spring_kinds,
                                                cloth_fabric_id* out_fabric) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world;
-        Status s = get_world(id, world, log_world);
-        if (!s.ok()) return s;
+    return with_world(__func__, id, [&](World& world) -> Status {
         if (!path) return null_error("path");
         if (!out_fabric) return null_error("out_fabric");
-        return world->create_fabric([&](Fabric& f) { return build_obj_fabric(path, spring_kinds, f); },
-                                    out_fabric);
+        return world.create_fabric([&](Fabric& f) { return build_obj_fabric(path, spring_kinds, f); },
+                                   out_fabric);
     });
 }
 
 CLOTH_API cloth_result cloth_fabric_destroy(cloth_fabric_id id) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world = find_owning_world(id);
-        if (!world)
-            return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is null, destroyed or unknown");
-        log_world = world;
-        return world->destroy_fabric(id);
-    });
+    return with_owning_world(__func__, id, "fabric",
+                             [&](World& world) -> Status { return world.destroy_fabric(id); });
 }
 
+CLOTH_API bool cloth_fabric_is_valid(cloth_fabric_id id) { return is_live(id); }
+
 CLOTH_API cloth_result cloth_fabric_get_particle_count(cloth_fabric_id id, uint32_t* out_count) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        std::shared_ptr<const Fabric> fabric;
-        World* world;
-        Status s = get_fabric(id, fabric, world, log_world);
-        if (!s.ok()) return s;
+    return with_fabric(__func__, id, [&](const Fabric& fabric) -> Status {
         if (!out_count) return null_error("out_count");
-        *out_count = fabric->particle_count();
+        *out_count = fabric.particle_count();
         return {};
     });
 }
 
 CLOTH_API cloth_result cloth_fabric_get_triangle_count(cloth_fabric_id id, uint32_t* out_count) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        std::shared_ptr<const Fabric> fabric;
-        World* world;
-        Status s = get_fabric(id, fabric, world, log_world);
-        if (!s.ok()) return s;
+    return with_fabric(__func__, id, [&](const Fabric& fabric) -> Status {
         if (!out_count) return null_error("out_count");
-        *out_count = fabric->triangle_count();
+        *out_count = fabric.triangle_count();
         return {};
     });
 }
 
 CLOTH_API cloth_result cloth_fabric_get_spring_count(cloth_fabric_id id, uint32_t kinds,
                                                      uint32_t* out_count) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        std::shared_ptr<const Fabric> fabric;
-        World* world;
-        Status s = get_fabric(id, fabric, world, log_world);
-        if (!s.ok()) return s;
+    return with_fabric(__func__, id, [&](const Fabric& fabric) -> Status {
         if (!out_count) return null_error("out_count");
         if (kinds & ~static_cast<uint32_t>(CLOTH_SPRING_ALL)) {
             return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown spring kind bits 0x%x", kinds);
         }
         uint32_t count = 0;
         for (int k = 0; k < kSpringKindCount; ++k) {
-            if (kinds & (1u << k)) count += fabric->springs_of_kind[k];
+            if (kinds & (1u << k)) count += fabric.springs_of_kind[k];
         }
         *out_count = count;
         return {};
@@ -135,16 +113,12 @@ CLOTH_API cloth_result cloth_fabric_get_spring_count(cloth_fabric_id id, uint32_
 
 CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id id, uint32_t* out_indices,
                                                    uint32_t capacity) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        std::shared_ptr<const Fabric> fabric;
-        World* world;
-        Status s = get_fabric(id, fabric, world, log_world);
-        if (!s.ok()) return s;
-        s = check_capacity(out_indices, capacity, fabric->triangles.size());
+    return with_fabric(__func__, id, [&](const Fabric& fabric) -> Status {
+        Status s = check_capacity(out_indices, capacity, fabric.triangles.size());
         if (!s.ok()) return s;
         // In the host's vertex order (a mesh's particles are stored spatially sorted).
-        for (size_t i = 0; i < fabric->triangles.size(); ++i)
-            out_indices[i] = fabric->vertex(fabric->triangles[i]);
+        for (size_t i = 0; i < fabric.triangles.size(); ++i)
+            out_indices[i] = fabric.vertex(fabric.triangles[i]);
         return {};
     });
 }

@@ -27,31 +27,25 @@ CLOTH_API const char* cloth_stage_name(cloth_stage stage) {
 }
 
 CLOTH_API cloth_result cloth_world_set_profiling(cloth_world_id id, uint32_t max_tasks_per_frame) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world;
-        Status s = get_world(id, world, log_world);
-        if (!s.ok()) return s;
+    return with_world(__func__, id, [&](World& world) -> Status {
         if (max_tasks_per_frame > (1u << 24)) {
             return Status::error(CLOTH_ERROR_INVALID_COUNT, "max_tasks_per_frame %u is more than 2^24",
                                  max_tasks_per_frame);
         }
-        world->set_profiling(max_tasks_per_frame);
+        world.set_profiling(max_tasks_per_frame);
         return {};
     });
 }
 
 CLOTH_API cloth_result cloth_world_get_frame_profile(cloth_world_id id, cloth_frame_profile* out) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world;
-        Status s = get_world(id, world, log_world);
-        if (!s.ok()) return s;
+    return with_world(__func__, id, [&](World& world) -> Status {
         if (!out) return null_error("out_profile");
         if (out->struct_size != sizeof(cloth_frame_profile)) {
             return Status::error(CLOTH_ERROR_INVALID_DESC,
                                  "cloth_frame_profile.struct_size is %u, expected %zu", out->struct_size,
                                  sizeof(cloth_frame_profile));
         }
-        const FrameProfile& p = world->frame_profile();
+        const FrameProfile& p = world.frame_profile();
         cloth_frame_profile r{};
         r.struct_size = sizeof r;
         r.worker_count = static_cast<uint32_t>(std::min<size_t>(p.worker_busy_ns.size(), CLOTH_MAX_WORKERS));
@@ -72,7 +66,7 @@ CLOTH_API cloth_result cloth_world_get_frame_profile(cloth_world_id id, cloth_fr
         }
         r.task_count = static_cast<uint32_t>(p.tasks.size());
         r.tasks_dropped = p.tasks_dropped;
-        r.overrun_frames = world->overrun_frames();
+        r.overrun_frames = world.overrun_frames();
         *out = r;
         return {};
     });
@@ -80,17 +74,14 @@ CLOTH_API cloth_result cloth_world_get_frame_profile(cloth_world_id id, cloth_fr
 
 CLOTH_API cloth_result cloth_world_read_task_records(cloth_world_id id, cloth_task_record* out_records,
                                                      uint32_t capacity, uint32_t* out_count) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world;
-        Status s = get_world(id, world, log_world);
-        if (!s.ok()) return s;
+    return with_world(__func__, id, [&](World& world) -> Status {
         if (!out_count) return null_error("out_count");
         if (!out_records && capacity > 0) return null_error("out_records");
-        const FrameProfile& p = world->frame_profile();
+        const FrameProfile& p = world.frame_profile();
         const uint32_t n = std::min(capacity, static_cast<uint32_t>(p.tasks.size()));
         for (uint32_t i = 0; i < n; ++i) {
             const TaskRecord& t = p.tasks[i];
-            out_records[i] = cloth_task_record{world->cloth_id_of(t.cloth_slot, t.cloth_generation),
+            out_records[i] = cloth_task_record{world.cloth_id_of(t.cloth_slot, t.cloth_generation),
                                                static_cast<cloth_stage>(t.stage),
                                                t.group,
                                                t.worker,
@@ -105,13 +96,10 @@ CLOTH_API cloth_result cloth_world_read_task_records(cloth_world_id id, cloth_ta
 
 CLOTH_API cloth_result cloth_world_write_trace_json(cloth_world_id id, char* buffer, size_t capacity,
                                                     size_t* out_size) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world;
-        Status s = get_world(id, world, log_world);
-        if (!s.ok()) return s;
+    return with_world(__func__, id, [&](World& world) -> Status {
         if (!out_size) return null_error("out_size");
         if (!buffer && capacity > 0) return null_error("buffer");
-        const size_t needed = write_trace_json(world->frame_profile(), buffer, capacity);
+        const size_t needed = write_trace_json(world.frame_profile(), buffer, capacity);
         *out_size = needed;
         if (buffer && capacity < needed) {
             return Status::error(CLOTH_ERROR_INVALID_COUNT, "capacity %zu is less than the %zu bytes needed",
@@ -123,70 +111,11 @@ CLOTH_API cloth_result cloth_world_write_trace_json(cloth_world_id id, char* buf
 
 CLOTH_API cloth_result cloth_world_set_zone_callbacks(cloth_world_id id, cloth_zone_begin_fn* begin,
                                                       cloth_zone_end_fn* end, void* user) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world;
-        Status s = get_world(id, world, log_world);
-        if (!s.ok()) return s;
+    return with_world(__func__, id, [&](World& world) -> Status {
         if ((begin == nullptr) != (end == nullptr)) {
             return Status::error(CLOTH_ERROR_INVALID_VALUE, "set both zone callbacks, or neither");
         }
-        world->set_zone_callbacks(begin, end, user);
-        return {};
-    });
-}
-
-CLOTH_API cloth_result cloth_world_set_frame_budget(cloth_world_id id, float milliseconds) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world;
-        Status s = get_world(id, world, log_world);
-        if (!s.ok()) return s;
-        s = check_non_negative(milliseconds, "milliseconds");
-        if (!s.ok()) return s;
-        world->set_frame_budget(milliseconds);
-        return {};
-    });
-}
-
-CLOTH_API cloth_quality_policy cloth_default_quality_policy(void) {
-    const QualityPolicy core;
-    cloth_quality_policy p{};
-    p.struct_size = sizeof p;
-    p.enabled = core.enabled;
-    p.min_iterations = core.min_iterations;
-    p.max_iterations = core.max_iterations;
-    p.min_substeps = core.min_substeps;
-    p.max_substeps = core.max_substeps;
-    return p;
-}
-
-CLOTH_API cloth_result cloth_set_quality_policy(cloth_id id, const cloth_quality_policy* policy) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
-        if (!policy) return null_error("policy");
-        if (policy->struct_size != sizeof(cloth_quality_policy)) {
-            return Status::error(CLOTH_ERROR_INVALID_DESC,
-                                 "cloth_quality_policy.struct_size is %u, expected %zu", policy->struct_size,
-                                 sizeof(cloth_quality_policy));
-        }
-        if (policy->min_iterations < 1 || policy->min_iterations > policy->max_iterations ||
-            policy->max_iterations > 256) {
-            return Status::error(CLOTH_ERROR_INVALID_VALUE, "iterations bounds %u..%u are not within 1..256",
-                                 policy->min_iterations, policy->max_iterations);
-        }
-        if (policy->min_substeps < 1 || policy->min_substeps > policy->max_substeps ||
-            policy->max_substeps > 64) {
-            return Status::error(CLOTH_ERROR_INVALID_VALUE, "substeps bounds %u..%u are not within 1..64",
-                                 policy->min_substeps, policy->max_substeps);
-        }
-        QualityPolicy core;
-        core.enabled = policy->enabled;
-        core.min_iterations = policy->min_iterations;
-        core.max_iterations = policy->max_iterations;
-        core.min_substeps = policy->min_substeps;
-        core.max_substeps = policy->max_substeps;
-        cloth->set_quality_policy(core);
+        world.set_zone_callbacks(begin, end, user);
         return {};
     });
 }

@@ -63,31 +63,25 @@ CLOTH_API cloth_self_collision_desc cloth_default_self_collision_desc(void) {
 }
 
 CLOTH_API cloth_result cloth_set_self_collision(cloth_id id, const cloth_self_collision_desc* desc) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
         if (!desc) return null_error("desc");
-        s = check_self_collision(*desc, cloth->fabric());
+        Status s = check_self_collision(*desc, cloth.fabric());
         if (!s.ok()) return s;
         if (!desc->enabled) {
-            cloth->set_self_collision(nullptr);
+            cloth.set_self_collision(nullptr);
             return {};
         }
         const SelfCollisionSettings settings = to_core(*desc);
-        cloth->set_self_collision(&settings);  // builds the new state before replacing the old
+        cloth.set_self_collision(&settings);  // builds the new state before replacing the old
         return {};
     });
 }
 
 CLOTH_API cloth_result cloth_get_self_collision(cloth_id id, cloth_self_collision_desc* out) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
         if (!out) return null_error("out_desc");
         cloth_self_collision_desc d = cloth_default_self_collision_desc();
-        if (const SelfCollision* c = cloth->self_collision()) {
+        if (const SelfCollision* c = cloth.self_collision()) {
             const SelfCollisionSettings& core = c->settings();
             d.enabled = true;
             d.thickness = core.thickness;
@@ -101,10 +95,7 @@ CLOTH_API cloth_result cloth_get_self_collision(cloth_id id, cloth_self_collisio
 }
 
 CLOTH_API cloth_result cloth_get_self_collision_stats(cloth_id id, cloth_self_collision_stats* out) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
         if (!out) return null_error("out_stats");
         if (out->struct_size != sizeof(cloth_self_collision_stats)) {
             return Status::error(CLOTH_ERROR_INVALID_DESC,
@@ -113,7 +104,7 @@ CLOTH_API cloth_result cloth_get_self_collision_stats(cloth_id id, cloth_self_co
         }
         cloth_self_collision_stats r{};
         r.struct_size = sizeof(cloth_self_collision_stats);
-        if (const SelfCollision* c = cloth->self_collision()) {
+        if (const SelfCollision* c = cloth.self_collision()) {
             const SelfCollisionStats core = c->stats();
             r.contacts = core.contacts;
             r.regions = core.regions;

@@ -1,4 +1,4 @@
-// C API: solver options beyond cloth_solver_settings (strain limiting).
+// C API: how a cloth is solved (cloth_solver_settings) and its strain limit.
 #include <cloth/cloth.h>
 
 #include "api_call.h"
@@ -8,6 +8,47 @@ using namespace cloth;
 using namespace cloth::api;
 
 extern "C" {
+
+CLOTH_API cloth_solver_settings cloth_default_solver_settings(void) {
+    const SolverSettings core;
+    cloth_solver_settings s{};
+    s.struct_size = sizeof(cloth_solver_settings);
+    s.kind = CLOTH_SOLVER_DEFAULT;  // resolved per frame from gamma (src/solver_default.h)
+    s.iterations = core.iterations;
+    s.substeps = core.substeps;
+    s.cg_tolerance = core.cg_tolerance;
+    s.cg_max_iterations = core.cg_max_iterations;
+    s.compression_safe_jacobian = core.compression_safe_jacobian;
+    return s;
+}
+
+CLOTH_API cloth_result cloth_set_solver(cloth_id id, const cloth_solver_settings* settings) {
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+        if (!settings) return null_error("settings");
+        Status s = check_solver(*settings);
+        if (!s.ok()) return s;
+        SolverSettings core = to_core(*settings);
+        core.strain_limit = cloth.solver().strain_limit;
+        cloth.solver() = core;
+        cloth.wake();
+        return {};
+    });
+}
+
+CLOTH_API cloth_result cloth_get_solver(cloth_id id, cloth_solver_settings* out) {
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+        if (!out) return null_error("out_settings");
+        const SolverSettings& core = cloth.solver();
+        *out = cloth_default_solver_settings();
+        out->kind = core.kind;
+        out->iterations = core.iterations;
+        out->substeps = core.substeps;
+        out->cg_tolerance = core.cg_tolerance;
+        out->cg_max_iterations = core.cg_max_iterations;
+        out->compression_safe_jacobian = core.compression_safe_jacobian;
+        return {};
+    });
+}
 
 CLOTH_API cloth_strain_limit cloth_default_strain_limit(void) {
     const StrainLimit core;
@@ -19,27 +60,21 @@ CLOTH_API cloth_strain_limit cloth_default_strain_limit(void) {
 }
 
 CLOTH_API cloth_result cloth_set_strain_limit(cloth_id id, const cloth_strain_limit* limit) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
         if (!limit) return null_error("limit");
-        s = check_strain_limit(*limit);
+        Status s = check_strain_limit(*limit);
         if (!s.ok()) return s;
-        cloth->solver().strain_limit = StrainLimit{limit->max_strain, limit->iterations};
+        cloth.solver().strain_limit = StrainLimit{limit->max_strain, limit->iterations};
         return {};
     });
 }
 
 CLOTH_API cloth_result cloth_get_strain_limit(cloth_id id, cloth_strain_limit* out) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        ClothInstance* cloth;
-        Status s = get_cloth(id, cloth, log_world);
-        if (!s.ok()) return s;
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
         if (!out) return null_error("out_limit");
         *out = cloth_default_strain_limit();
-        out->max_strain = cloth->solver().strain_limit.max_strain;
-        out->iterations = cloth->solver().strain_limit.iterations;
+        out->max_strain = cloth.solver().strain_limit.max_strain;
+        out->iterations = cloth.solver().strain_limit.iterations;
         return {};
     });
 }

@@ -1,5 +1,5 @@
-// C API: version, worlds, their workers and stepping. Validation runs completely before
-// anything is changed, so a failing call changes nothing.
+// C API: worlds, their workers and stepping. Validation runs completely
+// before anything is changed, so a failing call changes nothing.
 #include <cloth/cloth.h>
 
 #include <cmath>
@@ -10,15 +10,38 @@
 using namespace cloth;
 using namespace cloth::api;
 
-extern "C" {
+namespace {
 
-// ================================================================ version
-
-CLOTH_API cloth_version cloth_get_version(void) {
-    return cloth_version{CLOTH_VERSION_MAJOR, CLOTH_VERSION_MINOR, CLOTH_VERSION_PATCH};
+Status check_world_desc(const cloth_world_desc& desc) {
+    Status s =
+        check_desc(desc.struct_size, sizeof(cloth_world_desc), desc.internal_cookie, "cloth_world_desc");
+    if (!s.ok()) return s;
+    if (!finite3(desc.gravity)) return Status::error(CLOTH_ERROR_NOT_FINITE, "gravity is not finite");
+    if ((desc.alloc == nullptr) != (desc.free == nullptr)) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "set both alloc and free, or neither");
+    }
+    if (desc.max_cloths < 1 || desc.max_cloths > 65535 || desc.max_fabrics < 1 || desc.max_fabrics > 65535) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "max_cloths and max_fabrics must be in 1..65535");
+    }
+    if ((desc.enqueue_task == nullptr) != (desc.finish_task == nullptr)) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "set both enqueue_task and finish_task, or neither");
+    }
+    if (desc.worker_count > kMaxWorkers) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "worker_count %u is more than %u", desc.worker_count,
+                             kMaxWorkers);
+    }
+    if (desc.enqueue_task && desc.worker_count == 0) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT,
+                             "worker_count must be 1..%u with host task callbacks (the number of "
+                             "worker indices the host passes)",
+                             kMaxWorkers);
+    }
+    return {};
 }
 
-// ================================================================ world
+}  // namespace
+
+extern "C" {
 
 CLOTH_API cloth_world_desc cloth_default_world_desc(void) {
     cloth_world_desc d{};
@@ -34,51 +57,26 @@ CLOTH_API cloth_result cloth_world_create(const cloth_world_desc* desc, cloth_wo
     return api_call(__func__, [&](const World*&) -> Status {
         if (!desc) return null_error("desc");
         if (!out_world) return null_error("out_world");
-        Status s = check_desc(desc->struct_size, sizeof(cloth_world_desc), desc->internal_cookie,
-                              "cloth_world_desc");
+        Status s = check_world_desc(*desc);
         if (!s.ok()) return s;
-        if (!finite3(desc->gravity)) return Status::error(CLOTH_ERROR_NOT_FINITE, "gravity is not finite");
-        if ((desc->alloc == nullptr) != (desc->free == nullptr)) {
-            return Status::error(CLOTH_ERROR_INVALID_VALUE, "set both alloc and free, or neither");
-        }
-        if (desc->max_cloths < 1 || desc->max_cloths > 65535 || desc->max_fabrics < 1 ||
-            desc->max_fabrics > 65535) {
-            return Status::error(CLOTH_ERROR_INVALID_COUNT, "max_cloths and max_fabrics must be in 1..65535");
-        }
-        if ((desc->enqueue_task == nullptr) != (desc->finish_task == nullptr)) {
-            return Status::error(CLOTH_ERROR_INVALID_VALUE,
-                                 "set both enqueue_task and finish_task, or neither");
-        }
-        if (desc->worker_count > kMaxWorkers) {
-            return Status::error(CLOTH_ERROR_INVALID_COUNT, "worker_count %u is more than %u",
-                                 desc->worker_count, kMaxWorkers);
-        }
-        if (desc->enqueue_task && desc->worker_count == 0) {
-            return Status::error(CLOTH_ERROR_INVALID_COUNT,
-                                 "worker_count must be 1..%u with host task callbacks (the number of "
-                                 "worker indices the host passes)",
-                                 kMaxWorkers);
-        }
 
         WorldTable& table = world_table();
         std::lock_guard<std::mutex> lock(table.mutex);
-        uint16_t index = 0;
-        while (index < kMaxWorlds && table.worlds[index]) ++index;
-        if (index == kMaxWorlds)
+        const uint32_t index = table.worlds.free_slot();
+        if (index == table.worlds.kFull)
             return Status::error(CLOTH_ERROR_CAPACITY, "%u worlds exist already", kMaxWorlds);
-        if (table.generations[index] == 0) table.generations[index] = 1;
-        const uint16_t generation = table.generations[index];
+        const uint16_t generation = table.worlds[index].generation;
 
         const HostMemory memory{desc->alloc, desc->free, desc->user};
         void* storage = memory.allocate(sizeof(World), alignof(World));
         World* world = nullptr;
         try {
-            world = new (storage) World(*desc, index, generation);
+            world = new (storage) World(*desc, static_cast<uint16_t>(index), generation);
         } catch (...) {
             memory.deallocate(storage, sizeof(World));
             throw;
         }
-        table.worlds[index] = world;
+        table.worlds.occupy(index, world);
         *out_world = cloth_world_id{static_cast<uint16_t>(index + 1), generation};
         return {};
     });
@@ -90,15 +88,10 @@ CLOTH_API cloth_result cloth_world_destroy(cloth_world_id id) {
         World* world = nullptr;
         {
             std::lock_guard<std::mutex> lock(table.mutex);
-            if (id.index1 == 0 || id.index1 > kMaxWorlds || !table.worlds[id.index1 - 1] ||
-                table.generations[id.index1 - 1] != id.generation) {
-                return Status::error(CLOTH_ERROR_INVALID_HANDLE,
-                                     "world handle is null, destroyed or unknown");
-            }
-            world = table.worlds[id.index1 - 1];
-            table.worlds[id.index1 - 1] = nullptr;
-            uint16_t& generation = table.generations[id.index1 - 1];
-            generation = static_cast<uint16_t>(generation + 1 == 0 ? 1 : generation + 1);
+            const uint32_t index = table.worlds.find(id.index1, id.generation);
+            if (index == table.worlds.kFull) return handle_error("world");
+            world = table.worlds[index].object;
+            table.worlds.release(index);
         }
         const HostMemory memory = *world->memory();
         world->~World();
@@ -107,53 +100,43 @@ CLOTH_API cloth_result cloth_world_destroy(cloth_world_id id) {
     });
 }
 
+CLOTH_API bool cloth_world_is_valid(cloth_world_id id) { return find_world(id) != nullptr; }
+
 CLOTH_API cloth_result cloth_world_set_worker_spin(cloth_world_id id, uint32_t microseconds) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world;
-        Status s = get_world(id, world, log_world);
-        if (!s.ok()) return s;
+    return with_world(__func__, id, [&](World& world) -> Status {
         if (microseconds > kMaxWorkerSpinMicroseconds) {
             return Status::error(CLOTH_ERROR_INVALID_VALUE, "worker spin of %u us is more than %u us (1 s)",
                                  microseconds, kMaxWorkerSpinMicroseconds);
         }
-        world->set_worker_spin(microseconds);
+        world.set_worker_spin(microseconds);
         return {};
     });
 }
 
 CLOTH_API cloth_result cloth_world_set_gravity(cloth_world_id id, const float gravity[3]) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world;
-        Status s = get_world(id, world, log_world);
-        if (!s.ok()) return s;
+    return with_world(__func__, id, [&](World& world) -> Status {
         if (!gravity) return null_error("gravity");
         if (!finite3(gravity)) return Status::error(CLOTH_ERROR_NOT_FINITE, "gravity is not finite");
-        world->gravity = Vec3(gravity[0], gravity[1], gravity[2]);
-        world->wake_all();
+        world.gravity = Vec3(gravity[0], gravity[1], gravity[2]);
+        world.wake_all();
         return {};
     });
 }
 
 CLOTH_API cloth_result cloth_world_shift_origin(cloth_world_id id, const float shift[3]) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world;
-        Status s = get_world(id, world, log_world);
-        if (!s.ok()) return s;
+    return with_world(__func__, id, [&](World& world) -> Status {
         if (!shift) return null_error("shift");
         if (!finite3(shift)) return Status::error(CLOTH_ERROR_NOT_FINITE, "shift is not finite");
-        return world->shift_origin(Vec3(shift[0], shift[1], shift[2]));
+        return world.shift_origin(Vec3(shift[0], shift[1], shift[2]));
     });
 }
 
 CLOTH_API cloth_result cloth_step(cloth_world_id id, float dt) {
-    return api_call(__func__, [&](const World*& log_world) -> Status {
-        World* world;
-        Status s = get_world(id, world, log_world);
-        if (!s.ok()) return s;
+    return with_world(__func__, id, [&](World& world) -> Status {
         if (!std::isfinite(dt)) return Status::error(CLOTH_ERROR_NOT_FINITE, "dt is not finite");
         if (!(dt > 0 && dt <= 1))
             return Status::error(CLOTH_ERROR_INVALID_VALUE, "dt %g is not in (0, 1]", double(dt));
-        return world->step(dt);
+        return world.step(dt);
     });
 }
 

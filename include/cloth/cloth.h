@@ -1,20 +1,25 @@
-/*
- * cloth: real-time mass-spring cloth simulation, C API v1.
+/**
+ * \file cloth.h
+ * \brief cloth: real-time mass-spring cloth simulation, C API v1.
  *
  * The whole public interface of the library. C99, and valid C++. Only
  * <stdint.h>, <stddef.h> and <stdbool.h> are used; no C++ type crosses it
  * and no C++ exception ever leaves a call.
  *
  * Objects
- *   world   owns everything below it, the host callbacks and the step.
- *   fabric  the shared, immutable topology of a cloth (particles, triangles,
- *           springs, rest lengths, rest areas). Many cloths may share one.
- *   cloth   one simulated instance of a fabric: positions, velocities,
- *           pins, material, solver settings, wind.
+ *   - world: owns everything below it, the host callbacks and the step.
+ *   - fabric: the shared, immutable topology of a cloth (particles,
+ *     triangles, springs, rest lengths, rest areas). Many cloths may share one.
+ *   - cloth: one simulated instance of a fabric: positions, velocities,
+ *     pins, material, solver settings, wind.
+ *   - body and collider: rigid frames the host moves, and the shapes fixed
+ *     to them that cloths collide with.
  *
  * Handles are small value structs (slot index + generation, all-zero is
- * null). A destroyed, never-created or foreign handle makes a call return
- * CLOTH_ERROR_INVALID_HANDLE; it is never dereferenced.
+ * null), all declared together under "Handles" with their null constants,
+ * cloth_*_id_equal() and cloth_*_is_valid(). A destroyed, never-created or
+ * foreign handle makes a call return CLOTH_ERROR_INVALID_HANDLE; it is
+ * never dereferenced.
  *
  * Errors. Every fallible call returns a cloth_result. CLOTH_OK is 0. On
  * failure nothing is changed (the one documented exception: cloth_step
@@ -23,18 +28,44 @@
  * message for the last failed call on the calling thread; the world's log
  * callback, if set, receives the same message.
  *
- * Descriptions. Every create call takes a description that must come from
- * its cloth_default_*() function (a hidden cookie catches an uninitialised
- * one) and carries struct_size: this version accepts exactly its own sizes,
- * and a later minor version will accept these sizes too, so a caller built
- * against this header keeps working. Fields are only ever appended to the
- * outermost struct; a struct embedded by value in another
- * (cloth_spring_params, cloth_solver_settings, cloth_aero_params) is frozen
- * as it is, and later settings arrive as new fields of the outer struct or
- * through new functions.
+ * Versioned structs. A struct whose first field is `struct_size` is
+ * versioned: struct_size holds sizeof the struct as the caller was built.
+ * This version accepts exactly its own sizes, and a later minor version
+ * will accept these sizes too, so a caller built against this header keeps
+ * working. Fields are only ever appended to the outermost struct; a struct
+ * embedded by value in another (cloth_spring_params, cloth_solver_settings,
+ * cloth_aero_params) is frozen as it is, and later settings arrive as new
+ * fields of the outer struct or through new functions. Structs without
+ * struct_size (the ids, cloth_version, cloth_spring_params,
+ * cloth_aero_params, cloth_task_record) are frozen.
+ *
+ * Which structs carry a cookie. Every description, that is every struct
+ * whose name ends in `_desc`, also carries `internal_cookie`, which only
+ * its cloth_default_*() function (or a cloth_get_*() call that fills one)
+ * sets: a description must start from there, and one that was never
+ * initialised is refused with CLOTH_ERROR_INVALID_DESC. All other
+ * versioned structs carry struct_size only: settings, parameters and
+ * policies (`_settings`, `_params`, `_policy`, cloth_strain_limit), which
+ * a caller may fill field by field, and the structs the library fills
+ * (cloth_stats, cloth_frame_profile, cloth_self_collision_stats), whose
+ * struct_size the caller sets before the call.
+ *
+ * Pointers. The library keeps no pointer it is given except callbacks and
+ * their user pointers (cloth_world_desc, cloth_world_set_zone_callbacks),
+ * which it keeps until the world is destroyed or they are replaced. Every
+ * other pointer, as an argument or as a field of a description, is read or
+ * written only during the call: what it points to is copied, and the
+ * caller may free or reuse it as soon as the call returns. Each pointer
+ * field of a description says which of the two it is.
+ *
+ * Other languages. Public structs hold only fixed-width integers, floats,
+ * doubles, pointers and 32-bit enums (no C bool: flags are uint8_t, 0 or 1,
+ * and any other value counts as 1), and cloth_struct_size() returns the
+ * library's size of each of them, so a binding can check its own layouts
+ * at run time.
  *
  * Limits: at most 128 worlds, 65535 fabrics and 65535 cloths per world,
- * 2^24 particles per fabric.
+ * 65535 bodies and 65535 colliders per world, 2^24 particles per fabric.
  *
  * Units: metres, kilograms, seconds. Vectors are float[3] (x, y, z).
  *
@@ -44,7 +75,8 @@
  *     No call may be made on a world while cloth_step runs on it.
  *   - Different worlds are independent and may be used from different
  *     threads at the same time.
- *   - Creating and destroying worlds is thread-safe.
+ *   - Creating and destroying worlds is thread-safe, and so is
+ *     cloth_world_is_valid().
  *   - Callbacks (allocator, log) are called on the thread that made the API
  *     call, during that call. They must not call back into this API.
  *   - cloth_get_last_error() is per thread.
@@ -57,6 +89,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/// Marks a function the library exports (Windows: dllexport while the
+/// library is built, dllimport for a caller of the DLL; elsewhere: default
+/// visibility).
 #if defined(_WIN32)
 #if defined(CLOTH_BUILDING_SHARED)
 #define CLOTH_API __declspec(dllexport)
@@ -77,45 +112,136 @@ extern "C" {
 /* Version                                                              */
 /* ------------------------------------------------------------------ */
 
+/// Major version of this header: a library of another major version is
+/// not compatible with it.
 #define CLOTH_VERSION_MAJOR 1
-#define CLOTH_VERSION_MINOR 3
+/// Minor version of this header: a library of the same major and at least
+/// this minor version has every function and struct of this header.
+#define CLOTH_VERSION_MINOR 4
+/// Patch version of this header (fixes that change no interface).
 #define CLOTH_VERSION_PATCH 0
 
 /// Library version. A library with another major version than the header a
 /// caller was built with is not compatible with it.
 typedef struct cloth_version {
+    /// CLOTH_VERSION_MAJOR of the library
     uint32_t major;
+    /// CLOTH_VERSION_MINOR of the library
     uint32_t minor;
+    /// CLOTH_VERSION_PATCH of the library
     uint32_t patch;
 } cloth_version;
 
 /// The version of the library that is loaded (not of the header).
 CLOTH_API cloth_version cloth_get_version(void);
 
+/// Every public struct, for cloth_struct_size(). The values are ABI: a new
+/// struct gets a new value at the end, and no value is ever reused.
+typedef enum cloth_struct_kind {
+    /// no struct (size 0)
+    CLOTH_STRUCT_NONE = 0,
+    /// cloth_version
+    CLOTH_STRUCT_VERSION = 1,
+    /// cloth_world_id
+    CLOTH_STRUCT_WORLD_ID = 2,
+    /// cloth_fabric_id
+    CLOTH_STRUCT_FABRIC_ID = 3,
+    /// cloth_id
+    CLOTH_STRUCT_CLOTH_ID = 4,
+    /// cloth_body_id
+    CLOTH_STRUCT_BODY_ID = 5,
+    /// cloth_collider_id
+    CLOTH_STRUCT_COLLIDER_ID = 6,
+    /// cloth_world_desc
+    CLOTH_STRUCT_WORLD_DESC = 7,
+    /// cloth_grid_desc
+    CLOTH_STRUCT_GRID_DESC = 8,
+    /// cloth_mesh_desc
+    CLOTH_STRUCT_MESH_DESC = 9,
+    /// cloth_spring_params
+    CLOTH_STRUCT_SPRING_PARAMS = 10,
+    /// cloth_solver_settings
+    CLOTH_STRUCT_SOLVER_SETTINGS = 11,
+    /// cloth_strain_limit
+    CLOTH_STRUCT_STRAIN_LIMIT = 12,
+    /// cloth_aero_params
+    CLOTH_STRUCT_AERO_PARAMS = 13,
+    /// cloth_desc
+    CLOTH_STRUCT_CLOTH_DESC = 14,
+    /// cloth_stats
+    CLOTH_STRUCT_STATS = 15,
+    /// cloth_frame_profile
+    CLOTH_STRUCT_FRAME_PROFILE = 16,
+    /// cloth_task_record
+    CLOTH_STRUCT_TASK_RECORD = 17,
+    /// cloth_quality_policy
+    CLOTH_STRUCT_QUALITY_POLICY = 18,
+    /// cloth_sleep_params
+    CLOTH_STRUCT_SLEEP_PARAMS = 19,
+    /// cloth_body_desc
+    CLOTH_STRUCT_BODY_DESC = 20,
+    /// cloth_collider_desc
+    CLOTH_STRUCT_COLLIDER_DESC = 21,
+    /// cloth_heightfield_desc
+    CLOTH_STRUCT_HEIGHTFIELD_DESC = 22,
+    /// cloth_collision_params
+    CLOTH_STRUCT_COLLISION_PARAMS = 23,
+    /// cloth_carrier_desc
+    CLOTH_STRUCT_CARRIER_DESC = 24,
+    /// cloth_self_collision_desc
+    CLOTH_STRUCT_SELF_COLLISION_DESC = 25,
+    /// cloth_self_collision_stats
+    CLOTH_STRUCT_SELF_COLLISION_STATS = 26,
+    /// forces the enum to 32 bits; not a struct
+    CLOTH_STRUCT_KIND_FORCE_U32 = 0x7FFFFFFF
+} cloth_struct_kind;
+
+/// sizeof the struct of `kind` as the loaded library was built, or 0 for a
+/// kind it does not know (CLOTH_STRUCT_NONE, or a kind added by a later
+/// version). One function for every struct, so that a binding checks all
+/// its layouts with one symbol, and a later struct adds a kind, not a
+/// function.
+CLOTH_API size_t cloth_struct_size(cloth_struct_kind kind);
+
 /* ------------------------------------------------------------------ */
 /* Results                                                              */
 /* ------------------------------------------------------------------ */
 
+/// What a call did. Values are ABI and never change.
 typedef enum cloth_result {
+    /// success
     CLOTH_OK = 0,
-    CLOTH_ERROR_NULL_POINTER = 1,        ///< a required pointer argument was NULL
-    CLOTH_ERROR_INVALID_HANDLE = 2,      ///< null, destroyed or foreign handle
-    CLOTH_ERROR_INVALID_DESC = 3,        ///< description not from cloth_default_*() or wrong struct_size
-    CLOTH_ERROR_INVALID_COUNT = 4,       ///< a count is zero, negative or too large
-    CLOTH_ERROR_INDEX_OUT_OF_RANGE = 5,  ///< a particle or vertex index is out of range
-    CLOTH_ERROR_NOT_FINITE = 6,          ///< a position or parameter is NaN or infinite
-    CLOTH_ERROR_INVALID_VALUE =
-        7,  ///< a value is out of its documented range (negative stiffness, dt <= 0, ...)
-    CLOTH_ERROR_DEGENERATE_GEOMETRY = 8,  ///< zero-area triangle, repeated vertex, zero-length edge
-    CLOTH_ERROR_OUT_OF_MEMORY = 9,        ///< the allocator returned NULL
-    CLOTH_ERROR_CAPACITY = 10,            ///< too many worlds, fabrics or cloths
-    CLOTH_ERROR_IO = 11,                  ///< a file could not be read or parsed
-    CLOTH_ERROR_NONFINITE_STATE =
-        12,  ///< a step produced NaN/Inf; the cloth was restored to its last finite state
-    CLOTH_ERROR_SOLVER_FAILED = 13,  ///< a solve did not converge (state still advanced, finite)
-    CLOTH_ERROR_INTERNAL = 14,       ///< an unexpected internal error; the world is unchanged
-    CLOTH_ERROR_OVER_BUDGET =
-        15,  ///< the step took longer than the world's frame budget; every cloth still advanced
+    /// a required pointer argument was NULL
+    CLOTH_ERROR_NULL_POINTER = 1,
+    /// null, destroyed or foreign handle
+    CLOTH_ERROR_INVALID_HANDLE = 2,
+    /// description not from cloth_default_*() or wrong struct_size
+    CLOTH_ERROR_INVALID_DESC = 3,
+    /// a count is zero, negative or too large
+    CLOTH_ERROR_INVALID_COUNT = 4,
+    /// a particle or vertex index is out of range
+    CLOTH_ERROR_INDEX_OUT_OF_RANGE = 5,
+    /// a position or parameter is NaN or infinite
+    CLOTH_ERROR_NOT_FINITE = 6,
+    /// a value is out of its documented range (negative stiffness, dt <= 0, ...)
+    CLOTH_ERROR_INVALID_VALUE = 7,
+    /// zero-area triangle, repeated vertex, zero-length edge
+    CLOTH_ERROR_DEGENERATE_GEOMETRY = 8,
+    /// the allocator returned NULL
+    CLOTH_ERROR_OUT_OF_MEMORY = 9,
+    /// too many worlds, fabrics or cloths
+    CLOTH_ERROR_CAPACITY = 10,
+    /// a file could not be read or parsed
+    CLOTH_ERROR_IO = 11,
+    /// a step produced NaN/Inf; the cloth was restored to its last finite state
+    CLOTH_ERROR_NONFINITE_STATE = 12,
+    /// a solve did not converge (state still advanced, finite)
+    CLOTH_ERROR_SOLVER_FAILED = 13,
+    /// an unexpected internal error; the world is unchanged
+    CLOTH_ERROR_INTERNAL = 14,
+    /// the step took longer than the world's frame budget; every cloth still advanced
+    CLOTH_ERROR_OVER_BUDGET = 15,
+    /// forces the enum to 32 bits; never returned
     CLOTH_RESULT_FORCE_U32 = 0x7FFFFFFF
 } cloth_result;
 
@@ -130,30 +256,125 @@ CLOTH_API const char* cloth_get_last_error(void);
 /* Handles                                                              */
 /* ------------------------------------------------------------------ */
 
+/* Every id is a value struct: a slot index + 1 (0 means null) and the
+ * slot's generation, which changes each time the slot's object is
+ * destroyed, so a stale id never reaches a newer object in the same slot.
+ * The ids of objects inside a world also name the world's slot and
+ * generation, so they die with their world and are refused by any other
+ * world. All-zero is the null id of every kind (the cloth_null_*_id
+ * constants); two ids name the same object exactly when all their fields
+ * are equal (cloth_*_id_equal()). */
+
 /// A world. All-zero is the null handle.
 typedef struct cloth_world_id {
-    uint16_t index1;      ///< slot index + 1; 0 means null
-    uint16_t generation;  ///< reuse counter of the slot
+    /// slot index + 1; 0 means null
+    uint16_t index1;
+    /// reuse counter of the slot
+    uint16_t generation;
 } cloth_world_id;
 
 /// A fabric (shared topology) inside a world. All-zero is null. It names
 /// its world's slot and generation too, so an id outlives neither its own
 /// slot's reuse nor its world's.
 typedef struct cloth_fabric_id {
-    uint16_t index1;            ///< slot index + 1; 0 means null
-    uint16_t world1;            ///< owning world index + 1
-    uint16_t generation;        ///< reuse counter of the slot
-    uint16_t world_generation;  ///< generation of the owning world
+    /// slot index + 1; 0 means null
+    uint16_t index1;
+    /// owning world index + 1
+    uint16_t world1;
+    /// reuse counter of the slot
+    uint16_t generation;
+    /// generation of the owning world
+    uint16_t world_generation;
 } cloth_fabric_id;
 
 /// A cloth instance inside a world. All-zero is null. Same layout and
 /// rules as cloth_fabric_id.
 typedef struct cloth_id {
-    uint16_t index1;            ///< slot index + 1; 0 means null
-    uint16_t world1;            ///< owning world index + 1
-    uint16_t generation;        ///< reuse counter of the slot
-    uint16_t world_generation;  ///< generation of the owning world
+    /// slot index + 1; 0 means null
+    uint16_t index1;
+    /// owning world index + 1
+    uint16_t world1;
+    /// reuse counter of the slot
+    uint16_t generation;
+    /// generation of the owning world
+    uint16_t world_generation;
 } cloth_id;
+
+/// A rigid body (moving frame) of a world. All-zero is null. Same layout
+/// and rules as cloth_fabric_id.
+typedef struct cloth_body_id {
+    /// slot index + 1; 0 means null
+    uint16_t index1;
+    /// owning world index + 1
+    uint16_t world1;
+    /// reuse counter of the slot
+    uint16_t generation;
+    /// generation of the owning world
+    uint16_t world_generation;
+} cloth_body_id;
+
+/// A collision shape of a world. All-zero is null. Same layout and rules
+/// as cloth_fabric_id.
+typedef struct cloth_collider_id {
+    /// slot index + 1; 0 means null
+    uint16_t index1;
+    /// owning world index + 1
+    uint16_t world1;
+    /// reuse counter of the slot
+    uint16_t generation;
+    /// generation of the owning world
+    uint16_t world_generation;
+} cloth_collider_id;
+
+/// The null world id: names no world.
+static const cloth_world_id cloth_null_world_id = {0, 0};
+/// The null fabric id: names no fabric.
+static const cloth_fabric_id cloth_null_fabric_id = {0, 0, 0, 0};
+/// The null cloth id: names no cloth.
+static const cloth_id cloth_null_id = {0, 0, 0, 0};
+/// The null body id: names no body (a static collider's body).
+static const cloth_body_id cloth_null_body_id = {0, 0, 0, 0};
+/// The null collider id: names no collider.
+static const cloth_collider_id cloth_null_collider_id = {0, 0, 0, 0};
+
+/// Whether two world ids are the same handle.
+static inline bool cloth_world_id_equal(cloth_world_id a, cloth_world_id b) {
+    return a.index1 == b.index1 && a.generation == b.generation;
+}
+/// Whether two fabric ids are the same handle.
+static inline bool cloth_fabric_id_equal(cloth_fabric_id a, cloth_fabric_id b) {
+    return a.index1 == b.index1 && a.world1 == b.world1 && a.generation == b.generation &&
+           a.world_generation == b.world_generation;
+}
+/// Whether two cloth ids are the same handle.
+static inline bool cloth_id_equal(cloth_id a, cloth_id b) {
+    return a.index1 == b.index1 && a.world1 == b.world1 && a.generation == b.generation &&
+           a.world_generation == b.world_generation;
+}
+/// Whether two body ids are the same handle.
+static inline bool cloth_body_id_equal(cloth_body_id a, cloth_body_id b) {
+    return a.index1 == b.index1 && a.world1 == b.world1 && a.generation == b.generation &&
+           a.world_generation == b.world_generation;
+}
+/// Whether two collider ids are the same handle.
+static inline bool cloth_collider_id_equal(cloth_collider_id a, cloth_collider_id b) {
+    return a.index1 == b.index1 && a.world1 == b.world1 && a.generation == b.generation &&
+           a.world_generation == b.world_generation;
+}
+
+/// Whether `world` names a live world: false for the null id, a destroyed
+/// world and an id that was never handed out. Sets no error.
+CLOTH_API bool cloth_world_is_valid(cloth_world_id world);
+/// Whether `fabric` names a live fabric of a live world (a fabric released
+/// with cloth_fabric_destroy is not, even while cloths still use it).
+CLOTH_API bool cloth_fabric_is_valid(cloth_fabric_id fabric);
+/// Whether `cloth` names a live cloth of a live world.
+CLOTH_API bool cloth_is_valid(cloth_id cloth);
+/// Whether `body` names a live body of a live world.
+CLOTH_API bool cloth_body_is_valid(cloth_body_id body);
+/// Whether `collider` names a live collider of a live world (a collider
+/// dies with the body it is fixed to).
+CLOTH_API bool cloth_collider_is_valid(cloth_collider_id collider);
 
 /* ------------------------------------------------------------------ */
 /* World                                                                */
@@ -166,10 +387,15 @@ typedef void* cloth_alloc_fn(size_t size, size_t alignment, void* user);
 /// Free memory returned by the matching cloth_alloc_fn. `ptr` is never NULL.
 typedef void cloth_free_fn(void* ptr, size_t size, void* user);
 
+/// Severity of a message passed to cloth_log_fn.
 typedef enum cloth_log_level {
+    /// a call failed and changed nothing (or restored what it changed)
     CLOTH_LOG_ERROR = 0,
+    /// a call succeeded in part (CLOTH_ERROR_SOLVER_FAILED, CLOTH_ERROR_OVER_BUDGET)
     CLOTH_LOG_WARNING = 1,
+    /// information only
     CLOTH_LOG_INFO = 2,
+    /// forces the enum to 32 bits
     CLOTH_LOG_LEVEL_FORCE_U32 = 0x7FFFFFFF
 } cloth_log_level;
 
@@ -191,28 +417,42 @@ typedef void* cloth_enqueue_task_fn(cloth_task_fn* task, uint32_t item_count, ui
 /// Wait until every range of the enqueued task has run.
 typedef void cloth_finish_task_fn(void* host_task, void* user);
 
+/// How to create a world: gravity, capacities and the host's callbacks.
+/// Function pointers and user pointers are kept for the world's lifetime.
 typedef struct cloth_world_desc {
-    uint32_t struct_size;  ///< sizeof(cloth_world_desc); set by cloth_default_world_desc()
-    float gravity[3];      ///< m/s^2; default (0, -9.81, 0)
-    cloth_alloc_fn*
-        alloc;  ///< optional; both alloc and free, or neither (CLOTH_ERROR_INVALID_VALUE); default: C heap
-    cloth_free_fn* free;       ///< optional
-    cloth_log_fn* log;         ///< optional
-    void* user;                ///< passed to alloc, free and log
-    uint32_t max_cloths;       ///< capacity of the cloth table; default 1024, at most 65535
-    uint32_t max_fabrics;      ///< capacity of the fabric table; default 256, at most 65535
-    uint32_t internal_cookie;  ///< set by cloth_default_world_desc(); do not change
+    /// sizeof(cloth_world_desc); set by cloth_default_world_desc()
+    uint32_t struct_size;
+    /// m/s^2; default (0, -9.81, 0)
+    float gravity[3];
+    /// optional; both alloc and free, or neither (CLOTH_ERROR_INVALID_VALUE); default: C heap; kept
+    cloth_alloc_fn* alloc;
+    /// optional; kept
+    cloth_free_fn* free;
+    /// optional; kept
+    cloth_log_fn* log;
+    /// passed to alloc, free and log; kept, never dereferenced
+    void* user;
+    /// capacity of the cloth table; default 1024, at most 65535
+    uint32_t max_cloths;
+    /// capacity of the fabric table; default 256, at most 65535
+    uint32_t max_fabrics;
+    /// set by the struct\'s cloth_default_*() function; do not change
+    uint32_t internal_cookie;
     /// Threads that run the step's tasks, the thread calling cloth_step
     /// among them; 0 or 1 = everything on the calling thread (default 0,
     /// no thread is started). Without host callbacks the world starts
     /// worker_count - 1 threads of its own (at most 256 workers); with
     /// them, worker indices passed to the tasks are < worker_count (1..256).
     uint32_t worker_count;
-    cloth_enqueue_task_fn* enqueue_task;  ///< optional host job system; both enqueue and finish, or neither
-    cloth_finish_task_fn* finish_task;    ///< optional
-    void* task_user;                      ///< passed to enqueue_task and finish_task
+    /// optional host job system; both enqueue and finish, or neither; kept
+    cloth_enqueue_task_fn* enqueue_task;
+    /// optional; kept
+    cloth_finish_task_fn* finish_task;
+    /// passed to enqueue_task and finish_task; kept, never dereferenced
+    void* task_user;
 } cloth_world_desc;
 
+/// A world description with every default set (and its cookie).
 CLOTH_API cloth_world_desc cloth_default_world_desc(void);
 
 /// Create a world. At most 128 worlds exist at once.
@@ -253,28 +493,42 @@ CLOTH_API cloth_result cloth_step(cloth_world_id world, float dt);
 /* Fabric (shared topology)                                             */
 /* ------------------------------------------------------------------ */
 
-/// Spring kinds, as bits of cloth_fabric_desc.spring_kinds.
+/// Spring kinds, as bits of cloth_grid_desc.spring_kinds and cloth_mesh_desc.spring_kinds.
 typedef enum cloth_spring_kind {
-    CLOTH_SPRING_STRUCTURAL = 1,  ///< mesh edges (grid rows and columns)
-    CLOTH_SPRING_SHEAR = 2,       ///< grid cell diagonals (grids only)
-    CLOTH_SPRING_BEND = 4,        ///< skip-one on grids; across shared triangle edges on meshes
+    /// mesh edges (grid rows and columns)
+    CLOTH_SPRING_STRUCTURAL = 1,
+    /// grid cell diagonals (grids only)
+    CLOTH_SPRING_SHEAR = 2,
+    /// skip-one on grids; across shared triangle edges on meshes
+    CLOTH_SPRING_BEND = 4,
+    /// every kind
     CLOTH_SPRING_ALL = 7,
+    /// forces the enum to 32 bits
     CLOTH_SPRING_KIND_FORCE_U32 = 0x7FFFFFFF
 } cloth_spring_kind;
 
 /// A rectangular grid of `columns` x `rows` particles. Particle (c, r) has
 /// index r * columns + c and sits at origin + c/(columns-1) * u + r/(rows-1) * v.
 typedef struct cloth_grid_desc {
-    uint32_t struct_size;   ///< sizeof(cloth_grid_desc)
-    uint32_t columns;       ///< >= 2; default 32
-    uint32_t rows;          ///< >= 2; default 32
-    float origin[3];        ///< position of particle (0, 0); default (0, 0, 0)
-    float u[3];             ///< edge along columns; default (1, 0, 0)
-    float v[3];             ///< edge along rows; default (0, -1, 0) (hangs down)
-    uint32_t spring_kinds;  ///< bit set of cloth_spring_kind; default CLOTH_SPRING_ALL
+    /// sizeof(cloth_grid_desc)
+    uint32_t struct_size;
+    /// >= 2; default 32
+    uint32_t columns;
+    /// >= 2; default 32
+    uint32_t rows;
+    /// position of particle (0, 0); default (0, 0, 0)
+    float origin[3];
+    /// edge along columns; default (1, 0, 0)
+    float u[3];
+    /// edge along rows; default (0, -1, 0) (hangs down)
+    float v[3];
+    /// bit set of cloth_spring_kind; default CLOTH_SPRING_ALL
+    uint32_t spring_kinds;
+    /// set by the struct\'s cloth_default_*() function; do not change
     uint32_t internal_cookie;
 } cloth_grid_desc;
 
+/// A grid description with every default set (and its cookie).
 CLOTH_API cloth_grid_desc cloth_default_grid_desc(void);
 
 /// An arbitrary triangle mesh. Structural springs on every edge, bend
@@ -282,19 +536,30 @@ CLOTH_API cloth_grid_desc cloth_default_grid_desc(void);
 /// Every vertex must belong to a triangle (it gets its mass from them), and
 /// no triangle may have zero area: else CLOTH_ERROR_DEGENERATE_GEOMETRY.
 typedef struct cloth_mesh_desc {
-    uint32_t struct_size;     ///< sizeof(cloth_mesh_desc)
-    const float* positions;   ///< vertex_count * 3 floats
-    uint32_t vertex_count;    ///< >= 3
-    const uint32_t* indices;  ///< triangle_count * 3 vertex indices
-    uint32_t triangle_count;  ///< >= 1
-    uint32_t spring_kinds;    ///< default CLOTH_SPRING_ALL (shear is ignored)
+    /// sizeof(cloth_mesh_desc)
+    uint32_t struct_size;
+    /// vertex_count * 3 floats (m); copied during the call
+    const float* positions;
+    /// >= 3
+    uint32_t vertex_count;
+    /// triangle_count * 3 vertex indices; copied during the call
+    const uint32_t* indices;
+    /// >= 1
+    uint32_t triangle_count;
+    /// default CLOTH_SPRING_ALL (shear is ignored)
+    uint32_t spring_kinds;
+    /// set by the struct\'s cloth_default_*() function; do not change
     uint32_t internal_cookie;
 } cloth_mesh_desc;
 
+/// A mesh description with every default set (and its cookie); positions
+/// and indices are NULL and must be set.
 CLOTH_API cloth_mesh_desc cloth_default_mesh_desc(void);
 
+/// Build a fabric from a grid description. At most max_fabrics per world.
 CLOTH_API cloth_result cloth_fabric_create_grid(cloth_world_id world, const cloth_grid_desc* desc,
                                                 cloth_fabric_id* out_fabric);
+/// Build a fabric from a triangle mesh (its arrays are copied).
 CLOTH_API cloth_result cloth_fabric_create_mesh(cloth_world_id world, const cloth_mesh_desc* desc,
                                                 cloth_fabric_id* out_fabric);
 /// Load a triangle mesh from a Wavefront OBJ file (faces are triangulated).
@@ -304,7 +569,9 @@ CLOTH_API cloth_result cloth_fabric_create_obj(cloth_world_id world, const char*
 /// memory is freed when the last of them is destroyed.
 CLOTH_API cloth_result cloth_fabric_destroy(cloth_fabric_id fabric);
 
+/// Number of particles of the fabric (grid: columns * rows; mesh: vertices).
 CLOTH_API cloth_result cloth_fabric_get_particle_count(cloth_fabric_id fabric, uint32_t* out_count);
+/// Number of triangles of the fabric (grid: 2 per cell).
 CLOTH_API cloth_result cloth_fabric_get_triangle_count(cloth_fabric_id fabric, uint32_t* out_count);
 /// Number of springs of the given kinds (a bit set of cloth_spring_kind).
 CLOTH_API cloth_result cloth_fabric_get_spring_count(cloth_fabric_id fabric, uint32_t kinds,
@@ -318,39 +585,53 @@ CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id fabric, uint3
 /* Cloth                                                                */
 /* ------------------------------------------------------------------ */
 
+/// How a cloth's implicit step is solved (cloth_solver_settings.kind).
 typedef enum cloth_solver_kind {
-    CLOTH_SOLVER_DEFAULT = 0,  ///< the library's choice: PCG, 16 iterations, substeps picked per step
-                               ///< from gamma = dt^2 k_max / m_min (docs/accuracy.md)
-    CLOTH_SOLVER_JACOBI =
-        1,                ///< linearized backward Euler, `iterations` Jacobi sweeps (1 = the paper's method)
-    CLOTH_SOLVER_CG = 2,  ///< the same system solved with conjugate gradient to `cg_tolerance` (reference)
-    CLOTH_SOLVER_EXPLICIT = 3,  ///< symplectic Euler (baseline; needs tiny steps for stiff cloth)
-    CLOTH_SOLVER_PCG = 4,       ///< block-Jacobi-preconditioned CG on the library's own parallel passes:
-                                ///< at most `iterations` iterations, stops early at `cg_tolerance`
-    CLOTH_SOLVER_CHEBYSHEV =
-        5,  ///< Chebyshev-accelerated block Jacobi, `iterations` iterations, no dot products
+    /// the library's choice: PCG, 16 iterations, substeps picked per step from gamma = dt^2 k_max / m_min
+    /// (docs/accuracy.md)
+    CLOTH_SOLVER_DEFAULT = 0,
+    /// linearized backward Euler, `iterations` Jacobi sweeps (1 = the paper's method)
+    CLOTH_SOLVER_JACOBI = 1,
+    /// the same system solved with conjugate gradient to `cg_tolerance` (reference)
+    CLOTH_SOLVER_CG = 2,
+    /// symplectic Euler (baseline; needs tiny steps for stiff cloth)
+    CLOTH_SOLVER_EXPLICIT = 3,
+    /// block-Jacobi-preconditioned CG on the library's own parallel passes: at most `iterations` iterations,
+    /// stops early at `cg_tolerance`
+    CLOTH_SOLVER_PCG = 4,
+    /// Chebyshev-accelerated block Jacobi, `iterations` iterations, no dot products
+    CLOTH_SOLVER_CHEBYSHEV = 5,
+    /// forces the enum to 32 bits
     CLOTH_SOLVER_KIND_FORCE_U32 = 0x7FFFFFFF
 } cloth_solver_kind;
 
 /// Stiffness and damping of one spring kind.
 typedef struct cloth_spring_params {
-    float stiffness;  ///< N/m, >= 0
-    float damping;    ///< N s/m along the spring, >= 0
+    /// N/m, >= 0
+    float stiffness;
+    /// N s/m along the spring, >= 0
+    float damping;
 } cloth_spring_params;
 
 /// How a cloth advances.
 typedef struct cloth_solver_settings {
-    uint32_t struct_size;            ///< sizeof(cloth_solver_settings)
-    cloth_solver_kind kind;          ///< default CLOTH_SOLVER_DEFAULT
-    uint32_t iterations;             ///< Jacobi sweeps or PCG/Chebyshev iterations, 1..256; default 1
-                                     ///< (CLOTH_SOLVER_DEFAULT picks its own)
-    uint32_t substeps;               ///< steps per cloth_step call, 1..64; default 1
-                                     ///< (CLOTH_SOLVER_DEFAULT may use more)
-    float cg_tolerance;              ///< CG relative residual, (0, 1); default 1e-6
-    uint32_t cg_max_iterations;      ///< 1..100000; default 1000
-    bool compression_safe_jacobian;  ///< paper eq. 12 for compressed springs; default true
+    /// sizeof(cloth_solver_settings)
+    uint32_t struct_size;
+    /// default CLOTH_SOLVER_DEFAULT
+    cloth_solver_kind kind;
+    /// Jacobi sweeps or PCG/Chebyshev iterations, 1..256; default 1 (CLOTH_SOLVER_DEFAULT picks its own)
+    uint32_t iterations;
+    /// steps per cloth_step call, 1..64; default 1 (CLOTH_SOLVER_DEFAULT may use more)
+    uint32_t substeps;
+    /// CG relative residual, (0, 1); default 1e-6
+    float cg_tolerance;
+    /// 1..100000; default 1000
+    uint32_t cg_max_iterations;
+    /// 1: paper eq. 12 for compressed springs; 0 or 1, default 1
+    uint8_t compression_safe_jacobian;
 } cloth_solver_settings;
 
+/// Solver settings with every default set.
 CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
 
 /// Strain limiting, in two parts. Inside the solve (every kind but
@@ -363,42 +644,70 @@ CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
 /// default solver sets max_strain 0.08 for itself; applies to every solver
 /// kind once set. Set with cloth_set_strain_limit; cloth_set_solver keeps it.
 typedef struct cloth_strain_limit {
-    uint32_t struct_size;  ///< sizeof(cloth_strain_limit)
-    float max_strain;      ///< >= 0, finite; 0 turns limiting off; default 0
-    uint32_t iterations;   ///< 1..64; default 4
+    /// sizeof(cloth_strain_limit)
+    uint32_t struct_size;
+    /// >= 0, finite; 0 turns limiting off; default 0
+    float max_strain;
+    /// 1..64; default 4
+    uint32_t iterations;
 } cloth_strain_limit;
 
+/// A strain limit with every default set (limiting off).
 CLOTH_API cloth_strain_limit cloth_default_strain_limit(void);
 
 /// Aerodynamics: wind, drag and lift per triangle against the relative air
 /// velocity, plus linear air drag per particle.
 typedef struct cloth_aero_params {
-    float wind[3];           ///< air velocity, m/s; default (0, 0, 0)
-    float air_density;       ///< kg/m^3, >= 0; default 1.2
-    float drag_coefficient;  ///< >= 0; default 1.0
-    float lift_coefficient;  ///< >= 0; default 0.5
-    float linear_drag;       ///< 1/s, >= 0: force -linear_drag * m * v per particle; default 0.02
+    /// air velocity, m/s; default (0, 0, 0)
+    float wind[3];
+    /// kg/m^3, >= 0; default 1.2
+    float air_density;
+    /// >= 0; default 1.0
+    float drag_coefficient;
+    /// >= 0; default 0.5
+    float lift_coefficient;
+    /// 1/s, >= 0: force -linear_drag * m * v per particle; default 0.02
+    float linear_drag;
 } cloth_aero_params;
 
+/// How to create a cloth: its fabric, material, solver and air.
 typedef struct cloth_desc {
-    uint32_t struct_size;            ///< sizeof(cloth_desc)
-    cloth_fabric_id fabric;          ///< required
-    float area_density;              ///< kg/m^2, > 0; default 0.2
-    float particle_mass;             ///< kg, >= 0; if > 0, every particle gets this mass instead
-    const float* initial_positions;  ///< optional particle_count * 3 floats; default: fabric rest positions
-    cloth_spring_params structural;  ///< default {1000, 0.5}
-    cloth_spring_params shear;       ///< default {200, 0.2}
-    cloth_spring_params bend;        ///< default {20, 0.05}
-    cloth_solver_settings solver;    ///< default cloth_default_solver_settings()
-    cloth_aero_params aero;          ///< see cloth_aero_params
+    /// sizeof(cloth_desc)
+    uint32_t struct_size;
+    /// required
+    cloth_fabric_id fabric;
+    /// kg/m^2, > 0; default 0.2
+    float area_density;
+    /// kg, >= 0; if > 0, every particle gets this mass instead
+    float particle_mass;
+    /// optional particle_count * 3 floats (m), in the fabric's vertex order;
+    /// default NULL: the fabric's rest positions; copied during the call
+    const float* initial_positions;
+    /// default {1000, 0.5}
+    cloth_spring_params structural;
+    /// default {200, 0.2}
+    cloth_spring_params shear;
+    /// default {20, 0.05}
+    cloth_spring_params bend;
+    /// default cloth_default_solver_settings()
+    cloth_solver_settings solver;
+    /// see cloth_aero_params
+    cloth_aero_params aero;
+    /// set by the struct\'s cloth_default_*() function; do not change
     uint32_t internal_cookie;
 } cloth_desc;
 
+/// A cloth description with every default set (and its cookie); the
+/// fabric is null and must be set.
 CLOTH_API cloth_desc cloth_default_desc(void);
 
+/// Create a cloth of a fabric of the same world, at the fabric's rest
+/// positions (or desc->initial_positions), at rest. At most max_cloths per world.
 CLOTH_API cloth_result cloth_create(cloth_world_id world, const cloth_desc* desc, cloth_id* out_cloth);
+/// Destroy a cloth (its fabric lives on while its handle or another cloth uses it).
 CLOTH_API cloth_result cloth_destroy(cloth_id cloth);
 
+/// Number of particles of the cloth (those of its fabric).
 CLOTH_API cloth_result cloth_get_particle_count(cloth_id cloth, uint32_t* out_count);
 
 /// Copy positions (3 floats per particle) into `out_xyz`, which holds
@@ -429,33 +738,46 @@ CLOTH_API cloth_result cloth_set_pin_targets(cloth_id cloth, const uint32_t* ind
 /// Whether particle `index` is pinned.
 CLOTH_API cloth_result cloth_is_pinned(cloth_id cloth, uint32_t index, bool* out_pinned);
 
+/// Change how the cloth is solved (keeps its strain limit; wakes it).
 CLOTH_API cloth_result cloth_set_solver(cloth_id cloth, const cloth_solver_settings* settings);
 /// Fills the whole struct, struct_size included.
 CLOTH_API cloth_result cloth_get_solver(cloth_id cloth, cloth_solver_settings* out_settings);
+/// Set the cloth's strain limit (see cloth_strain_limit).
 CLOTH_API cloth_result cloth_set_strain_limit(cloth_id cloth, const cloth_strain_limit* limit);
 /// Fills the whole struct, struct_size included.
 CLOTH_API cloth_result cloth_get_strain_limit(cloth_id cloth, cloth_strain_limit* out_limit);
 /// Change one or more spring kinds (a bit set of cloth_spring_kind).
 CLOTH_API cloth_result cloth_set_spring_params(cloth_id cloth, uint32_t kinds, cloth_spring_params params);
+/// Change wind, drag and lift (wakes the cloth).
 CLOTH_API cloth_result cloth_set_aero(cloth_id cloth, const cloth_aero_params* params);
 /// Shorthand: change only the wind velocity (m/s).
 CLOTH_API cloth_result cloth_set_wind(cloth_id cloth, const float wind[3]);
 
 /// Measurements of a cloth's current state.
 typedef struct cloth_stats {
-    uint32_t struct_size;   ///< set by the caller to sizeof(cloth_stats)
-    double kinetic_energy;  ///< J, free particles only
-    double gravity_energy;  ///< J, -m g . x (height energy relative to the origin), free particles only
-    double elastic_energy;  ///< J, sum of k (L - l0)^2 / 2 over springs, plus taut strain cables
-    float max_strain;       ///< max over structural springs of (L - l0) / l0
-    float mean_strain;      ///< mean of |L - l0| / l0 over structural springs
-    float max_speed;        ///< m/s
-    uint32_t last_solver_iterations;  ///< iterations of the last solve (CG: last substep), also of a step
-                                      ///< that was undone
-    float last_solver_residual;       ///< relative residual of the last solve (CG only; else 0)
-    cloth_result last_step_result;    ///< CLOTH_OK, or what the last cloth_step reported for this cloth
+    /// set by the caller to sizeof(cloth_stats)
+    uint32_t struct_size;
+    /// J, free particles only
+    double kinetic_energy;
+    /// J, -m g . x (height energy relative to the origin), free particles only
+    double gravity_energy;
+    /// J, sum of k (L - l0)^2 / 2 over springs, plus taut strain cables
+    double elastic_energy;
+    /// max over structural springs of (L - l0) / l0
+    float max_strain;
+    /// mean of |L - l0| / l0 over structural springs
+    float mean_strain;
+    /// m/s
+    float max_speed;
+    /// iterations of the last solve (CG: last substep), also of a step that was undone
+    uint32_t last_solver_iterations;
+    /// relative residual of the last solve (CG only; else 0)
+    float last_solver_residual;
+    /// CLOTH_OK, or what the last cloth_step reported for this cloth
+    cloth_result last_step_result;
 } cloth_stats;
 
+/// Measure the cloth now; the caller sets out_stats->struct_size first.
 CLOTH_API cloth_result cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);
 
 /* ------------------------------------------------------------------ */
@@ -488,25 +810,43 @@ CLOTH_API cloth_result cloth_world_set_worker_spin(cloth_world_id world, uint32_
 
 /// The stages of a step, in the order a substep runs them.
 typedef enum cloth_stage {
-    CLOTH_STAGE_AIR = 0,             ///< per triangle: wind drag and lift
-    CLOTH_STAGE_FORCES = 1,          ///< external forces; per spring: force, Jacobian, A_s
-    CLOTH_STAGE_ASSEMBLE = 2,        ///< per particle: W_ii, W_ii^-1, b, p
-    CLOTH_STAGE_JACOBI_SWEEP = 3,    ///< one Jacobi sweep
-    CLOTH_STAGE_SERIAL_SOLVE = 4,    ///< the CG reference solve (one task per cloth)
-    CLOTH_STAGE_INTEGRATE = 5,       ///< v += dv, x += h v
-    CLOTH_STAGE_EXPLICIT = 6,        ///< explicit baseline: forces and Euler
-    CLOTH_STAGE_COLLISIONS = 7,      ///< colliders and attachments
-    CLOTH_STAGE_SELF_COLLISION = 8,  ///< self-collision: region checks and hash keys (per group)
-    CLOTH_STAGE_SELF_SORT = 9,       ///< self-collision: counting sort into buckets (one task per cloth)
-    CLOTH_STAGE_SELF_CONTACTS = 10,  ///< self-collision: each particle's contact list
-    CLOTH_STAGE_SELF_PROJECT = 11,   ///< self-collision: one projection pass (repeated while overlaps remain)
-    CLOTH_STAGE_SELF_RESPOND = 12,   ///< self-collision: velocity response (paper eq. 13) and friction
-    CLOTH_STAGE_ITERATIVE_SOLVE = 13,  ///< PCG / Chebyshev passes (each iteration is several rounds)
-    CLOTH_STAGE_STRAIN_LIMIT = 14,     ///< strain-limiting passes (when a limit is set)
+    /// per triangle: wind drag and lift
+    CLOTH_STAGE_AIR = 0,
+    /// external forces; per spring: force, Jacobian, A_s
+    CLOTH_STAGE_FORCES = 1,
+    /// per particle: W_ii, W_ii^-1, b, p
+    CLOTH_STAGE_ASSEMBLE = 2,
+    /// one Jacobi sweep
+    CLOTH_STAGE_JACOBI_SWEEP = 3,
+    /// the CG reference solve (one task per cloth)
+    CLOTH_STAGE_SERIAL_SOLVE = 4,
+    /// v += dv, x += h v
+    CLOTH_STAGE_INTEGRATE = 5,
+    /// explicit baseline: forces and Euler
+    CLOTH_STAGE_EXPLICIT = 6,
+    /// colliders and attachments
+    CLOTH_STAGE_COLLISIONS = 7,
+    /// self-collision: region checks and hash keys (per group)
+    CLOTH_STAGE_SELF_COLLISION = 8,
+    /// self-collision: counting sort into buckets (one task per cloth)
+    CLOTH_STAGE_SELF_SORT = 9,
+    /// self-collision: each particle's contact list
+    CLOTH_STAGE_SELF_CONTACTS = 10,
+    /// self-collision: one projection pass (repeated while overlaps remain)
+    CLOTH_STAGE_SELF_PROJECT = 11,
+    /// self-collision: velocity response (paper eq. 13) and friction
+    CLOTH_STAGE_SELF_RESPOND = 12,
+    /// PCG / Chebyshev passes (each iteration is several rounds)
+    CLOTH_STAGE_ITERATIVE_SOLVE = 13,
+    /// strain-limiting passes (when a limit is set)
+    CLOTH_STAGE_STRAIN_LIMIT = 14,
+    /// forces the enum to 32 bits
     CLOTH_STAGE_FORCE_U32 = 0x7FFFFFFF
 } cloth_stage;
 
+/// Entries of the per-stage arrays of cloth_frame_profile (more than cloth_stage has).
 #define CLOTH_MAX_STAGES 16
+/// Entries of the per-worker arrays of cloth_frame_profile: the most workers a world has.
 #define CLOTH_MAX_WORKERS 256
 
 /// A stage's short name ("forces", "jacobi_sweep", ...); "?" if unknown. Never NULL.
@@ -517,32 +857,55 @@ CLOTH_API const char* cloth_stage_name(cloth_stage stage);
 /// Stage and worker times are measured while profiling is enabled or a
 /// frame budget is set, and are zero otherwise.
 typedef struct cloth_frame_profile {
-    uint32_t struct_size;   ///< set by the caller to sizeof(cloth_frame_profile)
-    uint32_t worker_count;  ///< workers of the world's task system (entries of the worker arrays)
-    uint64_t frame;         ///< number of cloth_step calls so far, this one included
-    double step_ms;         ///< the whole cloth_step call
-    double budget_ms;       ///< the world's frame budget (0: none)
-    double budget_used;     ///< step_ms / budget_ms (0 without a budget)
-    bool overrun;           ///< step_ms > budget_ms (never without a budget)
+    /// set by the caller to sizeof(cloth_frame_profile)
+    uint32_t struct_size;
+    /// workers of the world's task system (entries of the worker arrays)
+    uint32_t worker_count;
+    /// number of cloth_step calls so far, this one included
+    uint64_t frame;
+    /// the whole cloth_step call
+    double step_ms;
+    /// the world's frame budget (0: none)
+    double budget_ms;
+    /// step_ms / budget_ms (0 without a budget)
+    double budget_used;
+    /// 1 if step_ms > budget_ms, else 0 (always 0 without a budget)
+    uint8_t overrun;
+    /// cloths that stepped
     uint32_t awake_cloths;
+    /// cloths skipped because they sleep
     uint32_t sleeping_cloths;
-    double stage_ms[CLOTH_MAX_STAGES];         ///< per cloth_stage: wall time of its rounds, summed
-    uint32_t stage_tasks[CLOTH_MAX_STAGES];    ///< per cloth_stage: tasks run
-    double worker_busy_ms[CLOTH_MAX_WORKERS];  ///< per worker: time inside tasks
-    double worker_idle_ms[CLOTH_MAX_WORKERS];  ///< per worker: step_ms - busy
-    uint32_t task_count;      ///< task records kept for this frame (cloth_world_read_task_records)
-    uint32_t tasks_dropped;   ///< tasks beyond the profiling capacity, not recorded
-    uint64_t overrun_frames;  ///< frames over budget since the world was created
+    /// per cloth_stage: wall time of its rounds, summed
+    double stage_ms[CLOTH_MAX_STAGES];
+    /// per cloth_stage: tasks run
+    uint32_t stage_tasks[CLOTH_MAX_STAGES];
+    /// per worker: time inside tasks
+    double worker_busy_ms[CLOTH_MAX_WORKERS];
+    /// per worker: step_ms - busy
+    double worker_idle_ms[CLOTH_MAX_WORKERS];
+    /// task records kept for this frame (cloth_world_read_task_records)
+    uint32_t task_count;
+    /// tasks beyond the profiling capacity, not recorded
+    uint32_t tasks_dropped;
+    /// frames over budget since the world was created
+    uint64_t overrun_frames;
 } cloth_frame_profile;
 
 /// One task of a frame: a group of one cloth's particles in one stage.
 typedef struct cloth_task_record {
+    /// the cloth whose group it was
     cloth_id cloth;
+    /// the stage the task belongs to
     cloth_stage stage;
-    uint32_t group;   ///< particle group of the cloth
-    uint32_t worker;  ///< worker that ran it
+    /// particle group of the cloth
+    uint32_t group;
+    /// worker that ran it
+    uint32_t worker;
+    /// substep of the cloth's step (0-based)
     uint32_t substep;
-    double start_us;  ///< microseconds since the world was created
+    /// microseconds since the world was created
+    double start_us;
+    /// microseconds since the world was created
     double end_us;
 } cloth_task_record;
 
@@ -574,6 +937,7 @@ CLOTH_API cloth_result cloth_world_write_trace_json(cloth_world_id world, char* 
 /// name, as a static string, and the worker index). They must be cheap,
 /// must not call this API, and may run concurrently on different workers.
 typedef void cloth_zone_begin_fn(const char* name, uint32_t worker, void* user);
+/// Ends the zone the matching cloth_zone_begin_fn opened (same name and worker).
 typedef void cloth_zone_end_fn(const char* name, uint32_t worker, void* user);
 /// Install (or, with both NULL, remove) zone callbacks.
 CLOTH_API cloth_result cloth_world_set_zone_callbacks(cloth_world_id world, cloth_zone_begin_fn* begin,
@@ -593,15 +957,24 @@ CLOTH_API cloth_result cloth_world_set_zone_callbacks(cloth_world_id world, clot
 /// Set the world's frame budget in milliseconds, >= 0 (0: no budget, the default).
 CLOTH_API cloth_result cloth_world_set_frame_budget(cloth_world_id world, float milliseconds);
 
+/// Bounds within which a world's frame budget may change a cloth's
+/// iterations and substeps (see "Frame budget").
 typedef struct cloth_quality_policy {
-    uint32_t struct_size;     ///< sizeof(cloth_quality_policy)
-    bool enabled;             ///< default false
-    uint32_t min_iterations;  ///< 1..max_iterations; default 1
-    uint32_t max_iterations;  ///< ..256; default 8
-    uint32_t min_substeps;    ///< 1..max_substeps; default 1
-    uint32_t max_substeps;    ///< ..64; default 4
+    /// sizeof(cloth_quality_policy)
+    uint32_t struct_size;
+    /// 1: on; 0 or 1, default 0
+    uint8_t enabled;
+    /// 1..max_iterations; default 1
+    uint32_t min_iterations;
+    /// ..256; default 8
+    uint32_t max_iterations;
+    /// 1..max_substeps; default 1
+    uint32_t min_substeps;
+    /// ..64; default 4
+    uint32_t max_substeps;
 } cloth_quality_policy;
 
+/// A quality policy with every default set (off).
 CLOTH_API cloth_quality_policy cloth_default_quality_policy(void);
 /// Let the world's budget change this cloth's iterations and substeps within
 /// the bounds (enabling clamps the current settings into them; the current
@@ -615,17 +988,25 @@ CLOTH_API cloth_result cloth_set_quality_policy(cloth_id cloth, const cloth_qual
  * solver, spring, air or wind settings, gravity, self-collision settings,
  * colliders and attachments, restoring a snapshot of an awake cloth, or
  * cloth_wake. */
+/// When a cloth goes to sleep.
 typedef struct cloth_sleep_params {
-    uint32_t struct_size;  ///< sizeof(cloth_sleep_params)
-    bool enabled;          ///< default true
-    float max_speed;       ///< m/s, >= 0; default 0.001
-    uint32_t frames;       ///< >= 1; default 60
+    /// sizeof(cloth_sleep_params)
+    uint32_t struct_size;
+    /// 1: on; 0 or 1, default 1
+    uint8_t enabled;
+    /// m/s, >= 0; default 0.001
+    float max_speed;
+    /// >= 1; default 60
+    uint32_t frames;
 } cloth_sleep_params;
 
+/// Sleep parameters with every default set (sleep on).
 CLOTH_API cloth_sleep_params cloth_default_sleep_params(void);
 /// Change when the cloth sleeps (wakes it).
 CLOTH_API cloth_result cloth_set_sleep(cloth_id cloth, const cloth_sleep_params* params);
+/// Wake the cloth: it steps again from the next cloth_step.
 CLOTH_API cloth_result cloth_wake(cloth_id cloth);
+/// Whether the cloth sleeps.
 CLOTH_API cloth_result cloth_is_sleeping(cloth_id cloth, bool* out_sleeping);
 
 /* ------------------------------------------------------------------ */
@@ -683,33 +1064,23 @@ CLOTH_API cloth_result cloth_restore_snapshot(cloth_id cloth, const void* buffer
  * is body pose * local pose (or the local pose alone if static).
  */
 
-/// A rigid body (moving frame) of a world. All-zero is null. Same layout
-/// and rules as cloth_id.
-typedef struct cloth_body_id {
-    uint16_t index1;
-    uint16_t world1;
-    uint16_t generation;
-    uint16_t world_generation;
-} cloth_body_id;
-
-/// A collision shape of a world. All-zero is null. Same layout and rules
-/// as cloth_id.
-typedef struct cloth_collider_id {
-    uint16_t index1;
-    uint16_t world1;
-    uint16_t generation;
-    uint16_t world_generation;
-} cloth_collider_id;
-
+/// How to create a body: its pose and velocities.
 typedef struct cloth_body_desc {
-    uint32_t struct_size;       ///< sizeof(cloth_body_desc)
-    float position[3];          ///< m; default (0, 0, 0)
-    float rotation[4];          ///< unit quaternion (x, y, z, w); default (0, 0, 0, 1)
-    float linear_velocity[3];   ///< m/s of the body origin; default 0
-    float angular_velocity[3];  ///< rad/s, world frame; default 0
+    /// sizeof(cloth_body_desc)
+    uint32_t struct_size;
+    /// m; default (0, 0, 0)
+    float position[3];
+    /// unit quaternion (x, y, z, w); default (0, 0, 0, 1)
+    float rotation[4];
+    /// m/s of the body origin; default 0
+    float linear_velocity[3];
+    /// rad/s, world frame; default 0
+    float angular_velocity[3];
+    /// set by the struct\'s cloth_default_*() function; do not change
     uint32_t internal_cookie;
 } cloth_body_desc;
 
+/// A body description with every default set (and its cookie).
 CLOTH_API cloth_body_desc cloth_default_body_desc(void);
 
 /// Create a body at the description's pose. At most 65535 bodies per world.
@@ -736,14 +1107,22 @@ CLOTH_API cloth_result cloth_body_get_pose(cloth_body_id body, float out_positio
 
 /// Common part of every collider.
 typedef struct cloth_collider_desc {
-    uint32_t struct_size;     ///< sizeof(cloth_collider_desc)
-    cloth_body_id body;       ///< the body it is fixed to; null (default): static, in the world frame
-    float local_position[3];  ///< m, in the body's frame (or world); default 0
-    float local_rotation[4];  ///< unit quaternion (x, y, z, w); default (0, 0, 0, 1)
-    uint32_t group_bits;      ///< collides with cloths whose collider_mask meets these bits; default 1
+    /// sizeof(cloth_collider_desc)
+    uint32_t struct_size;
+    /// the body it is fixed to; null (default): static, in the world frame
+    cloth_body_id body;
+    /// m, in the body's frame (or world); default 0
+    float local_position[3];
+    /// unit quaternion (x, y, z, w); default (0, 0, 0, 1)
+    float local_rotation[4];
+    /// collides with cloths whose collider_mask meets these bits; default 1
+    uint32_t group_bits;
+    /// set by the struct\'s cloth_default_*() function; do not change
     uint32_t internal_cookie;
 } cloth_collider_desc;
 
+/// A collider description with every default set (and its cookie): static,
+/// at the origin.
 CLOTH_API cloth_collider_desc cloth_default_collider_desc(void);
 
 /// A sphere of `radius` > 0 m centred on the local origin.
@@ -789,34 +1168,51 @@ CLOTH_API cloth_result cloth_collider_create_triangle_mesh(cloth_world_id world,
 /// (btHeightfieldTerrainShape's default split, up axis y, with its origin
 /// moved to the first sample).
 typedef struct cloth_heightfield_desc {
-    uint32_t struct_size;  ///< sizeof(cloth_heightfield_desc)
-    uint32_t columns;      ///< samples along x, 2..65536; default 2
-    uint32_t rows;         ///< samples along z, 2..65536; default 2
-    float spacing_x;       ///< m, > 0; default 1
-    float spacing_z;       ///< m, > 0; default 1
-    const float* heights;  ///< columns * rows heights, m, row-major (required)
+    /// sizeof(cloth_heightfield_desc)
+    uint32_t struct_size;
+    /// samples along x, 2..65536; default 2
+    uint32_t columns;
+    /// samples along z, 2..65536; default 2
+    uint32_t rows;
+    /// m, > 0; default 1
+    float spacing_x;
+    /// m, > 0; default 1
+    float spacing_z;
+    /// columns * rows heights, m, row-major (required); copied during the call
+    const float* heights;
+    /// set by the struct\'s cloth_default_*() function; do not change
     uint32_t internal_cookie;
 } cloth_heightfield_desc;
 
+/// A height field description with every default set (and its cookie);
+/// heights is NULL and must be set.
 CLOTH_API cloth_heightfield_desc cloth_default_heightfield_desc(void);
 
+/// A height field (cloth_heightfield_desc); its heights are copied.
 CLOTH_API cloth_result cloth_collider_create_heightfield(cloth_world_id world,
                                                          const cloth_collider_desc* desc,
                                                          const cloth_heightfield_desc* heightfield,
                                                          cloth_collider_id* out_collider);
+/// Destroy a collider; cloths stop colliding with it from the next step.
 CLOTH_API cloth_result cloth_collider_destroy(cloth_collider_id collider);
 /// Change which cloths collide with it (see cloth_collision_params.collider_mask).
 CLOTH_API cloth_result cloth_collider_set_group_bits(cloth_collider_id collider, uint32_t group_bits);
 
 /// How a cloth meets colliders.
 typedef struct cloth_collision_params {
-    uint32_t struct_size;    ///< sizeof(cloth_collision_params)
-    float thickness;         ///< m, >= 0: particles keep this distance from colliders; default 0.01
-    float friction;          ///< Coulomb coefficient, >= 0; default 0.3
-    uint32_t collider_mask;  ///< collide with colliders whose group_bits meet this; default all; 0: none
+    /// sizeof(cloth_collision_params)
+    uint32_t struct_size;
+    /// m, >= 0: particles keep this distance from colliders; default 0.01
+    float thickness;
+    /// Coulomb coefficient, >= 0; default 0.3
+    float friction;
+    /// collide with colliders whose group_bits meet this; default all; 0: none
+    uint32_t collider_mask;
 } cloth_collision_params;
 
+/// Collision parameters with every default set.
 CLOTH_API cloth_collision_params cloth_default_collision_params(void);
+/// Change how the cloth meets colliders.
 CLOTH_API cloth_result cloth_set_collision(cloth_id cloth, const cloth_collision_params* params);
 /// Fills the whole struct, struct_size included.
 CLOTH_API cloth_result cloth_get_collision(cloth_id cloth, cloth_collision_params* out_params);
@@ -837,11 +1233,15 @@ CLOTH_API cloth_result cloth_detach(cloth_id cloth, const uint32_t* indices, uin
 CLOTH_API cloth_result cloth_get_attachment(cloth_id cloth, uint32_t index, cloth_body_id* out_body,
                                             float out_local_offset[3]);
 
+/// What a carrier teleport does to the cloth (cloth_carrier_desc.teleport_mode).
 typedef enum cloth_teleport_mode {
-    CLOTH_TELEPORT_DEFAULT = 0,  ///< CLOTH_TELEPORT_MOVE
-    CLOTH_TELEPORT_MOVE = 1,     ///< move the cloth rigidly with the carrier, keeping its shape and motion
-    CLOTH_TELEPORT_AND_RESET =
-        2,  ///< put the cloth in its reference shape at the new pose, at rest on the carrier
+    /// CLOTH_TELEPORT_MOVE
+    CLOTH_TELEPORT_DEFAULT = 0,
+    /// move the cloth rigidly with the carrier, keeping its shape and motion
+    CLOTH_TELEPORT_MOVE = 1,
+    /// put the cloth in its reference shape at the new pose, at rest on the carrier
+    CLOTH_TELEPORT_AND_RESET = 2,
+    /// forces the enum to 32 bits
     CLOTH_TELEPORT_MODE_FORCE_U32 = 0x7FFFFFFF
 } cloth_teleport_mode;
 
@@ -853,19 +1253,27 @@ typedef enum cloth_teleport_mode {
 /// felt fully through the attachments only), 0 makes the cloth move with
 /// the carrier as if it were rigidly fixed to it.
 typedef struct cloth_carrier_desc {
-    uint32_t struct_size;       ///< sizeof(cloth_carrier_desc)
-    float linear_inertia;       ///< 0..1; default 1
-    float angular_inertia;      ///< 0..1 (Euler and Coriolis terms); default 1
-    float centrifugal_inertia;  ///< 0..1; default 1
-    float max_relative_speed;   ///< m/s, >= 0: clamp of particle speed relative to the carrier; 0 (default):
-                                ///< none
-    float teleport_distance;  ///< m, >= 0: a frame's carrier move beyond this is a teleport; 0 (default): off
-    float
-        teleport_rotation;  ///< rad, >= 0: a frame's carrier turn beyond this is a teleport; 0 (default): off
-    cloth_teleport_mode teleport_mode;  ///< default CLOTH_TELEPORT_MOVE
+    /// sizeof(cloth_carrier_desc)
+    uint32_t struct_size;
+    /// 0..1; default 1
+    float linear_inertia;
+    /// 0..1 (Euler and Coriolis terms); default 1
+    float angular_inertia;
+    /// 0..1; default 1
+    float centrifugal_inertia;
+    /// m/s, >= 0: clamp of particle speed relative to the carrier; 0 (default): none
+    float max_relative_speed;
+    /// m, >= 0: a frame's carrier move beyond this is a teleport; 0 (default): off
+    float teleport_distance;
+    /// rad, >= 0: a frame's carrier turn beyond this is a teleport; 0 (default): off
+    float teleport_rotation;
+    /// default CLOTH_TELEPORT_MOVE
+    cloth_teleport_mode teleport_mode;
+    /// set by the struct\'s cloth_default_*() function; do not change
     uint32_t internal_cookie;
 } cloth_carrier_desc;
 
+/// A carrier description with every default set (and its cookie).
 CLOTH_API cloth_carrier_desc cloth_default_carrier_desc(void);
 
 /// Make `body` the cloth's carrier (a null body removes the carrier; desc is
@@ -892,36 +1300,53 @@ CLOTH_API cloth_result cloth_get_teleported(cloth_id cloth, bool* out_teleported
  * Off by default: a cloth allocates nothing for it until it is enabled,
  * and frees it again when it is disabled. */
 
+/// Self-collision settings of a cloth.
 typedef struct cloth_self_collision_desc {
-    uint32_t struct_size;  ///< sizeof(cloth_self_collision_desc)
-    bool enabled;          ///< default false
-    float thickness;       ///< theta_c, m; > 0 and at most twice the fabric's mean rest edge; default 0.01
-    float friction;        ///< Coulomb coefficient on the sliding velocity, >= 0; default 0
-    bool use_regions;      ///< skip pairs inside collision-free regions; default true
-    uint32_t passes;       ///< at most this many projection passes per substep, 1..16; default 8
+    /// sizeof(cloth_self_collision_desc)
+    uint32_t struct_size;
+    /// 1: on; 0 or 1, default 0
+    uint8_t enabled;
+    /// theta_c, m; > 0 and at most twice the fabric's mean rest edge; default 0.01
+    float thickness;
+    /// Coulomb coefficient on the sliding velocity, >= 0; default 0
+    float friction;
+    /// 1: skip pairs inside collision-free regions; 0 or 1, default 1
+    uint8_t use_regions;
+    /// at most this many projection passes per substep, 1..16; default 8
+    uint32_t passes;
+    /// set by the struct\'s cloth_default_*() function; do not change
     uint32_t internal_cookie;
 } cloth_self_collision_desc;
 
+/// Self-collision settings with every default set (and its cookie); off.
 CLOTH_API cloth_self_collision_desc cloth_default_self_collision_desc(void);
 
-/// Enable, change or disable (desc->enabled = false) self-collision of a
+/// Enable, change or disable (desc->enabled = 0) self-collision of a
 /// cloth. Enabling allocates (CLOTH_ERROR_OUT_OF_MEMORY changes nothing);
 /// a thickness above twice the fabric's mean rest edge is
 /// CLOTH_ERROR_INVALID_VALUE (rest neighbours would need too many rings).
 CLOTH_API cloth_result cloth_set_self_collision(cloth_id cloth, const cloth_self_collision_desc* desc);
-/// The current settings (enabled = false and defaults while off).
+/// The current settings (enabled = 0 and defaults while off).
 CLOTH_API cloth_result cloth_get_self_collision(cloth_id cloth, cloth_self_collision_desc* out_desc);
 
 /// What the last substep's self-collision did (all zero while off).
 typedef struct cloth_self_collision_stats {
-    uint32_t struct_size;           ///< set by the caller to sizeof(cloth_self_collision_stats)
-    uint32_t contacts;              ///< pairs closer than thickness when contacts were searched
-    uint32_t regions;               ///< collision-free region candidates of the fabric
-    uint32_t valid_regions;         ///< of those, collision-free at the last check
-    uint32_t overflowed_particles;  ///< particles with more close neighbours than contact slots (16)
-    uint32_t passes;                ///< projection passes run
+    /// set by the caller to sizeof(cloth_self_collision_stats)
+    uint32_t struct_size;
+    /// pairs closer than thickness when contacts were searched
+    uint32_t contacts;
+    /// collision-free region candidates of the fabric
+    uint32_t regions;
+    /// of those, collision-free at the last check
+    uint32_t valid_regions;
+    /// particles with more close neighbours than contact slots (16)
+    uint32_t overflowed_particles;
+    /// projection passes run
+    uint32_t passes;
 } cloth_self_collision_stats;
 
+/// What the last substep's self-collision did; the caller sets
+/// out_stats->struct_size first.
 CLOTH_API cloth_result cloth_get_self_collision_stats(cloth_id cloth, cloth_self_collision_stats* out_stats);
 
 #ifdef __cplusplus

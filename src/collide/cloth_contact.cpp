@@ -34,17 +34,16 @@ Vec3 ClothContact::attached_position(uint32_t particle, float fraction) const {
 
 void ClothContact::begin_step(float dt, const float* pinned, Vec3Soa& x, Vec3Soa& v) {
     if (!carrier_.active()) return;
-    const BodySlot& slot = world_->body(carrier_.body());
-    carrier_.begin_step(slot.body, slot.jumped ? &slot.before_jump : nullptr, dt, pinned,
+    const BodyState& carrier = world_->body(carrier_.body());
+    carrier_.begin_step(carrier.body, carrier.jumped ? &carrier.before_jump : nullptr, dt, pinned,
                         attached_body_.empty() ? nullptr : &attached_body_, x, v);
 }
 
 uint32_t ClothContact::collide(float h, float from, float to, const float* kinematic, uint32_t begin,
                                uint32_t end, Vec3Soa& x, Vec3Soa& v) const {
     uint32_t contacts = 0;
-    const HostVector<ColliderSlot>& colliders = world_->colliders();
-    for (const ColliderSlot& slot : colliders) {
-        const Collider& c = slot.collider;
+    for (const auto& slot : world_->colliders()) {
+        const Collider& c = slot.object;
         if (!slot.live || !(c.group_bits & collision_.collider_mask)) continue;
         MovingCollider moving;
         moving.shape = c.shape.get();

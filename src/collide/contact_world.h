@@ -1,31 +1,24 @@
-// The bodies and colliders of one world: slot tables (slot + generation,
-// like cloths) that grow on creation, never during a step. Cloths refer to
-// bodies by slot; destroying a body is cascaded by World (attachments,
-// carriers) and here (its colliders).
+// The bodies and colliders of one world, each kind in an id pool (slot +
+// generation, like cloths) that grows on creation, never during a step.
+// Cloths refer to bodies by slot; destroying a body is cascaded by World
+// (attachments, carriers) and here (its colliders).
 #pragma once
 
 #include <cstdint>
 #include <memory>
 
 #include "base/host_allocator.h"
+#include "base/id_pool.h"
 #include "base/status.h"
 #include "collide/bodies.h"
 #include "collide/colliders.h"
 
 namespace cloth {
 
-struct BodySlot {
+struct BodyState {
     Body body;
     bool jumped = false;  // teleported since the last step (no sweep, no interpolation)
     Pose before_jump;     // while jumped: where the first teleport took it from (for carriers)
-    bool live = false;
-    uint16_t generation = 1;
-};
-
-struct ColliderSlot {
-    Collider collider;
-    bool live = false;
-    uint16_t generation = 1;
 };
 
 class ContactWorld {
@@ -33,23 +26,24 @@ class ContactWorld {
     static constexpr uint32_t kMaxSlots = 65535;
 
     explicit ContactWorld(const HostMemory* memory)
-        : memory_(memory),
-          bodies_(HostAllocator<BodySlot>(memory)),
-          colliders_(HostAllocator<ColliderSlot>(memory)) {}
+        : memory_(memory), bodies_(memory, kMaxSlots), colliders_(memory, kMaxSlots) {}
 
     const HostMemory* memory() const { return memory_; }
 
     // Bodies. Lookups take the public id's index1 (slot + 1) and generation.
     Status create_body(const Body& body, uint32_t* out_slot, uint16_t* out_generation);
-    BodySlot* find_body(uint16_t index1, uint16_t generation);
-    const BodySlot& body(uint32_t slot) const { return bodies_[slot]; }
+    BodyState* find_body(uint16_t index1, uint16_t generation) { return bodies_.get(index1, generation); }
+    const BodyState& body(uint32_t slot) const { return bodies_[slot].object; }
+    uint16_t body_generation(uint32_t slot) const { return bodies_[slot].generation; }
     // Frees the slot and destroys the colliders fixed to the body.
     void destroy_body(uint32_t slot);
 
     Status create_collider(const Collider& collider, uint32_t* out_slot, uint16_t* out_generation);
-    ColliderSlot* find_collider(uint16_t index1, uint16_t generation);
-    void destroy_collider(uint32_t slot);
-    const HostVector<ColliderSlot>& colliders() const { return colliders_; }
+    Collider* find_collider(uint16_t index1, uint16_t generation) {
+        return colliders_.get(index1, generation);
+    }
+    void destroy_collider(uint32_t slot) { colliders_.release(slot); }
+    const IdPool<Collider>& colliders() const { return colliders_; }
     // Whether any live collider meets `mask` (else the collision stage is skipped).
     bool any_collider(uint32_t mask) const;
 
@@ -62,8 +56,8 @@ class ContactWorld {
 
   private:
     const HostMemory* memory_;
-    HostVector<BodySlot> bodies_;
-    HostVector<ColliderSlot> colliders_;
+    IdPool<BodyState> bodies_;
+    IdPool<Collider> colliders_;
 };
 
 }  // namespace cloth

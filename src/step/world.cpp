@@ -14,8 +14,8 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       log_(desc.log),
       index_(index),
       generation_(generation),
-      fabrics_(HostAllocator<Slot<Fabric>>(&memory_)),
-      cloths_(HostAllocator<Slot<ClothInstance>>(&memory_)),
+      fabrics_(&memory_, desc.max_fabrics),
+      cloths_(&memory_, desc.max_cloths),
       contact_(&memory_),
       tasks_(&serial_tasks_),
       host_tasks_(desc.enqueue_task, desc.finish_task, desc.task_user, desc.worker_count),
@@ -27,8 +27,8 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       cloth_cost_ns_(HostAllocator<int64_t>(&memory_)),
       profile_(&memory_),
       budget_cloths_(HostAllocator<BudgetCloth>(&memory_)) {
-    fabrics_.resize(desc.max_fabrics);
-    cloths_.resize(desc.max_cloths);
+    fabrics_.make_all_slots();
+    cloths_.make_all_slots();
     stepping_.reserve(desc.max_cloths);
     stepping_cloths_.reserve(desc.max_cloths);
     cloth_cost_ns_.assign(desc.max_cloths, 0);
@@ -46,42 +46,25 @@ void World::log(cloth_log_level level, cloth_result code, const char* message) c
     if (log_) log_(level, code, message, memory_.user);
 }
 
-namespace {
-
-template <class T, class Id>
-T* lookup(const HostVector<Slot<T>>& slots, Id id) {
-    if (id.index1 == 0 || id.index1 > slots.size()) return nullptr;
-    const Slot<T>& slot = slots[id.index1 - 1];
-    if (!slot.object || slot.generation != id.generation) return nullptr;
-    return slot.object.get();
-}
-
-template <class T>
-void release(Slot<T>& slot) {
-    slot.object.reset();
-    slot.generation = static_cast<uint16_t>(slot.generation + 1 == 0 ? 1 : slot.generation + 1);
-}
-
-}  // namespace
-
 std::shared_ptr<const Fabric> World::find_fabric(cloth_fabric_id id) const {
-    if (!lookup(fabrics_, id)) return nullptr;
-    return fabrics_[id.index1 - 1].object;
+    const uint32_t slot = fabrics_.find(id.index1, id.generation);
+    return slot == fabrics_.kFull ? nullptr : fabrics_[slot].object;
 }
 
 Status World::destroy_fabric(cloth_fabric_id id) {
-    if (!lookup(fabrics_, id)) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is not live");
-    release(fabrics_[id.index1 - 1]);
+    const uint32_t slot = fabrics_.find(id.index1, id.generation);
+    if (slot == fabrics_.kFull) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is not live");
+    fabrics_.release(slot);
     return {};
 }
 
 Status World::create_cloth(std::shared_ptr<const Fabric> fabric, const Material& material,
                            const SolverSettings& solver, const AeroParams& aero,
                            const float* initial_positions, cloth_id* out) {
-    const uint32_t slot = find_free_slot(cloths_);
-    if (slot == UINT32_MAX) {
-        return Status::error(CLOTH_ERROR_CAPACITY, "world has no free cloth slot (max_cloths = %zu)",
-                             cloths_.size());
+    const uint32_t slot = cloths_.free_slot();
+    if (slot == cloths_.kFull) {
+        return Status::error(CLOTH_ERROR_CAPACITY, "world has no free cloth slot (max_cloths = %u)",
+                             cloths_.max_slots());
     }
     auto cloth = std::allocate_shared<ClothInstance>(HostAllocator<ClothInstance>(&memory_), &memory_,
                                                      std::move(fabric), material, solver, aero);
@@ -94,17 +77,19 @@ Status World::create_cloth(std::shared_ptr<const Fabric> fabric, const Material&
     }
     reserve_round_tasks(cloth->group_count());
     cloth->contact().bind(&contact_);
-    cloths_[slot].object = std::move(cloth);
-    *out = cloth_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1),
-                    cloths_[slot].generation, generation_};
+    *out = cloth_id_of(slot, cloths_.occupy(slot, std::move(cloth)));
     return {};
 }
 
-ClothInstance* World::find_cloth(cloth_id id) const { return lookup(cloths_, id); }
+ClothInstance* World::find_cloth(cloth_id id) const {
+    const uint32_t slot = cloths_.find(id.index1, id.generation);
+    return slot == cloths_.kFull ? nullptr : cloths_[slot].object.get();
+}
 
 Status World::destroy_cloth(cloth_id id) {
-    if (!lookup(cloths_, id)) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "cloth handle is not live");
-    release(cloths_[id.index1 - 1]);
+    const uint32_t slot = cloths_.find(id.index1, id.generation);
+    if (slot == cloths_.kFull) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "cloth handle is not live");
+    cloths_.release(slot);
     return {};
 }
 
@@ -112,7 +97,7 @@ Status World::destroy_cloth(cloth_id id) {
 // of every cloth (a serial stage has one task).
 void World::reserve_round_tasks(size_t extra_groups) {
     size_t groups = extra_groups;
-    for (const Slot<ClothInstance>& slot : cloths_) {
+    for (const auto& slot : cloths_) {
         if (slot.object) groups += slot.object->group_count();
     }
     round_.reserve(groups);
@@ -182,7 +167,7 @@ void World::account_round(uint32_t count) {
 }
 
 void World::destroy_body(uint32_t body) {
-    for (const Slot<ClothInstance>& slot : cloths_) {
+    for (const auto& slot : cloths_) {
         ClothInstance* cloth = slot.object.get();
         if (!cloth) continue;
         ClothContact& contact = cloth->contact();
@@ -202,13 +187,12 @@ constexpr uint32_t kMinTasksPerRange = 4;
 
 Status World::shift_origin(const Vec3& shift) {
     bool fits = contact_.can_shift_origin(shift);
-    for (const Slot<ClothInstance>& slot : cloths_)
-        fits = fits && (!slot.object || slot.object->can_shift_origin(shift));
+    for (const auto& slot : cloths_) fits = fits && (!slot.object || slot.object->can_shift_origin(shift));
     if (!fits) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE,
                              "the shift would move a position out of float range; nothing was moved");
     }
-    for (Slot<ClothInstance>& slot : cloths_) {
+    for (auto& slot : cloths_) {
         if (slot.object) slot.object->shift_origin(shift);
     }
     contact_.shift_origin(shift);

@@ -1,9 +1,9 @@
 // World: owns the fabrics and cloths of one host scene, the host's
 // callbacks, gravity, and the step over all its cloths.
 //
-// Objects live in slot tables sized once at creation (capacity from the
-// description); a handle is a slot index plus the slot's generation, which
-// is bumped on destroy, so a stale handle is detected and never followed.
+// Fabrics and cloths live in id pools (base/id_pool.h) sized once at
+// creation (capacity from the description); a handle is a slot index plus
+// the slot's generation, so a stale handle is detected and never followed.
 #pragma once
 
 #include <cloth/cloth.h>
@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "base/host_allocator.h"
+#include "base/id_pool.h"
 #include "base/status.h"
 #include "collide/contact_world.h"
 #include "fabric/fabric.h"
@@ -22,12 +23,6 @@
 #include "step/frame_profile.h"
 
 namespace cloth {
-
-template <class T>
-struct Slot {
-    std::shared_ptr<T> object;
-    uint16_t generation = 1;
-};
 
 class World {
   public:
@@ -51,7 +46,7 @@ class World {
     ClothInstance* find_cloth(cloth_id id) const;
     // Wake every cloth (gravity changed).
     void wake_all() {
-        for (Slot<ClothInstance>& slot : cloths_) {
+        for (auto& slot : cloths_) {
             if (slot.object) slot.object->wake();
         }
     }
@@ -102,15 +97,12 @@ class World {
     // the per-cloth costs.
     void account_round(uint32_t count);
 
-    template <class T>
-    static uint32_t find_free_slot(const HostVector<Slot<T>>& slots);
-
     HostMemory memory_;
     cloth_log_fn* log_ = nullptr;
     uint16_t index_;
     uint16_t generation_;
-    HostVector<Slot<Fabric>> fabrics_;
-    HostVector<Slot<ClothInstance>> cloths_;
+    IdPool<std::shared_ptr<Fabric>> fabrics_;
+    IdPool<std::shared_ptr<ClothInstance>> cloths_;
     ContactWorld contact_;
 
     // One task of a round: group `task` of `cloth`'s current stage.
@@ -143,27 +135,19 @@ class World {
     void* zone_user_ = nullptr;
 };
 
-template <class T>
-uint32_t World::find_free_slot(const HostVector<Slot<T>>& slots) {
-    for (uint32_t i = 0; i < slots.size(); ++i) {
-        if (!slots[i].object) return i;
-    }
-    return UINT32_MAX;
-}
-
 template <class Build>
 Status World::create_fabric(Build build, cloth_fabric_id* out) {
-    const uint32_t slot = find_free_slot(fabrics_);
-    if (slot == UINT32_MAX) {
-        return Status::error(CLOTH_ERROR_CAPACITY, "world has no free fabric slot (max_fabrics = %zu)",
-                             fabrics_.size());
+    const uint32_t slot = fabrics_.free_slot();
+    if (slot == fabrics_.kFull) {
+        return Status::error(CLOTH_ERROR_CAPACITY, "world has no free fabric slot (max_fabrics = %u)",
+                             fabrics_.max_slots());
     }
     auto fabric = std::allocate_shared<Fabric>(HostAllocator<Fabric>(&memory_), &memory_);
     Status status = build(*fabric);
     if (!status.ok()) return status;
-    fabrics_[slot].object = std::move(fabric);
-    *out = cloth_fabric_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1),
-                           fabrics_[slot].generation, generation_};
+    const uint16_t generation = fabrics_.occupy(slot, std::move(fabric));
+    *out = cloth_fabric_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1), generation,
+                           generation_};
     return {};
 }
 

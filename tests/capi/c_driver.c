@@ -247,6 +247,8 @@ int main(void) {
     desc.fabric = fabric;
     desc.solver.kind = CLOTH_SOLVER_CG;
     CHECK_OK(cloth_create(world, &desc, &cg));
+    CHECK(cloth_is_valid(jacobi) && cloth_is_valid(cg) && !cloth_id_equal(jacobi, cg),
+          "two live cloths are not valid and distinct");
     CHECK_OK(cloth_get_particle_count(cg, &count));
     CHECK(count == PARTICLES, "cloth has %u particles, expected %u", (unsigned)count, PARTICLES);
     CHECK_OK(cloth_read_positions(jacobi, start, 3 * PARTICLES));
@@ -364,11 +366,14 @@ int main(void) {
     CHECK_OK(cloth_destroy(jacobi));
     CHECK(cloth_read_positions(jacobi, positions, 3 * PARTICLES) == CLOTH_ERROR_INVALID_HANDLE,
           "a destroyed cloth is still readable");
+    CHECK(!cloth_is_valid(jacobi) && !cloth_is_valid(cloth_null_id), "a destroyed or null cloth is valid");
     CHECK_OK(cloth_fabric_destroy(fabric));
     CHECK_OK(cloth_step(world, DT)); /* the CG cloth outlives its fabric handle */
     CHECK_OK(cloth_destroy(cg));
     CHECK_OK(cloth_world_destroy(world));
     CHECK(cloth_step(world, DT) == CLOTH_ERROR_INVALID_HANDLE, "a destroyed world still steps");
+    CHECK(!cloth_world_is_valid(world) && !cloth_world_id_equal(world, cloth_null_world_id),
+          "a destroyed world id is valid, or null");
 
     CHECK(h.allocs > 0, "the world never used the host allocator");
     CHECK(h.allocs == h.frees, "%lu allocations, %lu frees", h.allocs, h.frees);

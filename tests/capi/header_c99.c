@@ -19,6 +19,8 @@
 CLOTH_HEADER_CHECK(world_id_size, sizeof(cloth_world_id) == 4);
 CLOTH_HEADER_CHECK(fabric_id_size, sizeof(cloth_fabric_id) == 8);
 CLOTH_HEADER_CHECK(cloth_id_size, sizeof(cloth_id) == 8);
+CLOTH_HEADER_CHECK(body_id_size, sizeof(cloth_body_id) == 8);
+CLOTH_HEADER_CHECK(collider_id_size, sizeof(cloth_collider_id) == 8);
 CLOTH_HEADER_CHECK(version_size, sizeof(cloth_version) == 12);
 
 /* Enums are forced to 32 bits. */
@@ -26,6 +28,7 @@ CLOTH_HEADER_CHECK(result_size, sizeof(cloth_result) == 4);
 CLOTH_HEADER_CHECK(log_level_size, sizeof(cloth_log_level) == 4);
 CLOTH_HEADER_CHECK(spring_kind_size, sizeof(cloth_spring_kind) == 4);
 CLOTH_HEADER_CHECK(solver_kind_size, sizeof(cloth_solver_kind) == 4);
+CLOTH_HEADER_CHECK(struct_kind_size, sizeof(cloth_struct_kind) == 4);
 
 /* struct_size comes first in every versioned struct. */
 CLOTH_HEADER_CHECK(world_desc_size_first, offsetof(cloth_world_desc, struct_size) == 0);
@@ -141,6 +144,17 @@ struct cloth_header_api {
     cloth_result (*set_aero)(cloth_id, const cloth_aero_params*);
     cloth_result (*set_wind)(cloth_id, const float[3]);
     cloth_result (*get_stats)(cloth_id, cloth_stats*);
+    size_t (*struct_size)(cloth_struct_kind);
+    bool (*world_is_valid)(cloth_world_id);
+    bool (*fabric_is_valid)(cloth_fabric_id);
+    bool (*is_valid)(cloth_id);
+    bool (*body_is_valid)(cloth_body_id);
+    bool (*collider_is_valid)(cloth_collider_id);
+    bool (*world_id_equal)(cloth_world_id, cloth_world_id);
+    bool (*fabric_id_equal)(cloth_fabric_id, cloth_fabric_id);
+    bool (*id_equal)(cloth_id, cloth_id);
+    bool (*body_id_equal)(cloth_body_id, cloth_body_id);
+    bool (*collider_id_equal)(cloth_collider_id, cloth_collider_id);
 };
 
 /* Prototypes for the two exported functions (keeps -Wmissing-prototypes quiet too). */
@@ -186,6 +200,17 @@ const struct cloth_header_api* cloth_header_c99_api(void) {
         cloth_set_aero,
         cloth_set_wind,
         cloth_get_stats,
+        cloth_struct_size,
+        cloth_world_is_valid,
+        cloth_fabric_is_valid,
+        cloth_is_valid,
+        cloth_body_is_valid,
+        cloth_collider_is_valid,
+        cloth_world_id_equal,
+        cloth_fabric_id_equal,
+        cloth_id_equal,
+        cloth_body_id_equal,
+        cloth_collider_id_equal,
     };
     return &api;
 }
@@ -303,6 +328,12 @@ uint32_t cloth_header_c99_uses_every_type(void) {
     for (i = 0; i < sizeof kinds / sizeof kinds[0]; ++i) sum += (uint32_t)kinds[i];
     for (i = 0; i < sizeof solvers / sizeof solvers[0]; ++i) sum += (uint32_t)solvers[i];
     sum += world.index1 + world.generation;
+    sum += (uint32_t)cloth_world_id_equal(world, cloth_null_world_id) +
+           (uint32_t)cloth_fabric_id_equal(fabric, cloth_null_fabric_id) +
+           (uint32_t)cloth_id_equal(cloth, cloth_null_id) +
+           (uint32_t)cloth_body_id_equal(cloth_null_body_id, cloth_null_body_id) +
+           (uint32_t)cloth_collider_id_equal(cloth_null_collider_id, cloth_null_collider_id);
+    sum += (uint32_t)CLOTH_STRUCT_SELF_COLLISION_STATS + (uint32_t)CLOTH_STRUCT_KIND_FORCE_U32;
     sum += fabric.index1 + fabric.world1 + fabric.generation;
     sum += cloth.index1 + cloth.world1 + cloth.generation;
     sum +=
