@@ -1,13 +1,14 @@
-// Recovery when the C++ heap fails during a step. The CG reference solver is
-// the one part of a step that allocates, and from the C++ heap, not from the
-// world's allocator (cloth.h, cloth_step). This program replaces the global
-// operator new with one that can be told to fail, and checks the contract:
-// the step returns CLOTH_ERROR_OUT_OF_MEMORY, the CG cloth is restored bit
-// for bit, a JACOBI cloth in the same world still advances, and once the
-// heap works again the CG cloth steps and a new cloth can be created.
-// (Allocation failures through the world's allocator are covered by
-// tests/capi/bad_input/ and, at random points of random call sequences, by
-// the fuzz harness.)
+// A step whose C++ heap fails returns OUT_OF_MEMORY, restores that cloth and leaves the world working.
+//
+// The CG reference solver is the one part of a step that allocates, and
+// from the C++ heap, not from the world's allocator (cloth.h, cloth_step).
+// This program replaces the global operator new with one that can be told
+// to fail, and checks the contract: the step returns
+// CLOTH_ERROR_OUT_OF_MEMORY, the CG cloth is restored bit for bit, a JACOBI
+// cloth in the same world still advances, and once the heap works again
+// the CG cloth steps and a new cloth can be created. (Allocation failures
+// through the world's allocator are covered by tests/capi/bad_input/ and,
+// at random points of random call sequences, by the fuzz harness.)
 #include <cloth/cloth.h>
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // cloth_create rejects bad descriptions and values with their codes and changes nothing.
-#include <cstdio>
-#include <iterator>
+#include <cstdint>
+#include <functional>
 #include <string>
-#include <thread>
+#include <utility>
 #include <vector>
 
 #include "bad_input/fixture.h"

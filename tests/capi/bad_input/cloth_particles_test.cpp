@@ -1,9 +1,7 @@
 // Bad reads, positions, pins and pin targets are rejected and no particle changes.
-#include <cstdio>
-#include <iterator>
+#include <cstdint>
+#include <cstring>
 #include <string>
-#include <thread>
-#include <vector>
 
 #include "bad_input/fixture.h"
 

@@ -1,9 +1,8 @@
 // Bad solver, spring, aerodynamic and wind settings are rejected and the old settings stay.
-#include <cstdio>
-#include <iterator>
+#include <cstdint>
+#include <cstring>
 #include <string>
-#include <thread>
-#include <vector>
+#include <utility>
 
 #include "bad_input/fixture.h"
 

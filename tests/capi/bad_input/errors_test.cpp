@@ -1,9 +1,9 @@
 // Each error reaches the log and the per-thread last error; result and stage names are never NULL.
-#include <cstdio>
-#include <iterator>
+#include <cstdint>
+#include <functional>
 #include <string>
 #include <thread>
-#include <vector>
+#include <utility>
 
 #include "bad_input/fixture.h"
 

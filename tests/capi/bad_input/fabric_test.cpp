@@ -1,9 +1,9 @@
 // Bad grid, mesh and OBJ fabric input is rejected with its code and changes nothing.
+#include <cstdint>
 #include <cstdio>
-#include <iterator>
+#include <cstring>
 #include <string>
-#include <thread>
-#include <vector>
+#include <utility>
 
 #include "bad_input/fixture.h"
 

@@ -1,8 +1,8 @@
 // Null, stale, wrong-generation and out-of-table ids get CLOTH_ERROR_INVALID_HANDLE and change nothing.
+#include <cstdint>
 #include <cstdio>
 #include <iterator>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "bad_input/fixture.h"

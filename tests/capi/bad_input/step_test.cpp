@@ -1,9 +1,7 @@
 // A bad dt changes nothing, a cloth that goes non-finite is restored, a step allocates nothing.
 #include <cmath>
-#include <cstdio>
-#include <iterator>
+#include <cstdint>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "bad_input/fixture.h"

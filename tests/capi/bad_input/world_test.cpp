@@ -1,8 +1,6 @@
 // Bad world descriptions and world values are rejected with their codes and change nothing.
-#include <cstdio>
-#include <iterator>
+#include <cstdint>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "bad_input/fixture.h"
