@@ -18,8 +18,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
-#include <map>
+#include <memory>
 #include <string>
+
+#include "support/contract.h"
+#include "support/counting_allocator.h"
 
 namespace cloth_fuzz {
 namespace {
@@ -35,7 +38,6 @@ constexpr uint32_t kMaxMeshVertices = 48;
 constexpr uint32_t kMaxMeshTriangles = 96;
 constexpr uint64_t kStepWorkBudget = 100'000;   // particle-iterations per cloth_step call
 constexpr uint64_t kInputWorkBudget = 300'000;  // per input
-constexpr int kLastResultCode = CLOTH_ERROR_OVER_BUDGET;
 
 // The harness passes a count larger than its buffer only when the library
 // must refuse it before reading: an in-range count over `buffered` becomes
@@ -116,43 +118,10 @@ class Bytes {
 
 // ---------------------------------------------------------------- host
 
-// A counting allocator that checks every free and can be told to fail.
-struct Host {
-    std::map<void*, size_t> live;
-    long fail_after = -1;  // < 0: never fail
-    uint64_t allocations = 0;
-    int last_logged = -1;
-};
-
-void* host_alloc(size_t size, size_t alignment, void* user) {
-    Host* host = static_cast<Host*>(user);
-    if (alignment == 0 || (alignment & (alignment - 1)) != 0 || alignment > 64)
-        broken("allocator asked for a bad alignment");
-    if (host->fail_after == 0) return nullptr;
-    if (host->fail_after > 0) --host->fail_after;
-    if (size > (size_t{64} << 20)) return nullptr;  // a bounded host
-    void* p = std::aligned_alloc(alignment, (size + alignment - 1) / alignment * alignment);
-    if (!p) return nullptr;
-    host->live[p] = size;
-    ++host->allocations;
-    return p;
-}
-
-void host_free(void* ptr, size_t size, void* user) {
-    Host* host = static_cast<Host*>(user);
-    auto it = host->live.find(ptr);
-    if (it == host->live.end()) broken("free of a pointer the allocator did not return, or a double free");
-    if (it->second != size) broken("free with another size than was allocated");
-    host->live.erase(it);
-    std::free(ptr);
-}
-
-void host_log(cloth_log_level level, cloth_result code, const char* message, void* user) {
-    if (level != CLOTH_LOG_ERROR && level != CLOTH_LOG_WARNING && level != CLOTH_LOG_INFO)
-        broken("log with an unknown level");
-    if (!message || !*message) broken("log without a message");
-    static_cast<Host*>(user)->last_logged = code;
-}
+// The worlds' allocator and log are the tests' counting allocator
+// (tests/capi/support): a misused callback (a bad alignment, a foreign or
+// double free, a wrong size, a log without a message) ends the run.
+void callback_misused(const char* what) { broken("allocator or log callback misused:", what); }
 
 // A host job system that defers each task to its finish call and runs the
 // ranges there in reverse order, as worker 0 (results must not depend on
@@ -193,7 +162,7 @@ void host_finish(void* handle, void* user) {
 
 struct WorldSlot {
     cloth_world_id id{};
-    Host host;
+    std::unique_ptr<cloth_test::CountingAllocator> host = std::make_unique<cloth_test::CountingAllocator>();
     HostTask tasks;
     bool live = false;
     bool counted = false;  // uses the counting allocator
@@ -201,7 +170,9 @@ struct WorldSlot {
 
 class Harness {
   public:
-    Harness(const uint8_t* data, size_t size) : in_(data, size) {}
+    Harness(const uint8_t* data, size_t size) : in_(data, size) {
+        cloth_test::CountingAllocator::violation_handler() = callback_misused;
+    }
     ~Harness();
 
     RunStats run();
@@ -209,13 +180,23 @@ class Harness {
   private:
     // Every call goes through here: a known code and, on failure, a message.
     cloth_result check(cloth_result r, const char* call);
+    // What a rejected call on objects of this world (and this cloth) must
+    // leave alone: the world's live cloths and bodies, and its memory if the
+    // counting allocator is its allocator.
+    cloth_test::Watch watch_of(uint16_t world1, uint16_t world_generation) const;
+    cloth_test::Watch watch_of(cloth_id cloth) const {
+        return watch_of(cloth.world1, cloth.world_generation);
+    }
+    // check(call()), and if the library rejected the call, nothing `watch`
+    // names changed (tests/capi/support/contract.h).
+    template <typename Call>
+    cloth_result guarded(const cloth_test::Watch& watch, const char* name, Call call);
     void check_cloths_finite(uint32_t world_slot);
 
     cloth_world_id pick_world();
     cloth_fabric_id pick_fabric();
     cloth_id pick_cloth();
     uint32_t particles_of(cloth_id id);
-    std::vector<float> state_of(cloth_id id);
 
     void world_create();
     void world_destroy();
@@ -267,9 +248,10 @@ class Harness {
 Harness::~Harness() {
     for (WorldSlot& w : worlds_) {
         if (!w.live) continue;
-        w.host.fail_after = -1;
+        w.host->fail_after(-1);
         if (cloth_world_destroy(w.id) != CLOTH_OK) broken("cloth_world_destroy of a live world failed");
-        if (w.counted && !w.host.live.empty()) broken("memory still allocated after cloth_world_destroy");
+        if (w.counted && w.host->live_blocks() != 0)
+            broken("memory still allocated after cloth_world_destroy");
     }
 }
 
@@ -278,14 +260,42 @@ cloth_result Harness::check(cloth_result r, const char* call) {
     static const bool trace = std::getenv("CLOTH_FUZZ_TRACE") != nullptr;  // print every call
     if (trace)
         std::fprintf(stderr, "  %s -> %s %s\n", call, cloth_result_name(r), r ? cloth_get_last_error() : "");
-    if (static_cast<int>(r) < 0 || static_cast<int>(r) > kLastResultCode)
-        broken(call, "returned an unknown code");
-    const char* name = cloth_result_name(r);
-    if (!name || !*name) broken(call, "has a result without a name");
+    const std::string problem = cloth_test::report_problem(r);
+    if (!problem.empty()) broken(call, problem.c_str());
+    if (r != CLOTH_OK) ++stats_.rejected;
+    return r;
+}
+
+cloth_test::Watch Harness::watch_of(uint16_t world1, uint16_t world_generation) const {
+    cloth_test::Watch watch;
+    for (const WorldSlot& w : worlds_) {
+        if (!w.live || w.id.index1 != world1 || w.id.generation != world_generation) continue;
+        watch.world = w.id;
+        if (w.counted) watch.memory = w.host.get();
+    }
+    if (watch.world.index1 == 0) return watch;  // no live world: nothing of it to watch
+    uint32_t n = 0;
+    for (const cloth_id& c : cloths_) {
+        if (c.world1 == world1 && c.world_generation == world_generation &&
+            cloth_get_particle_count(c, &n) == CLOTH_OK)
+            watch.cloths.push_back(c);
+    }
+    float position[3], rotation[4];
+    for (const cloth_body_id& b : bodies_) {
+        if (b.world1 == world1 && b.world_generation == world_generation &&
+            cloth_body_get_pose(b, position, rotation) == CLOTH_OK)
+            watch.bodies.push_back(b);
+    }
+    return watch;
+}
+
+template <typename Call>
+cloth_result Harness::guarded(const cloth_test::Watch& watch, const char* name, Call call) {
+    const cloth_test::Unchanged unchanged(watch);
+    const cloth_result r = check(call(), name);
     if (r != CLOTH_OK) {
-        ++stats_.rejected;
-        const char* message = cloth_get_last_error();
-        if (!message || !*message) broken(call, "failed without a message");
+        const std::string changed = unchanged.what_changed();
+        if (!changed.empty()) broken(name, ("was rejected, but " + changed).c_str());
     }
     return r;
 }
@@ -314,23 +324,6 @@ uint32_t Harness::particles_of(cloth_id id) {
     if (check(cloth_get_particle_count(id, &n), "cloth_get_particle_count") != CLOTH_OK) return 0;
     if (n == 0) broken("a live cloth has no particles");
     return n;
-}
-
-// Positions, velocities and pin flags of a cloth, bit for bit (empty if
-// the handle is not live).
-std::vector<float> Harness::state_of(cloth_id id) {
-    const uint32_t n = particles_of(id);
-    std::vector<float> state(7 * size_t{n});
-    if (n == 0) return state;
-    if (cloth_read_positions(id, state.data(), 3 * n) != CLOTH_OK ||
-        cloth_read_velocities(id, state.data() + 3 * size_t{n}, 3 * n) != CLOTH_OK)
-        broken("reading a live cloth failed");
-    for (uint32_t i = 0; i < n; ++i) {
-        bool pinned = false;
-        if (cloth_is_pinned(id, i, &pinned) != CLOTH_OK) broken("cloth_is_pinned of a live cloth failed");
-        state[6 * size_t{n} + i] = pinned ? 1.0f : 0.0f;
-    }
-    return state;  // a live cloth is always finite, so == on these compares exactly
 }
 
 // After any step: every cloth of the world is finite (a cloth that went
@@ -362,19 +355,15 @@ void Harness::world_create() {
     const uint8_t flags = in_.u8();
     if (slot == kWorldSlots) return;  // keep at most two worlds (the process table holds 128)
     WorldSlot& w = worlds_[slot];
-    w.host = Host{};
+    w.host = std::make_unique<cloth_test::CountingAllocator>();
+    w.host->set_max_single_allocation(size_t{64} << 20);  // a bounded host
     cloth_world_desc desc = cloth_default_world_desc();
     w.counted = flags & 1;
     if (w.counted) {
-        desc.alloc = host_alloc;
-        desc.free = host_free;
-        desc.user = &w.host;
-        if (flags & 2) w.host.fail_after = in_.u8() % 16;
+        w.host->use_for_memory(desc);
+        if (flags & 2) w.host->fail_after(in_.u8() % 16);
     }
-    if (flags & 4) {
-        desc.log = host_log;
-        desc.user = &w.host;
-    }
+    if (flags & 4) w.host->use_for_log(desc);
     if (flags & 8) in_.floats(desc.gravity, 3);
     if (flags & 16) {
         desc.max_cloths = in_.count(8, 65535);
@@ -412,7 +401,7 @@ void Harness::world_create() {
         if (id.index1 == 0) broken("cloth_world_create returned a null id");
         w.id = id;
         w.live = true;
-    } else if (w.counted && !w.host.live.empty()) {
+    } else if (w.counted && w.host->live_blocks() != 0) {
         broken("a failed cloth_world_create kept memory");
     }
 }
@@ -424,7 +413,8 @@ void Harness::world_destroy() {
         if (!w.live || w.id.index1 != id.index1 || w.id.generation != id.generation) continue;
         if (r != CLOTH_OK) broken("cloth_world_destroy of a live world failed");
         w.live = false;  // the id stays in the table as a stale handle
-        if (w.counted && !w.host.live.empty()) broken("memory still allocated after cloth_world_destroy");
+        if (w.counted && w.host->live_blocks() != 0)
+            broken("memory still allocated after cloth_world_destroy");
     }
 }
 
@@ -432,14 +422,16 @@ void Harness::world_set_gravity() {
     const cloth_world_id id = pick_world();
     float g[3];
     in_.floats(g, 3);
-    check(cloth_world_set_gravity(id, g), "cloth_world_set_gravity");
+    guarded(watch_of(id.index1, id.generation), "cloth_world_set_gravity",
+            [&] { return cloth_world_set_gravity(id, g); });
 }
 
 void Harness::world_shift_origin() {
     const cloth_world_id id = pick_world();
     float shift[3];
     in_.floats(shift, 3);
-    check(cloth_world_shift_origin(id, shift), "cloth_world_shift_origin");
+    guarded(watch_of(id.index1, id.generation), "cloth_world_shift_origin",
+            [&] { return cloth_world_shift_origin(id, shift); });
 }
 
 // ---------------------------------------------------------------- fabric
@@ -463,7 +455,8 @@ void Harness::fabric_grid() {
     if (flags & 16) desc.struct_size = in_.u8();
     if (flags & 32) desc.internal_cookie = in_.u32();
     cloth_fabric_id id{};
-    if (check(cloth_fabric_create_grid(world, &desc, &id), "cloth_fabric_create_grid") == CLOTH_OK)
+    if (guarded(watch_of(world.index1, world.generation), "cloth_fabric_create_grid",
+                [&] { return cloth_fabric_create_grid(world, &desc, &id); }) == CLOTH_OK)
         add_fabric(id);
 }
 
@@ -505,7 +498,8 @@ void Harness::fabric_mesh() {
     desc.positions = null_arrays ? nullptr : positions.data();
     desc.indices = null_arrays ? nullptr : indices.data();
     cloth_fabric_id id{};
-    if (check(cloth_fabric_create_mesh(world, &desc, &id), "cloth_fabric_create_mesh") == CLOTH_OK)
+    if (guarded(watch_of(world.index1, world.generation), "cloth_fabric_create_mesh",
+                [&] { return cloth_fabric_create_mesh(world, &desc, &id); }) == CLOTH_OK)
         add_fabric(id);
 }
 
@@ -520,8 +514,8 @@ void Harness::fabric_obj() {
     for (uint32_t i = 0; i < length && !in_.empty(); ++i) text.push_back(static_cast<char>(in_.u8()));
     if (flags & 4) {
         cloth_fabric_id id{};
-        check(cloth_fabric_create_obj(world, "/nonexistent/cloth-fuzz.obj", kinds, &id),
-              "cloth_fabric_create_obj");
+        guarded(watch_of(world.index1, world.generation), "cloth_fabric_create_obj",
+                [&] { return cloth_fabric_create_obj(world, "/nonexistent/cloth-fuzz.obj", kinds, &id); });
         return;
     }
     const int fd = memfd_create("cloth-fuzz-obj", 0);
@@ -530,32 +524,46 @@ void Harness::fabric_obj() {
         char path[64];
         std::snprintf(path, sizeof path, "/proc/self/fd/%d", fd);
         cloth_fabric_id id{};
-        if (check(cloth_fabric_create_obj(world, path, kinds, &id), "cloth_fabric_create_obj") == CLOTH_OK)
+        if (guarded(watch_of(world.index1, world.generation), "cloth_fabric_create_obj",
+                    [&] { return cloth_fabric_create_obj(world, path, kinds, &id); }) == CLOTH_OK)
             add_fabric(id);
     }
     close(fd);
 }
 
-void Harness::fabric_destroy() { check(cloth_fabric_destroy(pick_fabric()), "cloth_fabric_destroy"); }
+void Harness::fabric_destroy() {
+    const cloth_fabric_id id = pick_fabric();
+    guarded(watch_of(id.world1, id.world_generation), "cloth_fabric_destroy",
+            [&] { return cloth_fabric_destroy(id); });
+}
 
 void Harness::fabric_query() {
     const cloth_fabric_id id = pick_fabric();
     uint32_t n = 0;
+    cloth_test::Watch watch = watch_of(id.world1, id.world_generation);
+    watch.outputs = {{&n, sizeof n, "the count"}};
     switch (in_.u8() % 4) {
         case 0:
-            check(cloth_fabric_get_particle_count(id, &n), "cloth_fabric_get_particle_count");
+            guarded(watch, "cloth_fabric_get_particle_count",
+                    [&] { return cloth_fabric_get_particle_count(id, &n); });
             break;
         case 1:
-            check(cloth_fabric_get_triangle_count(id, &n), "cloth_fabric_get_triangle_count");
+            guarded(watch, "cloth_fabric_get_triangle_count",
+                    [&] { return cloth_fabric_get_triangle_count(id, &n); });
             break;
-        case 2:
-            check(cloth_fabric_get_spring_count(id, in_.u8() & 0x0F, &n), "cloth_fabric_get_spring_count");
+        case 2: {
+            const uint32_t kinds = in_.u8() & 0x0F;
+            guarded(watch, "cloth_fabric_get_spring_count",
+                    [&] { return cloth_fabric_get_spring_count(id, kinds, &n); });
             break;
+        }
         default: {
             // A buffer of exactly the capacity claimed: ASan sees any overflow.
             const uint32_t capacity = in_.u16() % 2048;
             std::vector<uint32_t> out(std::max(capacity, 1u));
-            check(cloth_fabric_read_triangles(id, out.data(), capacity), "cloth_fabric_read_triangles");
+            watch.outputs = {{out.data(), out.size() * sizeof(uint32_t), "the triangles"}};
+            guarded(watch, "cloth_fabric_read_triangles",
+                    [&] { return cloth_fabric_read_triangles(id, out.data(), capacity); });
         }
     }
 }
@@ -602,10 +610,15 @@ void Harness::cloth_create_call() {
     if (flags & 64) desc.struct_size = in_.u8();
     if (flags & 128) desc.internal_cookie = in_.u32();
     cloth_id id{};
-    if (check(cloth_create(world, &desc, &id), "cloth_create") == CLOTH_OK) add_cloth(id);
+    if (guarded(watch_of(world.index1, world.generation), "cloth_create",
+                [&] { return cloth_create(world, &desc, &id); }) == CLOTH_OK)
+        add_cloth(id);
 }
 
-void Harness::cloth_destroy_call() { check(cloth_destroy(pick_cloth()), "cloth_destroy"); }
+void Harness::cloth_destroy_call() {
+    const cloth_id id = pick_cloth();
+    guarded(watch_of(id), "cloth_destroy", [&] { return cloth_destroy(id); });
+}
 
 void Harness::step() {
     const uint8_t b = in_.u8();
@@ -652,39 +665,43 @@ void Harness::particle_edit() {
     std::vector<float> xyz(3 * indices.size());
     for (size_t k = 0; k < xyz.size(); ++k) xyz[k] = k < 6 ? in_.any_float() : 0.01f * static_cast<float>(k);
     const uint32_t* idx = (what & 0x80) ? nullptr : indices.data();
-    const std::vector<float> before = state_of(id);
-    cloth_result r;
+    const cloth_test::Watch watch = watch_of(id);
     switch (what % 4) {
         case 0:
-            r = check(cloth_pin(id, idx, count), "cloth_pin");
+            guarded(watch, "cloth_pin", [&] { return cloth_pin(id, idx, count); });
             break;
         case 1:
-            r = check(cloth_unpin(id, idx, count), "cloth_unpin");
+            guarded(watch, "cloth_unpin", [&] { return cloth_unpin(id, idx, count); });
             break;
         case 2:
-            r = check(cloth_set_positions(id, idx, xyz.data(), count), "cloth_set_positions");
+            guarded(watch, "cloth_set_positions",
+                    [&] { return cloth_set_positions(id, idx, xyz.data(), count); });
             break;
         default:
-            r = check(cloth_set_pin_targets(id, idx, xyz.data(), count), "cloth_set_pin_targets");
+            guarded(watch, "cloth_set_pin_targets",
+                    [&] { return cloth_set_pin_targets(id, idx, xyz.data(), count); });
     }
-    // A rejected call changes nothing (bit for bit).
-    if (r != CLOTH_OK && state_of(id) != before) broken("a rejected particle edit changed the cloth");
 }
 
 void Harness::is_pinned() {
     const cloth_id id = pick_cloth();
-    bool pinned = false;
+    unsigned char pinned = 0xA5;
     const uint8_t b = in_.u8();
     const uint32_t index = b < 200 ? b : in_.u32();
-    check(cloth_is_pinned(id, index, &pinned), "cloth_is_pinned");
+    cloth_test::Watch watch = watch_of(id);
+    watch.outputs = {{&pinned, 1, "the pin flag"}};
+    guarded(watch, "cloth_is_pinned",
+            [&] { return cloth_is_pinned(id, index, cloth_test::FlagOut{&pinned}); });
 }
 
 void Harness::solver() {
     const cloth_id id = pick_cloth();
     cloth_solver_settings s = cloth_default_solver_settings();
     const uint8_t flags = in_.u8();
+    cloth_test::Watch watch = watch_of(id);
     if (flags & 1) {
-        check(cloth_get_solver(id, &s), "cloth_get_solver");
+        watch.outputs = {{&s, sizeof s, "the solver settings"}};
+        guarded(watch, "cloth_get_solver", [&] { return cloth_get_solver(id, &s); });
         return;
     }
     s.kind = static_cast<cloth_solver_kind>(in_.u8() % 5);
@@ -692,19 +709,20 @@ void Harness::solver() {
     s.substeps = in_.count(4, 64);
     if (flags & 2) s.cg_tolerance = in_.any_float();
     s.cg_max_iterations = in_.count(50, 100000);
-    s.compression_safe_jacobian = flags & 4;
+    s.compression_safe_jacobian = (flags & 4) != 0;
     if (flags & 8) s.struct_size = in_.u8();
-    check(cloth_set_solver(id, &s), "cloth_set_solver");
+    guarded(watch, "cloth_set_solver", [&] { return cloth_set_solver(id, &s); });
 }
 
 void Harness::material() {
     const cloth_id id = pick_cloth();
     const uint8_t what = in_.u8();
+    const cloth_test::Watch watch = watch_of(id);
     switch (what % 3) {
         case 0: {
             const uint32_t kinds = in_.u8() & 0x0F;
             const cloth_spring_params p{in_.any_float(), in_.any_float()};
-            check(cloth_set_spring_params(id, kinds, p), "cloth_set_spring_params");
+            guarded(watch, "cloth_set_spring_params", [&] { return cloth_set_spring_params(id, kinds, p); });
             break;
         }
         case 1: {
@@ -714,13 +732,13 @@ void Harness::material() {
             a.drag_coefficient = in_.any_float();
             a.lift_coefficient = in_.any_float();
             a.linear_drag = in_.any_float();
-            check(cloth_set_aero(id, &a), "cloth_set_aero");
+            guarded(watch, "cloth_set_aero", [&] { return cloth_set_aero(id, &a); });
             break;
         }
         default: {
             float wind[3];
             in_.floats(wind, 3);
-            check(cloth_set_wind(id, wind), "cloth_set_wind");
+            guarded(watch, "cloth_set_wind", [&] { return cloth_set_wind(id, wind); });
         }
     }
 }
@@ -735,15 +753,20 @@ void Harness::read() {
                               : b < 192 ? (3 * particles) - (particles > 0)
                                         : in_.u16() % 2048;
     std::vector<float> out(std::max(capacity, 1u));
+    cloth_test::Watch watch = watch_of(id);
+    watch.outputs = {{out.data(), out.size() * sizeof(float), "the read buffer"}};
     switch (what % 3) {
         case 0:
-            check(cloth_read_positions(id, out.data(), capacity), "cloth_read_positions");
+            guarded(watch, "cloth_read_positions",
+                    [&] { return cloth_read_positions(id, out.data(), capacity); });
             break;
         case 1:
-            check(cloth_read_velocities(id, out.data(), capacity), "cloth_read_velocities");
+            guarded(watch, "cloth_read_velocities",
+                    [&] { return cloth_read_velocities(id, out.data(), capacity); });
             break;
         default:
-            check(cloth_read_normals(id, out.data(), capacity), "cloth_read_normals");
+            guarded(watch, "cloth_read_normals",
+                    [&] { return cloth_read_normals(id, out.data(), capacity); });
     }
 }
 
@@ -751,61 +774,80 @@ void Harness::stats() {
     const cloth_id id = pick_cloth();
     cloth_stats s{};
     s.struct_size = in_.u8() < 224 ? sizeof s : in_.u8();
-    check(cloth_get_stats(id, &s), "cloth_get_stats");
+    cloth_test::Watch watch = watch_of(id);
+    watch.outputs = {{&s, sizeof s, "the stats"}};
+    guarded(watch, "cloth_get_stats", [&] { return cloth_get_stats(id, &s); });
 }
 
 void Harness::allocator_schedule() {
     WorldSlot& w = worlds_[in_.u8() % kWorldSlots];
     const uint8_t b = in_.u8();
-    w.host.fail_after = b < 128 ? b % 8 : -1;
+    w.host->fail_after(b < 128 ? b % 8 : -1);
 }
 
 void Harness::null_arguments() {
     const cloth_world_id world = pick_world();
     const cloth_id cloth = pick_cloth();
     const cloth_fabric_id fabric = pick_fabric();
+    const cloth_test::Watch of_world = watch_of(world.index1, world.generation);
+    const cloth_test::Watch of_cloth = watch_of(cloth);
+    const cloth_test::Watch of_fabric = watch_of(fabric.world1, fabric.world_generation);
+    const char* name = "";
+    cloth_result r = CLOTH_OK;
+    auto made = [&](const cloth_test::Watch& watch, const char* call_name, auto call) {
+        name = call_name;
+        r = guarded(watch, call_name, call);
+    };
     switch (in_.u8() % 12) {
         case 0:
-            check(cloth_world_create(nullptr, nullptr), "cloth_world_create");
+            made(of_world, "cloth_world_create", [&] { return cloth_world_create(nullptr, nullptr); });
             break;
         case 1:
-            check(cloth_world_set_gravity(world, nullptr), "cloth_world_set_gravity");
+            made(of_world, "cloth_world_set_gravity",
+                 [&] { return cloth_world_set_gravity(world, nullptr); });
             break;
         case 2:
-            check(cloth_fabric_create_grid(world, nullptr, nullptr), "cloth_fabric_create_grid");
+            made(of_world, "cloth_fabric_create_grid",
+                 [&] { return cloth_fabric_create_grid(world, nullptr, nullptr); });
             break;
         case 3:
-            check(cloth_fabric_create_mesh(world, nullptr, nullptr), "cloth_fabric_create_mesh");
+            made(of_world, "cloth_fabric_create_mesh",
+                 [&] { return cloth_fabric_create_mesh(world, nullptr, nullptr); });
             break;
         case 4:
-            check(cloth_fabric_create_obj(world, nullptr, 0, nullptr), "cloth_fabric_create_obj");
+            made(of_world, "cloth_fabric_create_obj",
+                 [&] { return cloth_fabric_create_obj(world, nullptr, 0, nullptr); });
             break;
         case 5:
-            check(cloth_create(world, nullptr, nullptr), "cloth_create");
+            made(of_world, "cloth_create", [&] { return cloth_create(world, nullptr, nullptr); });
             break;
         case 6:
-            check(cloth_read_positions(cloth, nullptr, 0xFFFFFFFFu), "cloth_read_positions");
+            made(of_cloth, "cloth_read_positions",
+                 [&] { return cloth_read_positions(cloth, nullptr, 0xFFFFFFFFu); });
             break;
         case 7:
-            check(cloth_set_wind(cloth, nullptr), "cloth_set_wind");
+            made(of_cloth, "cloth_set_wind", [&] { return cloth_set_wind(cloth, nullptr); });
             break;
         case 8:
-            check(cloth_set_aero(cloth, nullptr), "cloth_set_aero");
+            made(of_cloth, "cloth_set_aero", [&] { return cloth_set_aero(cloth, nullptr); });
             break;
         case 9:
-            check(cloth_get_stats(cloth, nullptr), "cloth_get_stats");
+            made(of_cloth, "cloth_get_stats", [&] { return cloth_get_stats(cloth, nullptr); });
             break;
         case 10:
-            check(cloth_fabric_read_triangles(fabric, nullptr, 0xFFFFFFFFu), "cloth_fabric_read_triangles");
+            made(of_fabric, "cloth_fabric_read_triangles",
+                 [&] { return cloth_fabric_read_triangles(fabric, nullptr, 0xFFFFFFFFu); });
             break;
         default:
-            check(cloth_set_solver(cloth, nullptr), "cloth_set_solver");
+            made(of_cloth, "cloth_set_solver", [&] { return cloth_set_solver(cloth, nullptr); });
     }
+    if (r == CLOTH_OK) broken(name, "accepted a NULL argument");
 }
 
 void Harness::self_collision() {
     const cloth_id id = pick_cloth();
     const uint8_t what = in_.u8();
+    cloth_test::Watch watch = watch_of(id);
     switch (what % 3) {
         case 0: {
             cloth_self_collision_desc d = cloth_default_self_collision_desc();
@@ -817,20 +859,23 @@ void Harness::self_collision() {
             if (flags & 16) d.passes = in_.count(16, 16);
             if (flags & 32) d.struct_size = in_.u8();
             if (flags & 64) d.internal_cookie = in_.u32();
-            check(cloth_set_self_collision(id, &d), "cloth_set_self_collision");
+            guarded(watch, "cloth_set_self_collision", [&] { return cloth_set_self_collision(id, &d); });
             break;
         }
         case 1: {
             cloth_self_collision_desc d{};
             d.struct_size = sizeof d;
-            check(cloth_get_self_collision(id, (what & 0x80) ? nullptr : &d), "cloth_get_self_collision");
+            watch.outputs = {{&d, sizeof d, "the self-collision settings"}};
+            guarded(watch, "cloth_get_self_collision",
+                    [&] { return cloth_get_self_collision(id, (what & 0x80) ? nullptr : &d); });
             break;
         }
         default: {
             cloth_self_collision_stats st{};
             st.struct_size = in_.u8() < 224 ? sizeof st : in_.u8();
-            check(cloth_get_self_collision_stats(id, (what & 0x80) ? nullptr : &st),
-                  "cloth_get_self_collision_stats");
+            watch.outputs = {{&st, sizeof st, "the self-collision stats"}};
+            guarded(watch, "cloth_get_self_collision_stats",
+                    [&] { return cloth_get_self_collision_stats(id, (what & 0x80) ? nullptr : &st); });
         }
     }
 }
@@ -878,42 +923,65 @@ void Harness::body() {
             if (what & 0x20) in_.floats(d.angular_velocity, 3);
             if (what & 0x40) d.struct_size = in_.u8();
             cloth_body_id id{};
-            if (check(cloth_body_create(pick_world(), (what & 0x80) ? nullptr : &d, &id),
-                      "cloth_body_create") == CLOTH_OK)
+            const cloth_world_id world = pick_world();
+            if (guarded(watch_of(world.index1, world.generation), "cloth_body_create", [&] {
+                    return cloth_body_create(world, (what & 0x80) ? nullptr : &d, &id);
+                }) == CLOTH_OK)
                 bodies_[next_body_++ % kBodySlots] = id;
             break;
         }
-        case 1:
-            check(cloth_body_destroy(pick_body()), "cloth_body_destroy");
+        case 1: {
+            const cloth_body_id body = pick_body();
+            guarded(watch_of(body.world1, body.world_generation), "cloth_body_destroy",
+                    [&] { return cloth_body_destroy(body); });
             break;
-        case 2:
-            check(cloth_body_set_pose(pick_body(), position, (what & 0x80) ? nullptr : q),
-                  "cloth_body_set_pose");
+        }
+        case 2: {
+            const cloth_body_id body = pick_body();
+            guarded(watch_of(body.world1, body.world_generation), "cloth_body_set_pose",
+                    [&] { return cloth_body_set_pose(body, position, (what & 0x80) ? nullptr : q); });
             break;
-        case 3:
-            check(cloth_body_teleport(pick_body(), position, q), "cloth_body_teleport");
+        }
+        case 3: {
+            const cloth_body_id body = pick_body();
+            guarded(watch_of(body.world1, body.world_generation), "cloth_body_teleport",
+                    [&] { return cloth_body_teleport(body, position, q); });
             break;
-        case 4:
+        }
+        case 4: {
             in_.floats(w, 3);
-            check(cloth_body_set_velocity(pick_body(), position, w), "cloth_body_set_velocity");
+            const cloth_body_id body = pick_body();
+            guarded(watch_of(body.world1, body.world_generation), "cloth_body_set_velocity",
+                    [&] { return cloth_body_set_velocity(body, position, w); });
             break;
-        default:
-            check(cloth_body_get_pose(pick_body(), position, (what & 0x80) ? nullptr : q),
-                  "cloth_body_get_pose");
+        }
+        default: {
+            const cloth_body_id body = pick_body();
+            cloth_test::Watch watch = watch_of(body.world1, body.world_generation);
+            watch.outputs = {{position, sizeof position, "the position"}, {q, sizeof q, "the rotation"}};
+            guarded(watch, "cloth_body_get_pose",
+                    [&] { return cloth_body_get_pose(body, position, (what & 0x80) ? nullptr : q); });
+        }
     }
 }
 
 void Harness::collider() {
     const uint8_t what = in_.u8();
     if (what % 9 == 7) {
-        check(cloth_collider_destroy(pick_collider()), "cloth_collider_destroy");
+        const cloth_collider_id id = pick_collider();
+        guarded(watch_of(id.world1, id.world_generation), "cloth_collider_destroy",
+                [&] { return cloth_collider_destroy(id); });
         return;
     }
     if (what % 9 == 8) {
-        check(cloth_collider_set_group_bits(pick_collider(), in_.u32()), "cloth_collider_set_group_bits");
+        const cloth_collider_id id = pick_collider();
+        const uint32_t bits = in_.u32();
+        guarded(watch_of(id.world1, id.world_generation), "cloth_collider_set_group_bits",
+                [&] { return cloth_collider_set_group_bits(id, bits); });
         return;
     }
     const cloth_world_id world = pick_world();
+    const cloth_test::Watch of_world = watch_of(world.index1, world.generation);
     cloth_collider_desc d = cloth_default_collider_desc();
     if (what & 0x10) d.body = pick_body();
     if (what & 0x20) in_.floats(d.local_position, 3);
@@ -929,17 +997,20 @@ void Harness::collider() {
     cloth_result r = CLOTH_OK;
     switch (what % 9) {
         case 0:
-            r = check(cloth_collider_create_sphere(world, desc, a, &id), "cloth_collider_create_sphere");
+            r = guarded(of_world, "cloth_collider_create_sphere",
+                        [&] { return cloth_collider_create_sphere(world, desc, a, &id); });
             break;
         case 1:
-            r = check(cloth_collider_create_capsule(world, desc, a, v[0], &id),
-                      "cloth_collider_create_capsule");
+            r = guarded(of_world, "cloth_collider_create_capsule",
+                        [&] { return cloth_collider_create_capsule(world, desc, a, v[0], &id); });
             break;
         case 2:
-            r = check(cloth_collider_create_box(world, desc, v, &id), "cloth_collider_create_box");
+            r = guarded(of_world, "cloth_collider_create_box",
+                        [&] { return cloth_collider_create_box(world, desc, v, &id); });
             break;
         case 3:
-            r = check(cloth_collider_create_plane(world, desc, v, a, &id), "cloth_collider_create_plane");
+            r = guarded(of_world, "cloth_collider_create_plane",
+                        [&] { return cloth_collider_create_plane(world, desc, v, a, &id); });
             break;
         case 4: {
             // Every in-range count gets its full buffer (4096 points is small);
@@ -948,8 +1019,9 @@ void Harness::collider() {
             std::vector<float> points(3 * size_t{count <= 4096 ? count : 1});
             for (float& x : points)
                 x = in_.u8() < 224 ? static_cast<float>(in_.u8()) / 32.0f : in_.any_float();
-            r = check(cloth_collider_create_convex_hull(world, desc, points.data(), count, &id),
-                      "cloth_collider_create_convex_hull");
+            r = guarded(of_world, "cloth_collider_create_convex_hull", [&] {
+                return cloth_collider_create_convex_hull(world, desc, points.data(), count, &id);
+            });
             break;
         }
         case 5: {
@@ -964,9 +1036,10 @@ void Harness::collider() {
                 const uint8_t b = in_.u8();
                 i = b < 240 ? b % std::max(vertices, 1u) : in_.u32();
             }
-            r = check(cloth_collider_create_triangle_mesh(world, desc, xyz.data(), vertices, indices.data(),
-                                                          triangles, &id),
-                      "cloth_collider_create_triangle_mesh");
+            r = guarded(of_world, "cloth_collider_create_triangle_mesh", [&] {
+                return cloth_collider_create_triangle_mesh(world, desc, xyz.data(), vertices, indices.data(),
+                                                           triangles, &id);
+            });
             break;
         }
         case 6: {
@@ -983,8 +1056,9 @@ void Harness::collider() {
             h.heights = (flags & 1) ? nullptr : heights.data();
             if (samples > 64 && (flags & 2) == 0) h.columns = 0;  // never let a huge claim be read
             if (flags & 4) h.struct_size = in_.u8();
-            r = check(cloth_collider_create_heightfield(world, desc, (flags & 8) ? nullptr : &h, &id),
-                      "cloth_collider_create_heightfield");
+            r = guarded(of_world, "cloth_collider_create_heightfield", [&] {
+                return cloth_collider_create_heightfield(world, desc, (flags & 8) ? nullptr : &h, &id);
+            });
             break;
         }
     }
@@ -995,9 +1069,7 @@ void Harness::attachment() {
     const cloth_id cloth = pick_cloth();
     const uint8_t what = in_.u8();
     const uint32_t particles = particles_of(cloth);
-    const std::vector<float> before = state_of(cloth);
-    cloth_result r = CLOTH_OK;
-    bool changes_particles = false;  // a rejected call of this kind must leave the cloth's bits alone
+    cloth_test::Watch watch = watch_of(cloth);
     switch (what % 6) {
         case 0:
         case 1: {
@@ -1009,16 +1081,16 @@ void Harness::attachment() {
                 i = b < 224 ? b % std::max(particles, 1u) : b < 240 ? particles : in_.u32();
             }
             const uint32_t* idx = (what & 0x80) ? nullptr : indices.data();
-            changes_particles = true;
             if (what % 6 == 0) {
                 std::vector<float> offsets(3 * length);
                 for (size_t k = 0; k < offsets.size(); ++k)
                     offsets[k] = k < 6 ? in_.any_float() : 0.01f * static_cast<float>(k);
-                r = check(
-                    cloth_attach(cloth, pick_body(), idx, (what & 0x40) ? nullptr : offsets.data(), count),
-                    "cloth_attach");
+                const cloth_body_id body = pick_body();
+                guarded(watch, "cloth_attach", [&] {
+                    return cloth_attach(cloth, body, idx, (what & 0x40) ? nullptr : offsets.data(), count);
+                });
             } else {
-                r = check(cloth_detach(cloth, idx, count), "cloth_detach");
+                guarded(watch, "cloth_detach", [&] { return cloth_detach(cloth, idx, count); });
             }
             break;
         }
@@ -1027,8 +1099,10 @@ void Harness::attachment() {
             float offset[3];
             const uint8_t b = in_.u8();
             const uint32_t index = b < 224 ? b % std::max(particles, 1u) : in_.u32();
-            r = check(cloth_get_attachment(cloth, index, (what & 0x80) ? nullptr : &body, offset),
-                      "cloth_get_attachment");
+            watch.outputs = {{&body, sizeof body, "the body"}, {offset, sizeof offset, "the offset"}};
+            guarded(watch, "cloth_get_attachment", [&] {
+                return cloth_get_attachment(cloth, index, (what & 0x80) ? nullptr : &body, offset);
+            });
             break;
         }
         case 3: {
@@ -1038,7 +1112,8 @@ void Harness::attachment() {
             if (flags & 2) p.friction = in_.any_float();
             if (flags & 4) p.collider_mask = in_.u32();
             if (flags & 8) p.struct_size = in_.u8();
-            r = check(cloth_set_collision(cloth, (flags & 16) ? nullptr : &p), "cloth_set_collision");
+            guarded(watch, "cloth_set_collision",
+                    [&] { return cloth_set_collision(cloth, (flags & 16) ? nullptr : &p); });
             break;
         }
         case 4: {
@@ -1055,18 +1130,20 @@ void Harness::attachment() {
                 std::memcpy(&d.teleport_mode, &mode, sizeof mode);  // any int a C host could pass
             }
             if (flags & 128) d.struct_size = in_.u8();
-            r = check(cloth_set_carrier(cloth, pick_body(), (what & 0x80) ? nullptr : &d),
-                      "cloth_set_carrier");
+            const cloth_body_id body = pick_body();
+            guarded(watch, "cloth_set_carrier",
+                    [&] { return cloth_set_carrier(cloth, body, (what & 0x80) ? nullptr : &d); });
             break;
         }
         default: {
-            bool teleported = false;
-            r = check(cloth_get_teleported(cloth, (what & 0x80) ? nullptr : &teleported),
-                      "cloth_get_teleported");
+            unsigned char teleported = 0xA5;
+            watch.outputs = {{&teleported, 1, "the teleported flag"}};
+            guarded(watch, "cloth_get_teleported", [&] {
+                return (what & 0x80) ? cloth_get_teleported(cloth, nullptr)
+                                     : cloth_get_teleported(cloth, cloth_test::FlagOut{&teleported});
+            });
         }
     }
-    if (changes_particles && r != CLOTH_OK && state_of(cloth) != before)
-        broken("a rejected attach or detach changed the cloth");
 }
 
 // Zone callbacks may run on several workers at once: they only check their
@@ -1079,32 +1156,39 @@ void zone_check(const char* name, uint32_t worker, void*) {
 void Harness::profiling() {
     const cloth_world_id world = pick_world();
     const uint8_t what = in_.u8();
+    cloth_test::Watch watch = watch_of(world.index1, world.generation);
     switch (what % 6) {
         case 0: {
             // Small capacities, or ones the library must refuse (> 2^24).
             const uint8_t b = in_.u8();
             static const uint32_t kBig[] = {(1u << 24) + 1, 0xFFFFFFFFu, 4096, 0x80000000u};
             const uint32_t max_tasks = b < 224 ? b % 65 : kBig[b % 4];
-            check(cloth_world_set_profiling(world, max_tasks), "cloth_world_set_profiling");
+            guarded(watch, "cloth_world_set_profiling",
+                    [&] { return cloth_world_set_profiling(world, max_tasks); });
             // Worker polling time: none, short, the default, or over the 1 s limit.
             static const uint32_t kSpins[] = {0, 7, 500, 1000001u};
-            check(cloth_world_set_worker_spin(world, kSpins[b % 4]), "cloth_world_set_worker_spin");
+            guarded(watch, "cloth_world_set_worker_spin",
+                    [&] { return cloth_world_set_worker_spin(world, kSpins[b % 4]); });
             break;
         }
         case 1: {
             cloth_frame_profile p{};
             p.struct_size = in_.u8() < 224 ? sizeof p : in_.u8();
-            check(cloth_world_get_frame_profile(world, (what & 0x80) ? nullptr : &p),
-                  "cloth_world_get_frame_profile");
+            watch.outputs = {{&p, sizeof p, "the frame profile"}};
+            guarded(watch, "cloth_world_get_frame_profile",
+                    [&] { return cloth_world_get_frame_profile(world, (what & 0x80) ? nullptr : &p); });
             break;
         }
         case 2: {
             const uint32_t capacity = in_.u8() % 80;  // the buffer is exactly this long
             std::vector<cloth_task_record> records(std::max(capacity, 1u));
             uint32_t count = 0;
-            const cloth_result r = check(cloth_world_read_task_records(world, records.data(), capacity,
-                                                                       (what & 0x80) ? nullptr : &count),
-                                         "cloth_world_read_task_records");
+            watch.outputs = {{records.data(), records.size() * sizeof(cloth_task_record), "the task records"},
+                             {&count, sizeof count, "the count"}};
+            const cloth_result r = guarded(watch, "cloth_world_read_task_records", [&] {
+                return cloth_world_read_task_records(world, records.data(), capacity,
+                                                     (what & 0x80) ? nullptr : &count);
+            });
             if (r == CLOTH_OK && count > capacity)
                 broken("cloth_world_read_task_records reported more than capacity");
             break;
@@ -1112,13 +1196,16 @@ void Harness::profiling() {
         case 3: {
             // Size query, then a buffer of exactly the capacity claimed (maybe short).
             size_t size = 0;
-            if (check(cloth_world_write_trace_json(world, nullptr, 0, &size),
-                      "cloth_world_write_trace_json") != CLOTH_OK)
+            watch.outputs = {{&size, sizeof size, "the size"}};
+            if (guarded(watch, "cloth_world_write_trace_json",
+                        [&] { return cloth_world_write_trace_json(world, nullptr, 0, &size); }) != CLOTH_OK)
                 break;
             const size_t capacity = in_.u8() < 192 ? size : size / 2;
             std::vector<char> text(std::max<size_t>(capacity, 1), '\x7f');
-            const cloth_result r = check(cloth_world_write_trace_json(world, text.data(), capacity, &size),
-                                         "cloth_world_write_trace_json");
+            watch.outputs.push_back({text.data(), text.size(), "the text"});
+            const cloth_result r = guarded(watch, "cloth_world_write_trace_json", [&] {
+                return cloth_world_write_trace_json(world, text.data(), capacity, &size);
+            });
             if (r == CLOTH_OK && (capacity == 0 || std::memchr(text.data(), '\0', capacity) == nullptr))
                 broken("cloth_world_write_trace_json wrote no terminating NUL");
             break;
@@ -1127,9 +1214,10 @@ void Harness::profiling() {
             // A frame budget (tiny ones make every step over budget) and a cloth's quality policy.
             const uint8_t b = in_.u8();
             const float ms = b < 128 ? static_cast<float>(b) / 64.0f : b < 160 ? 1e-6f : in_.any_float();
-            check(cloth_world_set_frame_budget(world, ms), "cloth_world_set_frame_budget");
+            guarded(watch, "cloth_world_set_frame_budget",
+                    [&] { return cloth_world_set_frame_budget(world, ms); });
             cloth_quality_policy policy = cloth_default_quality_policy();
-            policy.enabled = what & 0x40;
+            policy.enabled = (what & 0x40) != 0;
             if (what & 0x20) {
                 policy.min_iterations = in_.count(4, 257);
                 policy.max_iterations = in_.count(16, 257);
@@ -1137,15 +1225,17 @@ void Harness::profiling() {
                 policy.max_substeps = in_.count(4, 65);
             }
             if (what & 0x10) policy.struct_size = in_.u8();
-            check(cloth_set_quality_policy(pick_cloth(), (what & 0x80) ? nullptr : &policy),
-                  "cloth_set_quality_policy");
+            const cloth_id cloth = pick_cloth();
+            guarded(watch_of(cloth), "cloth_set_quality_policy",
+                    [&] { return cloth_set_quality_policy(cloth, (what & 0x80) ? nullptr : &policy); });
             break;
         }
         default: {
             const bool on = what & 0x40;
-            check(cloth_world_set_zone_callbacks(world, on ? zone_check : nullptr,
-                                                 (on || (what & 0x20)) ? zone_check : nullptr, nullptr),
-                  "cloth_world_set_zone_callbacks");
+            guarded(watch, "cloth_world_set_zone_callbacks", [&] {
+                return cloth_world_set_zone_callbacks(world, on ? zone_check : nullptr,
+                                                      (on || (what & 0x20)) ? zone_check : nullptr, nullptr);
+            });
             if (!cloth_stage_name(static_cast<cloth_stage>(in_.u32())))
                 broken("cloth_stage_name returned NULL");
         }

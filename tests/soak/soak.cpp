@@ -1,4 +1,6 @@
-// Soak: a windy flag on a swaying pole (a body the flag is attached to)
+// A long run with churn allocates nothing in steady frames and its memory does not grow.
+//
+// A windy flag on a swaying pole (a body the flag is attached to)
 // stepped for many frames (100,000 by default) through the C API, with
 // churn every few hundred frames (half the flag detached and attached
 // again, a sphere collider on the pole and a static box below created and
@@ -36,6 +38,8 @@
 #include <string>
 #include <vector>
 
+#include "support/counting_allocator.h"
+
 // ---------------------------------------------------------------- C++ heap counter
 
 namespace {
@@ -65,32 +69,6 @@ void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::fre
 void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
 
 namespace {
-
-// ---------------------------------------------------------------- host allocator
-
-struct Counter {
-    unsigned long long allocations = 0;
-    unsigned long long frees = 0;
-    long long live_bytes = 0;
-    long long peak_bytes = 0;
-};
-
-void* counting_alloc(size_t size, size_t alignment, void* user) {
-    Counter* c = static_cast<Counter*>(user);
-    void* p = std::aligned_alloc(alignment, (size + alignment - 1) / alignment * alignment);
-    if (!p) return nullptr;
-    ++c->allocations;
-    c->live_bytes += static_cast<long long>(size);
-    if (c->live_bytes > c->peak_bytes) c->peak_bytes = c->live_bytes;
-    return p;
-}
-
-void counting_free(void* ptr, size_t size, void* user) {
-    Counter* c = static_cast<Counter*>(user);
-    ++c->frees;
-    c->live_bytes -= static_cast<long long>(size);
-    std::free(ptr);
-}
 
 // Peak resident set size in kB (VmHWM), 0 if unknown.
 long peak_rss_kb() {
@@ -176,11 +154,11 @@ int main(int argc, char** argv) {
         return 2;
     }
 
-    Counter host;
+    // The C API tests' counting allocator (tests/capi/support): its block
+    // table lives on malloc, so the C++ heap count above is the library's.
+    cloth_test::CountingAllocator host;
     cloth_world_desc wd = cloth_default_world_desc();
-    wd.alloc = counting_alloc;
-    wd.free = counting_free;
-    wd.user = &host;
+    host.use_for_memory(wd);
     wd.max_cloths = 8;
     wd.max_fabrics = 64;
     cloth_world_id world{};
@@ -227,12 +205,12 @@ int main(int argc, char** argv) {
     // Every kind of churn has happened once by the end of the first cycle
     // (or by frame 1,000 if that is later): from then on nothing may grow.
     const uint32_t first_cycle_end = std::max(kCheckpoint, kChurnKinds * churn_every + 1);
-    long long peak_bytes_after_cycle = 0;
+    size_t peak_bytes_after_cycle = 0;
     long rss_checkpoint_kb = 0, rss_cycle_kb = 0;
     uint32_t churns = 0;
 
     for (uint32_t frame = 0; frame < frames; ++frame) {
-        const unsigned long long before = host.allocations + g_cxx_allocations;
+        const unsigned long long before = host.allocations() + g_cxx_allocations;
         const unsigned long long cxx_before = g_cxx_allocations;
         const bool churn = frame > 0 && frame % churn_every == 0;
         if (churn) {
@@ -323,7 +301,7 @@ int main(int argc, char** argv) {
         must(cloth_read_positions(flag, positions.data(), static_cast<uint32_t>(positions.size())),
              "cloth_read_positions");
 
-        const unsigned long long allocated = host.allocations + g_cxx_allocations - before;
+        const unsigned long long allocated = host.allocations() + g_cxx_allocations - before;
         if (churn) {
             ++churn_frames;
             churn_allocations += allocated;
@@ -334,13 +312,13 @@ int main(int argc, char** argv) {
         }
         if (frame + 1 == kCheckpoint) rss_checkpoint_kb = peak_rss_kb();
         if (frame + 1 == first_cycle_end) {
-            peak_bytes_after_cycle = host.peak_bytes;
+            peak_bytes_after_cycle = host.peak_bytes();
             rss_cycle_kb = peak_rss_kb();
         }
     }
     if (extra.index1) cloth_destroy(extra);  // may already be gone (INVALID_HANDLE then)
     const long rss_end_kb = peak_rss_kb();
-    const long long live_before_destroy = host.live_bytes;
+    const size_t live_before_destroy = host.live_bytes();
     must(cloth_world_destroy(world), "cloth_world_destroy");
 
     std::printf("soak: %u frames of a %ux%u windy flag, churn every %u frames (%u churn events)\n", frames,
@@ -354,10 +332,10 @@ int main(int argc, char** argv) {
         churn_frames, churn_allocations,
         churn_frames ? double(churn_allocations) / double(churn_frames) : 0.0, churn_cxx_allocations);
     std::printf(
-        "  host allocator: peak %lld bytes by frame %u (every churn kind done), %lld bytes over the whole "
-        "run; %lld live at the end, %lld after cloth_world_destroy; %llu allocations, %llu frees\n",
-        peak_bytes_after_cycle, first_cycle_end, host.peak_bytes, live_before_destroy, host.live_bytes,
-        host.allocations, host.frees);
+        "  host allocator: peak %zu bytes by frame %u (every churn kind done), %zu bytes over the whole "
+        "run; %zu live at the end, %zu after cloth_world_destroy; %llu allocations, %llu frees\n",
+        peak_bytes_after_cycle, first_cycle_end, host.peak_bytes(), live_before_destroy, host.live_bytes(),
+        static_cast<unsigned long long>(host.allocations()), static_cast<unsigned long long>(host.frees()));
     std::printf("  peak RSS (VmHWM): %ld kB at frame %u, %ld kB at frame %u, %ld kB at frame %u%s\n",
                 rss_checkpoint_kb, kCheckpoint, rss_cycle_kb, first_cycle_end, rss_end_kb, frames,
                 kSanitized ? " (sanitizer build: not checked)" : "");
@@ -372,8 +350,12 @@ int main(int argc, char** argv) {
         }
     };
     check(steady_allocations == 0, "a steady frame allocated");
-    check(host.peak_bytes == peak_bytes_after_cycle, "the allocator's peak grew after the first churn cycle");
-    check(host.live_bytes == 0 && host.allocations == host.frees, "memory left after cloth_world_destroy");
+    check(host.peak_bytes() == peak_bytes_after_cycle,
+          "the allocator's peak grew after the first churn cycle");
+    check(host.live_bytes() == 0 && host.allocations() == host.frees(),
+          "memory left after cloth_world_destroy");
+    for (const std::string& v : host.violations()) std::printf("  allocator misuse: %s\n", v.c_str());
+    check(host.violations().empty(), "the library misused the allocator");
     check(nonfinite_steps == 0, "the flag went non-finite");
     // Fragmentation may add a little; a leak of one cloth per churn would add megabytes.
     check(kSanitized || rss_end_kb - rss_cycle_kb < 2048,
