@@ -177,7 +177,7 @@ inline Status check_capacity(const void* out, uint32_t capacity, size_t needed) 
 }
 
 // CLOTH_SOLVER_DEFAULT stays as it is: the core resolves it per step from
-// gamma (src/solver_default.h). The strain limit is not part of
+// gamma (src/solve/solver_default.h). The strain limit is not part of
 // cloth_solver_settings; callers keep the cloth's own.
 inline SolverSettings to_core(const cloth_solver_settings& s) {
     SolverSettings out;

@@ -13,7 +13,7 @@ CLOTH_API cloth_solver_settings cloth_default_solver_settings(void) {
     const SolverSettings core;
     cloth_solver_settings s{};
     s.struct_size = sizeof(cloth_solver_settings);
-    s.kind = CLOTH_SOLVER_DEFAULT;  // resolved per frame from gamma (src/solver_default.h)
+    s.kind = CLOTH_SOLVER_DEFAULT;  // resolved per frame from gamma (src/solve/solver_default.h)
     s.iterations = core.iterations;
     s.substeps = core.substeps;
     s.cg_tolerance = core.cg_tolerance;

@@ -808,7 +808,12 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);
 /// and has no effect.
 CLOTH_API cloth_result cloth_world_set_worker_spin(cloth_world_id world, uint32_t microseconds);
 
-/// The stages of a step, in the order a substep runs them.
+/// The stages of a step, as profiles and traces name them. The values are
+/// numbered in the order the stages were added, not in run order; a substep
+/// runs, of those its cloth uses: AIR, FORCES, then EXPLICIT, or ASSEMBLE,
+/// one solve (JACOBI_SWEEP, SERIAL_SOLVE or ITERATIVE_SOLVE, each possibly
+/// several rounds) and INTEGRATE; then COLLISIONS, STRAIN_LIMIT, and
+/// SELF_COLLISION, SELF_SORT, SELF_CONTACTS, SELF_PROJECT, SELF_RESPOND.
 typedef enum cloth_stage {
     /// per triangle: wind drag and lift
     CLOTH_STAGE_AIR = 0,
