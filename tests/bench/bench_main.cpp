@@ -8,12 +8,19 @@
 // Step scene: the flag in 10 m/s wind, 1 m x 1 m, 1 kg, every spring kind
 // at 1e3 N/m, 1/60 s, after 30 warm-up frames. Counter per_particle is the
 // wall time per particle per step.
+//
+// Frame/DEFAULT/N: the default holding a cloth falling flat (1 m, 1 kg,
+// 1e3 N/m, awake throughout); counter x_jacobi_k1 is its frame time over
+// the median JACOBI k=1 step of the same scene, timed in the same run just
+// before: the cost of holding cloth as a multiple of the paper's step.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "scenes.h"
 
@@ -53,6 +60,63 @@ void BM_Step(benchmark::State& state, cloth_solver_kind kind, uint32_t iteration
     state.counters["max_strain"] = scene.stats().max_strain;
 }
 
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+SceneConfig falling_flat(uint32_t resolution, cloth_solver_kind kind) {
+    SceneConfig config;
+    config.kind = SceneKind::kFallingFlat;
+    config.resolution = resolution;
+    config.stiffness = 1000.0f;
+    config.solver.kind = kind;
+    return config;
+}
+
+void keep_awake(const Scene& scene) {
+    cloth_sleep_params awake = cloth_default_sleep_params();
+    awake.enabled = 0;
+    for (cloth_id cloth : scene.cloths()) cloth_set_sleep(cloth, &awake);
+}
+
+// Median JACOBI k=1 step of the falling-flat scene, after 30 warm-up frames.
+double jacobi_step_seconds(uint32_t resolution) {
+    Scene scene(falling_flat(resolution, CLOTH_SOLVER_JACOBI));
+    keep_awake(scene);
+    for (int i = 0; i < 30; ++i) scene.step(kDt);
+    std::vector<double> times;
+    for (int i = 0; i < 61; ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        scene.step(kDt);
+        times.push_back(seconds_since(start));
+    }
+    std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
+    return times[times.size() / 2];
+}
+
+void BM_Frame(benchmark::State& state, cloth_solver_kind kind) {
+    const uint32_t resolution = static_cast<uint32_t>(state.range(0));
+    const double jacobi = jacobi_step_seconds(resolution);
+    Scene scene(falling_flat(resolution, kind));
+    if (!scene.ok()) {
+        state.SkipWithError(scene.error().c_str());
+        return;
+    }
+    keep_awake(scene);
+    for (int i = 0; i < 30; ++i) scene.step(kDt);
+    double total = 0;
+    float max_strain = 0;
+    for (auto _ : state) {
+        const auto start = std::chrono::steady_clock::now();
+        scene.step(kDt);
+        total += seconds_since(start);
+        max_strain = std::max(max_strain, scene.stats().max_strain);
+    }
+    state.counters["x_jacobi_k1"] = total / static_cast<double>(state.iterations()) / jacobi;
+    state.counters["jacobi_k1_ms"] = jacobi * 1e3;
+    state.counters["max_strain"] = max_strain;
+}
+
 void register_step_benchmarks() {
     struct Variant {
         const char* name;
@@ -69,6 +133,10 @@ void register_step_benchmarks() {
                                                v.iterations);
         b->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond);
     }
+    benchmark::RegisterBenchmark("Frame/DEFAULT", BM_Frame, CLOTH_SOLVER_DEFAULT)
+        ->Arg(64)
+        ->Arg(128)
+        ->Unit(benchmark::kMillisecond);
 }
 
 // Max strain over the run and the largest energy gain above the start, for
