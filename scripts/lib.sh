@@ -6,6 +6,10 @@ CLOTH_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 CLOTH_PACKAGES=(cmake ninja-build g++ pkg-config libeigen3-dev libbullet-dev libgtest-dev libbenchmark-dev
                 libstb-dev libtinyobjloader-dev libcli11-dev abigail-tools nlohmann-json3-dev gnuplot-nox
                 doxygen)
+# What the checks add (scripts/test, scripts/format-check, scripts/tidy): the
+# second compiler, the format and naming checks, and MinGW-w64 for the public
+# header's _WIN32 branch. `cloth_install_packages "${CLOTH_CHECK_PACKAGES[@]}"`.
+CLOTH_CHECK_PACKAGES=(clang clang-format clang-tidy gcc-mingw-w64-x86-64-win32)
 
 cloth_install_packages() {
     local missing=()
@@ -20,13 +24,23 @@ cloth_install_packages() {
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
-# cloth_build BUILD_DIR TARGET [cmake options...]: configure (tests, samples
-# and benchmarks on, so demo and test share one build tree) and build TARGET
-# ("all" for everything; several targets separated by spaces).
+# The second compiler's tree, build-clang (scripts/test, scripts/tidy).
+CLOTH_CLANG_OPTIONS=(-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++)
+
+# cloth_configure BUILD_DIR [cmake options...]: configure a Release tree with
+# tests, samples and benchmarks on (so demo and test share one build tree).
+cloth_configure() {
+    local dir="$1"
+    shift
+    cmake -S "$CLOTH_ROOT" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCLOTH_BUILD_TESTS=ON \
+        -DCLOTH_BUILD_SAMPLES=ON -DCLOTH_BUILD_BENCHMARKS=ON "$@" >/dev/null
+}
+
+# cloth_build BUILD_DIR TARGET [cmake options...]: configure as above and
+# build TARGET ("all" for everything; several targets separated by spaces).
 cloth_build() {
     local dir="$1" target="$2"
     shift 2
-    cmake -S "$CLOTH_ROOT" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCLOTH_BUILD_TESTS=ON \
-        -DCLOTH_BUILD_SAMPLES=ON -DCLOTH_BUILD_BENCHMARKS=ON "$@" >/dev/null
+    cloth_configure "$dir" "$@"
     cmake --build "$dir" --target $target --parallel "$(nproc)"
 }

@@ -41,6 +41,8 @@
 
 namespace cloth {
 
+// A lanes type is a trait, named in the standard library's style: L::type and
+// L::width (not Type and kWidth; .clang-tidy allows these two names).
 struct ScalarLanes {
     using type = float;
     static constexpr uint32_t width = 1;
@@ -60,8 +62,8 @@ struct VectorLanes {
     // Stored as floats (a float vector with float alignment), not through
     // memcpy: a memcpy store may alias anything, so GCC would reload every
     // array pointer (read from a HostVector) after each store.
-    typedef float unaligned __attribute__((vector_size(32), aligned(4)));
-    CLOTH_LANES_INLINE static void store(float* p, type v) { *reinterpret_cast<unaligned*>(p) = v; }
+    typedef float Unaligned __attribute__((vector_size(32), aligned(4)));
+    CLOTH_LANES_INLINE static void store(float* p, type v) { *reinterpret_cast<Unaligned*>(p) = v; }
 };
 
 // Calls body(lanes, p) over [begin, end): eight particles at a time where

@@ -170,12 +170,12 @@ CLOTH_HOT_LOOP void gather_air(const Fabric& fabric, const Vec3Soa& corner_force
     for_each_lane_group(begin, end, max_offset, static_cast<uint32_t>(n), [&](auto lanes, uint32_t p) {
         using L = decltype(lanes);
         // Eight at a time only from max_offset on, where p - offset is always valid.
-        constexpr bool all_valid = L::width > 1;
+        constexpr bool kAllValid = L::width > 1;
         typename L::type fx{}, fy{}, fz{};
         for (uint32_t s = 0; s < shapes; ++s) {
             for (uint32_t i = 0; i < 3; ++i) {
                 const uint32_t offset = shape[3 * s + i];
-                if (!all_valid && p < offset) continue;
+                if (!kAllValid && p < offset) continue;
                 const size_t entry = s * n + (p - offset);
                 fx += L::load(cx + entry);
                 fy += L::load(cy + entry);

@@ -223,11 +223,17 @@ int compare(btCollisionShape& shape, int count, Sample sample, const char* what)
     return touching;
 }
 
-// Uniform points in a box around the origin of the shape's frame.
+// Uniform points in a box around the origin of the shape's frame. One draw
+// per statement, z first: the order in which a call's arguments are
+// evaluated is unspecified (GCC goes right to left, clang left to right), and
+// the samples must not depend on the compiler.
 auto in_box(float hx, float hy, float hz) {
     return [=](std::mt19937& random) {
         std::uniform_real_distribution<float> x(-hx, hx), y(-hy, hy), z(-hz, hz);
-        return btVector3(x(random), y(random), z(random));
+        const float pz = z(random);
+        const float py = y(random);
+        const float px = x(random);
+        return btVector3(px, py, pz);
     };
 }
 
@@ -274,7 +280,10 @@ TEST(BulletShapes, ConvexHullMatchesBullet) {
     std::mt19937 random(3);
     std::normal_distribution<float> n(0.0f, 1.0f);
     for (int i = 0; i < 40; ++i) {
-        const btVector3 d = btVector3(n(random), n(random), n(random)).normalized();
+        const float z = n(random);  // one draw per statement, z first (see in_box)
+        const float y = n(random);
+        const float x = n(random);
+        const btVector3 d = btVector3(x, y, z).normalized();
         hull.addPoint(btVector3(0.6f * d.x(), 0.4f * d.y(), 0.5f * d.z()), false);
     }
     hull.recalcLocalAabb();

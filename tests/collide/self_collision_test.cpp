@@ -19,8 +19,6 @@
 namespace cloth {
 namespace {
 
-constexpr uint32_t kNone = UINT32_MAX;
-
 // A grid folded like an accordion into layers 0.6 theta apart (folds run
 // along the rows, so they cross regions), with noise.
 Vec3Soa accordion(const Fabric& fabric, float period, float gap, float noise_amount, unsigned seed) {
