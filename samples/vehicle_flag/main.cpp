@@ -1,3 +1,5 @@
+// Over 400 lines because it is the sample a user reads first: the whole
+// frame loop (vehicle, flag, checks, budget table, outputs) on one page.
 // vehicle_flag: the project's main job. A Bullet world with uneven terrain and
 // a btRaycastVehicle driving a scripted course (accelerate to 30 m/s, slalom,
 // hard brake, a jump off a kicker, one teleport back to the start) with a flag

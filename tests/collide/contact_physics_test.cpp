@@ -1,3 +1,5 @@
+// One file over 400 lines: its scenes share one set of helpers (scene setup,
+// the inside-a-collider count) that the checks below all lean on.
 // Bodies, colliders, attachments and carriers through the C API, checked
 // against what the physics says (not against recorded numbers):
 //   - attached particles sit on body pose * offset every frame while the
