@@ -35,14 +35,8 @@ std::string WriteTempFile(const std::string& name, const std::string& text) {
     return path;
 }
 
-bool operator==(const cloth_id& a, const cloth_id& b) {
-    return a.index1 == b.index1 && a.world1 == b.world1 && a.generation == b.generation &&
-           a.world_generation == b.world_generation;
-}
-bool operator==(const cloth_fabric_id& a, const cloth_fabric_id& b) {
-    return a.index1 == b.index1 && a.world1 == b.world1 && a.generation == b.generation &&
-           a.world_generation == b.world_generation;
-}
+bool operator==(const cloth_id& a, const cloth_id& b) { return cloth_id_equal(a, b); }
+bool operator==(const cloth_fabric_id& a, const cloth_fabric_id& b) { return cloth_fabric_id_equal(a, b); }
 
 void BadInput::SetUp() {
     BuildScene(a_);

@@ -67,6 +67,7 @@ cloth_grid_desc SmallGrid();  // kColumns x kRows
 // A file in the test's temporary directory.
 std::string WriteTempFile(const std::string& name, const std::string& text);
 
+// For EXPECT_EQ on ids: the header's cloth_*_id_equal.
 bool operator==(const cloth_id& a, const cloth_id& b);
 bool operator==(const cloth_fabric_id& a, const cloth_fabric_id& b);
 
