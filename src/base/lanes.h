@@ -38,6 +38,9 @@
 // garbage (fixed here; scripts/test builds the sanitizer trees at -O1 to
 // keep it fixed).
 #define CLOTH_LANES_INLINE __attribute__((always_inline)) inline
+// The same for a lambda passed to a loop helper (for_each_block): out of
+// line it is compiled for the baseline only, whatever its caller's clone.
+#define CLOTH_LANES_INLINE_LAMBDA __attribute__((always_inline))
 
 namespace cloth {
 

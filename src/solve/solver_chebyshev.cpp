@@ -78,7 +78,7 @@ void chebyshev_energy(const LinearSystem& system, const Vec3Soa& dv, uint32_t be
                       SolverWorkspace& work) {
     multiply_system(system, dv, begin, end, work.q);
     const Vec3Soa& b = *system.rhs;
-    for_each_block(begin, end, [&](uint32_t block, uint32_t first, uint32_t last) {
+    for_each_block(begin, end, [&](uint32_t block, uint32_t first, uint32_t last) CLOTH_LANES_INLINE_LAMBDA {
         double dwd = 0, bd = 0;
         for (uint32_t i = first; i < last; ++i) {
             dwd +=

@@ -62,7 +62,7 @@ CLOTH_HOT_LOOP void pcg_start(const LinearSystem& system, const Vec3Soa& dv, uin
                               SolverWorkspace& work) {
     multiply_system(system, dv, begin, end, work.q);
     const Vec3Soa& b = *system.rhs;
-    for_each_block(begin, end, [&](uint32_t block, uint32_t first, uint32_t last) {
+    for_each_block(begin, end, [&](uint32_t block, uint32_t first, uint32_t last) CLOTH_LANES_INLINE_LAMBDA {
         BlockSum sum;
         for_each_lane_group(first, last, first, last, [&](auto lanes, uint32_t i) {
             using L = decltype(lanes);
@@ -82,7 +82,7 @@ CLOTH_HOT_LOOP void pcg_start(const LinearSystem& system, const Vec3Soa& dv, uin
 CLOTH_HOT_LOOP void pcg_product(const LinearSystem& system, uint32_t begin, uint32_t end,
                                 SolverWorkspace& work) {
     multiply_system(system, work.p, begin, end, work.q);
-    for_each_block(begin, end, [&](uint32_t block, uint32_t first, uint32_t last) {
+    for_each_block(begin, end, [&](uint32_t block, uint32_t first, uint32_t last) CLOTH_LANES_INLINE_LAMBDA {
         BlockSum sum;
         for_each_lane_group(first, last, first, last, [&](auto lanes, uint32_t i) {
             using L = decltype(lanes);
@@ -95,7 +95,7 @@ CLOTH_HOT_LOOP void pcg_product(const LinearSystem& system, uint32_t begin, uint
 CLOTH_HOT_LOOP void pcg_update(const LinearSystem& system, double alpha, uint32_t begin, uint32_t end,
                                Vec3Soa& dv, SolverWorkspace& work) {
     const float a = static_cast<float>(alpha);
-    for_each_block(begin, end, [&](uint32_t block, uint32_t first, uint32_t last) {
+    for_each_block(begin, end, [&](uint32_t block, uint32_t first, uint32_t last) CLOTH_LANES_INLINE_LAMBDA {
         BlockSum sum;
         for_each_lane_group(first, last, first, last, [&](auto lanes, uint32_t i) {
             using L = decltype(lanes);
