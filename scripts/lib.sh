@@ -5,7 +5,7 @@ set -euo pipefail
 CLOTH_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 CLOTH_PACKAGES=(cmake ninja-build g++ pkg-config libeigen3-dev libbullet-dev libgtest-dev libbenchmark-dev
                 libstb-dev libtinyobjloader-dev libcli11-dev abigail-tools nlohmann-json3-dev gnuplot-nox
-                doxygen)
+                doxygen libxxhash-dev)
 
 cloth_install_packages() {
     local missing=()
