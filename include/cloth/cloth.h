@@ -244,7 +244,8 @@ typedef enum cloth_result {
     CLOTH_ERROR_INDEX_OUT_OF_RANGE = 5,
     /// a position or parameter is NaN or infinite
     CLOTH_ERROR_NOT_FINITE = 6,
-    /// a value is out of its documented range (negative stiffness, dt <= 0, ...)
+    /// a value is out of its documented range (negative stiffness, dt < CLOTH_MIN_DT, a coordinate beyond
+    /// CLOTH_MAX_COORDINATE, ...)
     CLOTH_ERROR_INVALID_VALUE = 7,
     /// zero-area triangle, repeated vertex, zero-length edge
     CLOTH_ERROR_DEGENERATE_GEOMETRY = 8,
