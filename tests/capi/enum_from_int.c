@@ -8,3 +8,7 @@
 const char* cloth_test_stage_name_of_int(int32_t value);
 
 const char* cloth_test_stage_name_of_int(int32_t value) { return cloth_stage_name((cloth_stage)value); }
+
+size_t cloth_test_struct_size_of_int(int32_t value);
+
+size_t cloth_test_struct_size_of_int(int32_t value) { return cloth_struct_size((cloth_struct_kind)value); }
