@@ -20,8 +20,8 @@
 
 namespace cloth::api {
 inline constexpr uint32_t kCookie = 0x636C7468;  // "clth": the desc came from cloth_default_*()
-inline constexpr uint32_t kMaxWorlds = 128;
-inline constexpr uint32_t kMaxWorkers = 256;
+inline constexpr uint32_t kMaxWorlds = CLOTH_MAX_WORLDS;
+inline constexpr uint32_t kMaxWorkers = CLOTH_MAX_WORKERS;
 
 // ---------------------------------------------------------------- worlds
 
@@ -58,7 +58,10 @@ inline World* find_owning_world(Id id) {
 // ---------------------------------------------------------------- results
 
 // Runs `body` (which returns a Status and may name the world to log to),
-// turns exceptions into results, records the message and logs it.
+// turns exceptions into results, records the message and logs it. The
+// lookups below name the world as soon as a handle's world part is found
+// live, before the object itself is looked up: cloth.h's rule that every
+// error of a call naming a live world reaches that world's log.
 template <class Body>
 cloth_result api_call(const char* function, Body body) {
     const World* log_world = nullptr;
@@ -93,9 +96,28 @@ inline Status null_error(const char* what) {
     return Status::error(CLOTH_ERROR_NULL_POINTER, "%s is NULL", what);
 }
 
-inline Status handle_error(const char* kind) {
-    return Status::error(CLOTH_ERROR_INVALID_HANDLE, "%s handle is null, destroyed or unknown", kind);
+// What is wrong with a handle that names no live object, from its fields
+// alone: null (all zero), its world part naming no live world, or the
+// object gone from a live world.
+inline Status null_handle_error(const char* kind) {
+    return Status::error(CLOTH_ERROR_INVALID_HANDLE, "%s handle is null", kind);
 }
+inline Status no_world_error(const char* kind) {
+    return Status::error(CLOTH_ERROR_INVALID_HANDLE,
+                         "%s handle names no live world (its world was destroyed, or the handle was "
+                         "never handed out)",
+                         kind);
+}
+inline Status no_object_error(const char* kind) {
+    return Status::error(CLOTH_ERROR_INVALID_HANDLE,
+                         "%s handle names no live %s in its world (destroyed, or never created)", kind, kind);
+}
+
+template <class Id>
+bool is_null(const Id& id) {
+    return id.index1 == 0 && id.world1 == 0 && id.generation == 0 && id.world_generation == 0;
+}
+inline bool is_null(const cloth_world_id& id) { return id.index1 == 0 && id.generation == 0; }
 
 // ---------------------------------------------------------------- lookups
 
@@ -116,14 +138,28 @@ bool is_live(Id id) {
     return world && find_object(*world, id);
 }
 
+// The world a handle argument must belong to (that of the call's own
+// handle), with `owner` naming it in messages ("the cloth", "the call's
+// world"): null, another world, or no live object there.
+template <class Id>
+Status check_same_world(Id id, cloth_world_id world, const char* kind, const char* owner) {
+    if (is_null(id)) return null_handle_error(kind);
+    if (id.world1 != world.index1 || id.world_generation != world.generation) {
+        return Status::error(CLOTH_ERROR_INVALID_HANDLE, "%s handle belongs to another world than %s", kind,
+                             owner);
+    }
+    return {};
+}
+
 // The body a cloth refers to, which must live in the cloth's world.
 inline Status find_body_of_cloth(cloth_id cloth, cloth_body_id id, const BodyState*& body) {
+    body = nullptr;
+    Status s =
+        check_same_world(id, cloth_world_id{cloth.world1, cloth.world_generation}, "body", "the cloth");
+    if (!s.ok()) return s;
     World* world = find_owning_world(id);
     body = world ? find_object(*world, id) : nullptr;
-    if (!body) return handle_error("body");
-    if (id.world1 != cloth.world1 || id.world_generation != cloth.world_generation) {
-        return Status::error(CLOTH_ERROR_INVALID_HANDLE, "body belongs to another world than the cloth");
-    }
+    if (!body) return no_object_error("body");
     return {};
 }
 
@@ -133,7 +169,7 @@ template <class Body>
 cloth_result with_world(const char* function, cloth_world_id id, Body body) {
     return api_call(function, [&](const World*& log_world) -> Status {
         World* world = find_world(id);
-        if (!world) return handle_error("world");
+        if (!world) return is_null(id) ? null_handle_error("world") : no_world_error("world");
         log_world = world;
         return body(*world);
     });
@@ -145,7 +181,7 @@ template <class Id, class Body>
 cloth_result with_owning_world(const char* function, Id id, const char* kind, Body body) {
     return api_call(function, [&](const World*& log_world) -> Status {
         World* world = find_owning_world(id);
-        if (!world) return handle_error(kind);
+        if (!world) return is_null(id) ? null_handle_error(kind) : no_world_error(kind);
         log_world = world;
         return body(*world);
     });
@@ -158,9 +194,10 @@ template <class Id, class Body>
 cloth_result with_object(const char* function, Id id, const char* kind, Body body) {
     return api_call(function, [&](const World*& log_world) -> Status {
         World* world = find_owning_world(id);
-        auto* object = world ? find_object(*world, id) : nullptr;
-        if (!object) return handle_error(kind);
-        log_world = world;
+        if (!world) return is_null(id) ? null_handle_error(kind) : no_world_error(kind);
+        log_world = world;  // the object may be gone; its world still hears of the error
+        auto* object = find_object(*world, id);
+        if (!object) return no_object_error(kind);
         if constexpr (std::is_invocable_v<Body&, decltype(*object), World&>) {
             return body(*object, *world);
         } else {

@@ -31,6 +31,31 @@ inline bool finite3(const float* v) {
     return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
 
+// A coordinate, offset or length that places something in the world:
+// finite (else CLOTH_ERROR_NOT_FINITE) and within CLOTH_MAX_COORDINATE
+// (else CLOTH_ERROR_INVALID_VALUE), cloth.h "Coordinates".
+inline Status check_coordinate(float value, const char* what) {
+    if (!std::isfinite(value)) return Status::error(CLOTH_ERROR_NOT_FINITE, "%s is not finite", what);
+    if (std::abs(value) > CLOTH_MAX_COORDINATE) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "%s = %g is beyond CLOTH_MAX_COORDINATE (%g m)", what,
+                             double(value), double(CLOTH_MAX_COORDINATE));
+    }
+    return {};
+}
+
+// The same for the three coordinates of a point.
+inline Status check_coordinates(const float* v, const char* what) {
+    if (!finite3(v)) return Status::error(CLOTH_ERROR_NOT_FINITE, "%s is not finite", what);
+    for (int k = 0; k < 3; ++k) {
+        if (std::abs(v[k]) > CLOTH_MAX_COORDINATE) {
+            return Status::error(CLOTH_ERROR_INVALID_VALUE,
+                                 "%s[%d] = %g is beyond CLOTH_MAX_COORDINATE (%g m)", what, k, double(v[k]),
+                                 double(CLOTH_MAX_COORDINATE));
+        }
+    }
+    return {};
+}
+
 inline Status check_desc(uint32_t struct_size, size_t expected, uint32_t cookie, const char* what) {
     if (cookie != kCookie) {
         return Status::error(CLOTH_ERROR_INVALID_DESC,
@@ -40,6 +65,11 @@ inline Status check_desc(uint32_t struct_size, size_t expected, uint32_t cookie,
         return Status::error(CLOTH_ERROR_INVALID_DESC, "%s.struct_size is %u, expected %zu", what,
                              struct_size, expected);
     }
+    return {};
+}
+
+inline Status check_finite(float value, const char* what) {
+    if (!std::isfinite(value)) return Status::error(CLOTH_ERROR_NOT_FINITE, "%s is not finite", what);
     return {};
 }
 
@@ -71,10 +101,10 @@ inline Status check_solver(const cloth_solver_settings& s) {
         kind != CLOTH_SOLVER_EXPLICIT && kind != CLOTH_SOLVER_PCG && kind != CLOTH_SOLVER_CHEBYSHEV) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown solver kind %d", kind);
     }
-    if (s.iterations < 1 || s.iterations > 256) {
+    if (s.iterations < 1 || s.iterations > CLOTH_MAX_ITERATIONS) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "iterations %u is not in 1..256", s.iterations);
     }
-    if (s.substeps < 1 || s.substeps > 64) {
+    if (s.substeps < 1 || s.substeps > CLOTH_MAX_SUBSTEPS) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "substeps %u is not in 1..64", s.substeps);
     }
     if (!std::isfinite(s.cg_tolerance))
@@ -83,7 +113,7 @@ inline Status check_solver(const cloth_solver_settings& s) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "cg_tolerance %g is not in (0, 1)",
                              double(s.cg_tolerance));
     }
-    if (s.cg_max_iterations < 1 || s.cg_max_iterations > 100000) {
+    if (s.cg_max_iterations < 1 || s.cg_max_iterations > CLOTH_MAX_CG_ITERATIONS) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "cg_max_iterations %u is not in 1..100000",
                              s.cg_max_iterations);
     }
@@ -97,7 +127,7 @@ inline Status check_strain_limit(const cloth_strain_limit& l) {
     }
     Status s = check_non_negative(l.max_strain, "max_strain");
     if (!s.ok()) return s;
-    if (l.iterations < 1 || l.iterations > 64) {
+    if (l.iterations < 1 || l.iterations > CLOTH_MAX_STRAIN_LIMIT_ITERATIONS) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "strain limit iterations %u is not in 1..64",
                              l.iterations);
     }
@@ -128,11 +158,20 @@ inline Status check_indices(const uint32_t* indices, uint32_t count, uint32_t pa
     return {};
 }
 
+// `count` points that place something in the world: every one finite
+// (CLOTH_ERROR_NOT_FINITE, before any range is looked at) and within
+// CLOTH_MAX_COORDINATE (CLOTH_ERROR_INVALID_VALUE).
 inline Status check_points(const float* xyz, uint32_t count, const char* what) {
     if (!xyz) return null_error(what);
     for (uint32_t k = 0; k < count; ++k) {
         if (!finite3(xyz + 3 * k))
             return Status::error(CLOTH_ERROR_NOT_FINITE, "%s[%u] is not finite", what, k);
+    }
+    for (uint32_t k = 0; k < count; ++k) {
+        char name[64];
+        std::snprintf(name, sizeof name, "%s[%u]", what, k);
+        Status s = check_coordinates(xyz + 3 * k, name);
+        if (!s.ok()) return s;
     }
     return {};
 }
@@ -160,9 +199,27 @@ inline Status check_vector(const float* v, const char* what, Vec3* out) {
     return {};
 }
 
+// A vector that places something (a position, an offset, extents): as
+// check_vector, and within CLOTH_MAX_COORDINATE.
+inline Status check_position(const float* v, const char* what, Vec3* out) {
+    if (!v) return null_error(what);
+    Status s = check_coordinates(v, what);
+    if (s.ok()) *out = Vec3(v[0], v[1], v[2]);
+    return s;
+}
+
+// Every non-finite value of a pose is CLOTH_ERROR_NOT_FINITE before any
+// range error of the other part.
 inline Status check_pose(const float* position, const float* rotation, const char* position_name,
                          const char* rotation_name, Pose* out) {
-    Status s = check_vector(position, position_name, &out->position);
+    if (!position) return null_error(position_name);
+    if (!rotation) return null_error(rotation_name);
+    if (!finite3(position)) return Status::error(CLOTH_ERROR_NOT_FINITE, "%s is not finite", position_name);
+    for (int k = 0; k < 4; ++k) {
+        if (!std::isfinite(rotation[k]))
+            return Status::error(CLOTH_ERROR_NOT_FINITE, "%s is not finite", rotation_name);
+    }
+    Status s = check_position(position, position_name, &out->position);
     if (s.ok()) s = check_rotation(rotation, rotation_name, &out->rotation);
     return s;
 }

@@ -40,12 +40,12 @@ CLOTH_API cloth_result cloth_set_quality_policy(cloth_id id, const cloth_quality
                                  sizeof(cloth_quality_policy));
         }
         if (policy->min_iterations < 1 || policy->min_iterations > policy->max_iterations ||
-            policy->max_iterations > 256) {
+            policy->max_iterations > CLOTH_MAX_ITERATIONS) {
             return Status::error(CLOTH_ERROR_INVALID_VALUE, "iterations bounds %u..%u are not within 1..256",
                                  policy->min_iterations, policy->max_iterations);
         }
         if (policy->min_substeps < 1 || policy->min_substeps > policy->max_substeps ||
-            policy->max_substeps > 64) {
+            policy->max_substeps > CLOTH_MAX_SUBSTEPS) {
             return Status::error(CLOTH_ERROR_INVALID_VALUE, "substeps bounds %u..%u are not within 1..64",
                                  policy->min_substeps, policy->max_substeps);
         }

@@ -71,11 +71,10 @@ CLOTH_API cloth_result cloth_create(cloth_world_id id, const cloth_desc* desc, c
         if (!out_cloth) return null_error("out_cloth");
         Status s = check_desc(desc->struct_size, sizeof(cloth_desc), desc->internal_cookie, "cloth_desc");
         if (!s.ok()) return s;
-        if (desc->fabric.world1 != id.index1 || desc->fabric.world_generation != id.generation) {
-            return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle belongs to another world");
-        }
+        s = check_same_world(desc->fabric, id, "fabric", "the call's world");
+        if (!s.ok()) return s;
         std::shared_ptr<const Fabric> fabric = world.find_fabric(desc->fabric);
-        if (!fabric) return handle_error("fabric");
+        if (!fabric) return no_object_error("fabric");
         s = check_cloth_desc(*desc, *fabric);
         if (!s.ok()) return s;
 

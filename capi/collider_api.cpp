@@ -30,11 +30,11 @@ cloth_result create_collider(const char* function, cloth_world_id world_id, cons
         s = check_pose(desc->local_position, desc->local_rotation, "local_position", "local_rotation",
                        &collider.local);
         if (!s.ok()) return s;
-        if (!cloth_body_id_equal(desc->body, cloth_null_body_id)) {
-            if (desc->body.world1 != world_id.index1 || desc->body.world_generation != world_id.generation)
-                return Status::error(CLOTH_ERROR_INVALID_HANDLE, "body belongs to another world");
+        if (!cloth_body_id_equal(desc->body, cloth_null_body_id)) {  // null: a static collider
+            s = check_same_world(desc->body, world_id, "body", "the call's world");
+            if (!s.ok()) return s;
             if (!world.contact().find_body(desc->body.index1, desc->body.generation))
-                return Status::error(CLOTH_ERROR_INVALID_HANDLE, "body handle is destroyed or unknown");
+                return no_object_error("body");
             collider.body = desc->body.index1 - 1u;
         }
         collider.group_bits = desc->group_bits;
@@ -58,7 +58,10 @@ Status check_collision(const cloth_collision_params& p) {
                              "cloth_collision_params.struct_size is %u, expected %zu", p.struct_size,
                              sizeof(cloth_collision_params));
     }
-    Status s = check_non_negative(p.thickness, "thickness");
+    Status s = check_finite(p.thickness, "thickness");
+    if (s.ok()) s = check_finite(p.friction, "friction");
+    if (s.ok()) s = check_non_negative(p.thickness, "thickness");
+    if (s.ok()) s = check_coordinate(p.thickness, "thickness");
     if (s.ok()) s = check_non_negative(p.friction, "friction");
     return s;
 }
@@ -78,22 +81,29 @@ CLOTH_API cloth_collider_desc cloth_default_collider_desc(void) {
 
 CLOTH_API cloth_result cloth_collider_create_sphere(cloth_world_id world, const cloth_collider_desc* desc,
                                                     float radius, cloth_collider_id* out) {
-    return create_collider(__func__, world, desc, out,
-                           [&](Shape& shape) { return build_sphere(radius, shape); });
+    return create_collider(__func__, world, desc, out, [&](Shape& shape) {
+        Status s = check_coordinate(radius, "radius");
+        return s.ok() ? build_sphere(radius, shape) : s;
+    });
 }
 
 CLOTH_API cloth_result cloth_collider_create_capsule(cloth_world_id world, const cloth_collider_desc* desc,
                                                      float radius, float half_height,
                                                      cloth_collider_id* out) {
-    return create_collider(__func__, world, desc, out,
-                           [&](Shape& shape) { return build_capsule(radius, half_height, shape); });
+    return create_collider(__func__, world, desc, out, [&](Shape& shape) {
+        Status s = check_finite(radius, "radius");
+        if (s.ok()) s = check_finite(half_height, "half_height");
+        if (s.ok()) s = check_coordinate(radius, "radius");
+        if (s.ok()) s = check_coordinate(half_height, "half_height");
+        return s.ok() ? build_capsule(radius, half_height, shape) : s;
+    });
 }
 
 CLOTH_API cloth_result cloth_collider_create_box(cloth_world_id world, const cloth_collider_desc* desc,
                                                  const float half_extents[3], cloth_collider_id* out) {
     return create_collider(__func__, world, desc, out, [&](Shape& shape) {
         Vec3 e = Vec3::Zero();
-        Status s = check_vector(half_extents, "half_extents", &e);
+        Status s = check_position(half_extents, "half_extents", &e);
         return s.ok() ? build_box(e, shape) : s;
     });
 }
@@ -104,6 +114,7 @@ CLOTH_API cloth_result cloth_collider_create_plane(cloth_world_id world, const c
     return create_collider(__func__, world, desc, out, [&](Shape& shape) {
         Vec3 n = Vec3::Zero();
         Status s = check_vector(normal, "normal", &n);
+        if (s.ok()) s = check_coordinate(offset, "offset");
         return s.ok() ? build_plane(n, offset, shape) : s;
     });
 }
@@ -114,8 +125,9 @@ CLOTH_API cloth_result cloth_collider_create_convex_hull(cloth_world_id world,
                                                          cloth_collider_id* out) {
     return create_collider(__func__, world, desc, out, [&](Shape& shape) {
         if (!points_xyz) return null_error("points_xyz");
-        if (point_count < 4 || point_count > 4096)
-            return Status::error(CLOTH_ERROR_INVALID_COUNT, "point_count %u is not in 4..4096", point_count);
+        if (point_count < 4 || point_count > CLOTH_MAX_HULL_POINTS)
+            return Status::error(CLOTH_ERROR_INVALID_COUNT, "point_count %u is not in 4..%d", point_count,
+                                 CLOTH_MAX_HULL_POINTS);
         Status s = check_points(points_xyz, point_count, "points");
         return s.ok() ? build_convex_hull(points_xyz, point_count, shape) : s;
     });
@@ -129,12 +141,12 @@ CLOTH_API cloth_result cloth_collider_create_triangle_mesh(cloth_world_id world,
     return create_collider(__func__, world, desc, out, [&](Shape& shape) {
         if (!vertices_xyz) return null_error("vertices_xyz");
         if (!indices) return null_error("indices");
-        if (vertex_count < 3 || vertex_count > (1u << 24))
-            return Status::error(CLOTH_ERROR_INVALID_COUNT, "vertex_count %u is not in 3..2^24",
-                                 vertex_count);
-        if (triangle_count < 1 || triangle_count > (1u << 24))
-            return Status::error(CLOTH_ERROR_INVALID_COUNT, "triangle_count %u is not in 1..2^24",
-                                 triangle_count);
+        if (vertex_count < 3 || vertex_count > CLOTH_MAX_MESH_COLLIDER_VERTICES)
+            return Status::error(CLOTH_ERROR_INVALID_COUNT, "vertex_count %u is not in 3..%u", vertex_count,
+                                 CLOTH_MAX_MESH_COLLIDER_VERTICES);
+        if (triangle_count < 1 || triangle_count > CLOTH_MAX_MESH_COLLIDER_TRIANGLES)
+            return Status::error(CLOTH_ERROR_INVALID_COUNT, "triangle_count %u is not in 1..%u",
+                                 triangle_count, CLOTH_MAX_MESH_COLLIDER_TRIANGLES);
         Status s = check_points(vertices_xyz, vertex_count, "vertices");
         return s.ok() ? build_triangle_mesh(vertices_xyz, vertex_count, indices, triangle_count, shape) : s;
     });
@@ -160,22 +172,29 @@ CLOTH_API cloth_result cloth_collider_create_heightfield(cloth_world_id world,
         Status s = check_desc(field->struct_size, sizeof(cloth_heightfield_desc), field->internal_cookie,
                               "cloth_heightfield_desc");
         if (!s.ok()) return s;
-        if (field->columns < 2 || field->columns > 65536 || field->rows < 2 || field->rows > 65536) {
+        if (field->columns < 2 || field->columns > CLOTH_MAX_HEIGHTFIELD_SIDE || field->rows < 2 ||
+            field->rows > CLOTH_MAX_HEIGHTFIELD_SIDE) {
             return Status::error(CLOTH_ERROR_INVALID_COUNT,
-                                 "heightfield columns %u and rows %u must be in 2..65536", field->columns,
-                                 field->rows);
+                                 "heightfield columns %u and rows %u must be in 2..%d", field->columns,
+                                 field->rows, CLOTH_MAX_HEIGHTFIELD_SIDE);
         }
-        for (float spacing : {field->spacing_x, field->spacing_z}) {
-            if (!std::isfinite(spacing))
-                return Status::error(CLOTH_ERROR_NOT_FINITE, "heightfield spacing is not finite");
-            if (!(spacing > 0))
-                return Status::error(CLOTH_ERROR_INVALID_VALUE, "heightfield spacing must be > 0");
-        }
+        if (!std::isfinite(field->spacing_x) || !std::isfinite(field->spacing_z))
+            return Status::error(CLOTH_ERROR_NOT_FINITE, "heightfield spacing is not finite");
         if (!field->heights) return null_error("heightfield heights");
         const size_t count = static_cast<size_t>(field->columns) * field->rows;
         for (size_t k = 0; k < count; ++k) {
             if (!std::isfinite(field->heights[k]))
                 return Status::error(CLOTH_ERROR_NOT_FINITE, "heights[%zu] is not finite", k);
+        }
+        for (float spacing : {field->spacing_x, field->spacing_z}) {
+            s = check_coordinate(spacing, "heightfield spacing");
+            if (!s.ok()) return s;
+            if (!(spacing > 0))
+                return Status::error(CLOTH_ERROR_INVALID_VALUE, "heightfield spacing must be > 0");
+        }
+        for (size_t k = 0; k < count; ++k) {
+            s = check_coordinate(field->heights[k], "a height");
+            if (!s.ok()) return s;
         }
         return build_heightfield(field->columns, field->rows, field->spacing_x, field->spacing_z,
                                  field->heights, shape);

@@ -52,6 +52,8 @@ CLOTH_API const char* cloth_result_name(cloth_result result) {
             return "CLOTH_ERROR_INTERNAL";
         case CLOTH_ERROR_OVER_BUDGET:
             return "CLOTH_ERROR_OVER_BUDGET";
+        case CLOTH_ERROR_CORRUPT_SNAPSHOT:
+            return "CLOTH_ERROR_CORRUPT_SNAPSHOT";
         case CLOTH_RESULT_FORCE_U32:
             break;
     }

@@ -28,9 +28,9 @@ CLOTH_API const char* cloth_stage_name(cloth_stage stage) {
 
 CLOTH_API cloth_result cloth_world_set_profiling(cloth_world_id id, uint32_t max_tasks_per_frame) {
     return with_world(__func__, id, [&](World& world) -> Status {
-        if (max_tasks_per_frame > (1u << 24)) {
-            return Status::error(CLOTH_ERROR_INVALID_COUNT, "max_tasks_per_frame %u is more than 2^24",
-                                 max_tasks_per_frame);
+        if (max_tasks_per_frame > CLOTH_MAX_PROFILED_TASKS) {
+            return Status::error(CLOTH_ERROR_INVALID_COUNT, "max_tasks_per_frame %u is more than %u",
+                                 max_tasks_per_frame, CLOTH_MAX_PROFILED_TASKS);
         }
         world.set_profiling(max_tasks_per_frame);
         return {};

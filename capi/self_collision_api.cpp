@@ -13,7 +13,7 @@ using namespace cloth::api;
 
 namespace {
 
-constexpr uint32_t kMaxPasses = 16;
+constexpr uint32_t kMaxPasses = CLOTH_MAX_SELF_COLLISION_PASSES;
 
 Status check_self_collision(const cloth_self_collision_desc& d, const Fabric& fabric) {
     Status s = check_desc(d.struct_size, sizeof(cloth_self_collision_desc), d.internal_cookie,

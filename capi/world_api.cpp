@@ -20,8 +20,10 @@ Status check_world_desc(const cloth_world_desc& desc) {
     if ((desc.alloc == nullptr) != (desc.free == nullptr)) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "set both alloc and free, or neither");
     }
-    if (desc.max_cloths < 1 || desc.max_cloths > 65535 || desc.max_fabrics < 1 || desc.max_fabrics > 65535) {
-        return Status::error(CLOTH_ERROR_INVALID_COUNT, "max_cloths and max_fabrics must be in 1..65535");
+    if (desc.max_cloths < 1 || desc.max_cloths > CLOTH_MAX_CLOTHS || desc.max_fabrics < 1 ||
+        desc.max_fabrics > CLOTH_MAX_FABRICS) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "max_cloths and max_fabrics must be in 1..%d",
+                             CLOTH_MAX_CLOTHS);
     }
     if ((desc.enqueue_task == nullptr) != (desc.finish_task == nullptr)) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "set both enqueue_task and finish_task, or neither");
@@ -89,7 +91,8 @@ CLOTH_API cloth_result cloth_world_destroy(cloth_world_id id) {
         {
             std::lock_guard<std::mutex> lock(table.mutex);
             const uint32_t index = table.worlds.find(id.index1, id.generation);
-            if (index == table.worlds.kFull) return handle_error("world");
+            if (index == table.worlds.kFull)
+                return is_null(id) ? null_handle_error("world") : no_world_error("world");
             world = table.worlds[index].object;
             table.worlds.release(index);
         }
@@ -126,7 +129,8 @@ CLOTH_API cloth_result cloth_world_set_gravity(cloth_world_id id, const float gr
 CLOTH_API cloth_result cloth_world_shift_origin(cloth_world_id id, const float shift[3]) {
     return with_world(__func__, id, [&](World& world) -> Status {
         if (!shift) return null_error("shift");
-        if (!finite3(shift)) return Status::error(CLOTH_ERROR_NOT_FINITE, "shift is not finite");
+        Status s = check_coordinates(shift, "shift");
+        if (!s.ok()) return s;
         return world.shift_origin(Vec3(shift[0], shift[1], shift[2]));
     });
 }
@@ -134,8 +138,10 @@ CLOTH_API cloth_result cloth_world_shift_origin(cloth_world_id id, const float s
 CLOTH_API cloth_result cloth_step(cloth_world_id id, float dt) {
     return with_world(__func__, id, [&](World& world) -> Status {
         if (!std::isfinite(dt)) return Status::error(CLOTH_ERROR_NOT_FINITE, "dt is not finite");
-        if (!(dt > 0 && dt <= 1))
-            return Status::error(CLOTH_ERROR_INVALID_VALUE, "dt %g is not in (0, 1]", double(dt));
+        if (!(dt >= CLOTH_MIN_DT && dt <= 1)) {
+            return Status::error(CLOTH_ERROR_INVALID_VALUE, "dt %g is not in [CLOTH_MIN_DT, 1] = [%g, 1]",
+                                 double(dt), double(CLOTH_MIN_DT));
+        }
         return world.step(dt);
     });
 }

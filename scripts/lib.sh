@@ -5,7 +5,7 @@ set -euo pipefail
 CLOTH_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 CLOTH_PACKAGES=(cmake ninja-build g++ pkg-config libeigen3-dev libbullet-dev libgtest-dev libbenchmark-dev
                 libstb-dev libtinyobjloader-dev libcli11-dev abigail-tools nlohmann-json3-dev gnuplot-nox
-                doxygen)
+                doxygen libxxhash-dev)
 # What the checks add (scripts/test, scripts/format-check, scripts/tidy): the
 # second compiler, the format and naming checks, and MinGW-w64 for the public
 # header's _WIN32 branch. `cloth_install_packages "${CLOTH_CHECK_PACKAGES[@]}"`.

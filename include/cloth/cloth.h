@@ -24,9 +24,20 @@
  * Errors. Every fallible call returns a cloth_result. CLOTH_OK is 0. On
  * failure nothing is changed (the one documented exception: cloth_step
  * restores a cloth that went non-finite to its last finite state and
- * reports CLOTH_ERROR_NONFINITE_STATE). cloth_get_last_error() returns a
- * message for the last failed call on the calling thread; the world's log
- * callback, if set, receives the same message.
+ * reports CLOTH_ERROR_NONFINITE_STATE). A NaN or infinite float argument
+ * (or float field, or element of a float array) is reported as
+ * CLOTH_ERROR_NOT_FINITE, never as a value out of its range. A call with
+ * several faults reports one of them. cloth_get_last_error() returns a
+ * message for the last failed call on the calling thread.
+ *
+ * Which log hears of an error. The world's log callback, if set, receives
+ * the same message for every failed call that names a live world: through
+ * a world handle, or through a fabric, cloth, body or collider handle whose
+ * world part names a live world, even when the object itself is destroyed
+ * or was never created (CLOTH_ERROR_INVALID_HANDLE is logged there too). A
+ * call that names no live world (a null or stale world handle, an object
+ * handle of a destroyed world, cloth_world_create) has no log to report
+ * to: only cloth_get_last_error() tells of it.
  *
  * Versioned structs. A struct whose first field is `struct_size` is
  * versioned: struct_size holds sizeof the struct as the caller was built.
@@ -64,10 +75,20 @@
  * library's size of each of them, so a binding can check its own layouts
  * at run time.
  *
- * Limits: at most 128 worlds, 65535 fabrics and 65535 cloths per world,
- * 65535 bodies and 65535 colliders per world, 2^24 particles per fabric.
+ * Limits: every count the API takes has its limit as a CLOTH_MAX_* macro
+ * (section "Limits"); a count above it is refused with
+ * CLOTH_ERROR_INVALID_COUNT before any buffer it sizes is read.
  *
  * Units: metres, kilograms, seconds. Vectors are float[3] (x, y, z).
+ *
+ * Coordinates. Every coordinate, offset and length a call takes to place
+ * something in the world (particle positions and pin targets, fabric rest
+ * positions and grid edges, body and collider poses, attachment offsets,
+ * shape sizes and points, heights, collision thickness, the origin shift)
+ * must lie within [-CLOTH_MAX_COORDINATE, CLOTH_MAX_COORDINATE] metres:
+ * else the call returns CLOTH_ERROR_INVALID_VALUE and changes nothing. The
+ * simulation itself may carry a cloth farther (cloth_world_shift_origin
+ * brings it back).
  *
  * Threading contract
  *   - A world is not internally synchronised for API calls: the host calls
@@ -117,7 +138,7 @@ extern "C" {
 #define CLOTH_VERSION_MAJOR 1
 /// Minor version of this header: a library of the same major and at least
 /// this minor version has every function and struct of this header.
-#define CLOTH_VERSION_MINOR 4
+#define CLOTH_VERSION_MINOR 5
 /// Patch version of this header (fixes that change no interface).
 #define CLOTH_VERSION_PATCH 0
 
@@ -223,7 +244,8 @@ typedef enum cloth_result {
     CLOTH_ERROR_INDEX_OUT_OF_RANGE = 5,
     /// a position or parameter is NaN or infinite
     CLOTH_ERROR_NOT_FINITE = 6,
-    /// a value is out of its documented range (negative stiffness, dt <= 0, ...)
+    /// a value is out of its documented range (negative stiffness, dt < CLOTH_MIN_DT, a coordinate beyond
+    /// CLOTH_MAX_COORDINATE, ...)
     CLOTH_ERROR_INVALID_VALUE = 7,
     /// zero-area triangle, repeated vertex, zero-length edge
     CLOTH_ERROR_DEGENERATE_GEOMETRY = 8,
@@ -241,9 +263,69 @@ typedef enum cloth_result {
     CLOTH_ERROR_INTERNAL = 14,
     /// the step took longer than the world's frame budget; every cloth still advanced
     CLOTH_ERROR_OVER_BUDGET = 15,
+    /// a snapshot buffer is damaged, truncated, or not a snapshot this library reads (since 1.5)
+    CLOTH_ERROR_CORRUPT_SNAPSHOT = 16,
     /// forces the enum to 32 bits; never returned
     CLOTH_RESULT_FORCE_U32 = 0x7FFFFFFF
 } cloth_result;
+
+/* ------------------------------------------------------------------ */
+/* Limits                                                               */
+/* ------------------------------------------------------------------ */
+
+/// Most worlds that exist at once in a process.
+#define CLOTH_MAX_WORLDS 128
+/// Most fabrics a world holds (cloth_world_desc.max_fabrics).
+#define CLOTH_MAX_FABRICS 65535
+/// Most cloths a world holds (cloth_world_desc.max_cloths).
+#define CLOTH_MAX_CLOTHS 65535
+/// Most bodies a world holds.
+#define CLOTH_MAX_BODIES 65535
+/// Most colliders a world holds.
+#define CLOTH_MAX_COLLIDERS 65535
+/// Most particles of a fabric, 2^24: grid columns * rows, mesh vertex_count.
+#define CLOTH_MAX_PARTICLES 16777216u
+/// Most triangles of a mesh fabric (cloth_mesh_desc.triangle_count, or an
+/// OBJ file's after triangulation), 2^25: a grid of CLOTH_MAX_PARTICLES
+/// particles has almost that many.
+#define CLOTH_MAX_TRIANGLES 33554432u
+/// Most points of a convex hull collider.
+#define CLOTH_MAX_HULL_POINTS 4096
+/// Most vertices of a triangle mesh collider, 2^24.
+#define CLOTH_MAX_MESH_COLLIDER_VERTICES 16777216u
+/// Most triangles of a triangle mesh collider, 2^24.
+#define CLOTH_MAX_MESH_COLLIDER_TRIANGLES 16777216u
+/// Most samples along each side of a height field (columns, rows).
+#define CLOTH_MAX_HEIGHTFIELD_SIDE 65536
+/// Most task records a world keeps per frame (cloth_world_set_profiling), 2^24.
+#define CLOTH_MAX_PROFILED_TASKS 16777216u
+/// Most Jacobi sweeps or PCG/Chebyshev iterations (cloth_solver_settings.iterations,
+/// cloth_quality_policy.max_iterations).
+#define CLOTH_MAX_ITERATIONS 256
+/// Most substeps per cloth_step (cloth_solver_settings.substeps, cloth_quality_policy.max_substeps).
+#define CLOTH_MAX_SUBSTEPS 64
+/// Most CG iterations (cloth_solver_settings.cg_max_iterations).
+#define CLOTH_MAX_CG_ITERATIONS 100000
+/// Most strain-limiting passes per substep (cloth_strain_limit.iterations).
+#define CLOTH_MAX_STRAIN_LIMIT_ITERATIONS 64
+/// Most self-collision projection passes per substep (cloth_self_collision_desc.passes).
+#define CLOTH_MAX_SELF_COLLISION_PASSES 16
+
+/// The largest magnitude, in metres, of any coordinate, offset or length a
+/// call takes to place something in the world (see "Coordinates" above).
+/// 1e6 m keeps every product the step forms (squared lengths, stiffness
+/// times displacement) fifteen orders of magnitude below float overflow,
+/// while floats still resolve 6 cm there.
+#define CLOTH_MAX_COORDINATE 1.0e6f
+
+/// The smallest dt cloth_step takes, in seconds (1 microsecond); a shorter
+/// one is CLOTH_ERROR_INVALID_VALUE and nothing moves. A step divides by its
+/// substep length h and by h^2 (pin velocities (target - x) / h, the
+/// system's terms over h^2), which leave float range for a denormal dt; at
+/// 1e-6 s and 64 substeps 1/h^2 is 4e15. And in a shorter step a cloth
+/// moving at 1 m/s 16 m from the origin would move less than float
+/// resolution there, so the step could not advance it anyway.
+#define CLOTH_MIN_DT 1.0e-6f
 
 /// A short constant name for a result ("CLOTH_ERROR_NULL_POINTER"). Never NULL.
 CLOTH_API const char* cloth_result_name(cloth_result result);
@@ -432,9 +514,9 @@ typedef struct cloth_world_desc {
     cloth_log_fn* log;
     /// passed to alloc, free and log; kept, never dereferenced
     void* user;
-    /// capacity of the cloth table; default 1024, at most 65535
+    /// capacity of the cloth table; default 1024, 1..CLOTH_MAX_CLOTHS
     uint32_t max_cloths;
-    /// capacity of the fabric table; default 256, at most 65535
+    /// capacity of the fabric table; default 256, 1..CLOTH_MAX_FABRICS
     uint32_t max_fabrics;
     /// set by the struct\'s cloth_default_*() function; do not change
     uint32_t internal_cookie;
@@ -442,7 +524,7 @@ typedef struct cloth_world_desc {
     /// among them; 0 or 1 = everything on the calling thread (default 0,
     /// no thread is started). Without host callbacks the world starts
     /// worker_count - 1 threads of its own (at most 256 workers); with
-    /// them, worker indices passed to the tasks are < worker_count (1..256).
+    /// them, worker indices passed to the tasks are < worker_count (1..CLOTH_MAX_WORKERS).
     uint32_t worker_count;
     /// optional host job system; both enqueue and finish, or neither; kept
     cloth_enqueue_task_fn* enqueue_task;
@@ -455,7 +537,7 @@ typedef struct cloth_world_desc {
 /// A world description with every default set (and its cookie).
 CLOTH_API cloth_world_desc cloth_default_world_desc(void);
 
-/// Create a world. At most 128 worlds exist at once.
+/// Create a world. At most CLOTH_MAX_WORLDS worlds exist at once.
 CLOTH_API cloth_result cloth_world_create(const cloth_world_desc* desc, cloth_world_id* out_world);
 /// Destroy a world and every fabric and cloth in it.
 CLOTH_API cloth_result cloth_world_destroy(cloth_world_id world);
@@ -473,12 +555,14 @@ CLOTH_API cloth_result cloth_world_set_gravity(cloth_world_id world, const float
 /// the shift brings nearer the origin moves exactly; one it takes farther
 /// away rounds as any position there would. Call it between steps, like
 /// every other call on the world. NULL is CLOTH_ERROR_NULL_POINTER, a non-finite shift
-/// CLOTH_ERROR_NOT_FINITE, and a shift that would take any position out of
-/// float range CLOTH_ERROR_INVALID_VALUE; each leaves the world unchanged.
+/// CLOTH_ERROR_NOT_FINITE, and a shift with a component beyond
+/// CLOTH_MAX_COORDINATE or one that would take any position out of float
+/// range CLOTH_ERROR_INVALID_VALUE; each leaves the world unchanged.
 CLOTH_API cloth_result cloth_world_shift_origin(cloth_world_id world, const float shift[3]);
 
-/// Advance every cloth of the world by `dt` seconds (0 < dt <= 1). Each
-/// cloth takes its own number of substeps. If a cloth's state becomes
+/// Advance every cloth of the world by `dt` seconds, CLOTH_MIN_DT <= dt <= 1
+/// (else CLOTH_ERROR_INVALID_VALUE before anything moves; NaN or infinity:
+/// CLOTH_ERROR_NOT_FINITE). Each cloth takes its own number of substeps. If a cloth's state becomes
 /// non-finite, that cloth is restored to its state before this call, the
 /// other cloths advance normally, and CLOTH_ERROR_NONFINITE_STATE is
 /// returned (cloth_stats.last_step_result tells which cloth). The same
@@ -512,7 +596,7 @@ typedef enum cloth_spring_kind {
 typedef struct cloth_grid_desc {
     /// sizeof(cloth_grid_desc)
     uint32_t struct_size;
-    /// >= 2; default 32
+    /// >= 2, and columns * rows <= CLOTH_MAX_PARTICLES; default 32
     uint32_t columns;
     /// >= 2; default 32
     uint32_t rows;
@@ -540,11 +624,11 @@ typedef struct cloth_mesh_desc {
     uint32_t struct_size;
     /// vertex_count * 3 floats (m); copied during the call
     const float* positions;
-    /// >= 3
+    /// 3..CLOTH_MAX_PARTICLES
     uint32_t vertex_count;
     /// triangle_count * 3 vertex indices; copied during the call
     const uint32_t* indices;
-    /// >= 1
+    /// 1..CLOTH_MAX_TRIANGLES
     uint32_t triangle_count;
     /// default CLOTH_SPRING_ALL (shear is ignored)
     uint32_t spring_kinds;
@@ -562,7 +646,8 @@ CLOTH_API cloth_result cloth_fabric_create_grid(cloth_world_id world, const clot
 /// Build a fabric from a triangle mesh (its arrays are copied).
 CLOTH_API cloth_result cloth_fabric_create_mesh(cloth_world_id world, const cloth_mesh_desc* desc,
                                                 cloth_fabric_id* out_fabric);
-/// Load a triangle mesh from a Wavefront OBJ file (faces are triangulated).
+/// Load a triangle mesh from a Wavefront OBJ file (faces are triangulated),
+/// with the limits of cloth_mesh_desc.
 CLOTH_API cloth_result cloth_fabric_create_obj(cloth_world_id world, const char* path, uint32_t spring_kinds,
                                                cloth_fabric_id* out_fabric);
 /// Release the handle. Cloths made from the fabric keep working; the
@@ -619,13 +704,14 @@ typedef struct cloth_solver_settings {
     uint32_t struct_size;
     /// default CLOTH_SOLVER_DEFAULT
     cloth_solver_kind kind;
-    /// Jacobi sweeps or PCG/Chebyshev iterations, 1..256; default 1 (CLOTH_SOLVER_DEFAULT picks its own)
+    /// Jacobi sweeps or PCG/Chebyshev iterations, 1..CLOTH_MAX_ITERATIONS; default 1 (CLOTH_SOLVER_DEFAULT
+    /// picks its own)
     uint32_t iterations;
-    /// steps per cloth_step call, 1..64; default 1 (CLOTH_SOLVER_DEFAULT may use more)
+    /// steps per cloth_step call, 1..CLOTH_MAX_SUBSTEPS; default 1 (CLOTH_SOLVER_DEFAULT may use more)
     uint32_t substeps;
     /// CG relative residual, (0, 1); default 1e-6
     float cg_tolerance;
-    /// 1..100000; default 1000
+    /// 1..CLOTH_MAX_CG_ITERATIONS; default 1000
     uint32_t cg_max_iterations;
     /// 1: paper eq. 12 for compressed springs; 0 or 1, default 1
     uint8_t compression_safe_jacobian;
@@ -648,7 +734,7 @@ typedef struct cloth_strain_limit {
     uint32_t struct_size;
     /// >= 0, finite; 0 turns limiting off; default 0
     float max_strain;
-    /// 1..64; default 4
+    /// 1..CLOTH_MAX_STRAIN_LIMIT_ITERATIONS; default 4
     uint32_t iterations;
 } cloth_strain_limit;
 
@@ -915,8 +1001,8 @@ typedef struct cloth_task_record {
 } cloth_task_record;
 
 /// Record every task of each frame, up to `max_tasks_per_frame` (the
-/// memory is allocated here, from the world's allocator); 0 turns
-/// recording off and frees it. Stage and worker times are measured while
+/// memory is allocated here, from the world's allocator), at most
+/// CLOTH_MAX_PROFILED_TASKS; 0 turns recording off and frees it. Stage and worker times are measured while
 /// it is on. Off by default.
 CLOTH_API cloth_result cloth_world_set_profiling(cloth_world_id world, uint32_t max_tasks_per_frame);
 /// The profile of the last cloth_step.
@@ -971,11 +1057,11 @@ typedef struct cloth_quality_policy {
     uint8_t enabled;
     /// 1..max_iterations; default 1
     uint32_t min_iterations;
-    /// ..256; default 8
+    /// ..CLOTH_MAX_ITERATIONS; default 8
     uint32_t max_iterations;
     /// 1..max_substeps; default 1
     uint32_t min_substeps;
-    /// ..64; default 4
+    /// ..CLOTH_MAX_SUBSTEPS; default 4
     uint32_t max_substeps;
 } cloth_quality_policy;
 
@@ -1023,16 +1109,32 @@ CLOTH_API cloth_result cloth_is_sleeping(cloth_id cloth, bool* out_sleeping);
  * air and wind, and the sleep state. Restoring it into a cloth of the same
  * fabric and stepping again reproduces the same bits (replays, rollback
  * networking). Material, spring settings and feature settings are not in
- * it. The bytes are native-endian: for this library build and machine. */
+ * it. The bytes are native-endian: for this library build and machine.
+ *
+ * A snapshot opens with a header: a magic number, the snapshot format
+ * version, the version of the library that wrote it, the size of the whole
+ * snapshot, an identity of its fabric (a hash of the fabric's particle,
+ * triangle and spring counts and its rest data, so equal for fabrics built
+ * from the same description) and a 64-bit checksum (XXH3) of every other
+ * byte. A restored snapshot is therefore either exactly what was saved or
+ * refused with CLOTH_ERROR_CORRUPT_SNAPSHOT, the cloth unchanged.
+ *
+ * Versions. A library reads snapshots of its own snapshot format only. The
+ * format with this header is the one of 1.5.0; the snapshots of 1.4 and
+ * older had none and are refused with CLOTH_ERROR_CORRUPT_SNAPSHOT. A later
+ * library that changes the format says so here; one that keeps it reads
+ * snapshots written by any library of the same format. */
 
 /// Bytes a snapshot of this cloth needs.
 CLOTH_API cloth_result cloth_get_snapshot_size(cloth_id cloth, size_t* out_size);
 /// Write a snapshot into `buffer` of `capacity` bytes (at least the snapshot size).
 CLOTH_API cloth_result cloth_save_snapshot(cloth_id cloth, void* buffer, size_t capacity);
-/// Restore a snapshot of `size` bytes. A buffer that is not a snapshot of
-/// this version, of another particle count, or holds non-finite values is
-/// rejected (CLOTH_ERROR_INVALID_VALUE, _INVALID_COUNT or _NOT_FINITE) and
-/// the cloth is unchanged.
+/// Restore a snapshot of `size` bytes (exactly the size it was saved with).
+/// A buffer that is truncated, has any byte changed, is no snapshot or one
+/// of another format is CLOTH_ERROR_CORRUPT_SNAPSHOT; an intact snapshot of
+/// a cloth of another particle count is CLOTH_ERROR_INVALID_COUNT, and of
+/// another fabric with the same count CLOTH_ERROR_INVALID_VALUE. In every
+/// case the cloth is unchanged.
 CLOTH_API cloth_result cloth_restore_snapshot(cloth_id cloth, const void* buffer, size_t size);
 
 /* ------------------------------------------------------------------ */
@@ -1088,7 +1190,7 @@ typedef struct cloth_body_desc {
 /// A body description with every default set (and its cookie).
 CLOTH_API cloth_body_desc cloth_default_body_desc(void);
 
-/// Create a body at the description's pose. At most 65535 bodies per world.
+/// Create a body at the description's pose. At most CLOTH_MAX_BODIES bodies per world.
 CLOTH_API cloth_result cloth_body_create(cloth_world_id world, const cloth_body_desc* desc,
                                          cloth_body_id* out_body);
 /// Destroy a body, the colliders fixed to it, every attachment to it (those
@@ -1149,7 +1251,7 @@ CLOTH_API cloth_result cloth_collider_create_box(cloth_world_id world, const clo
 CLOTH_API cloth_result cloth_collider_create_plane(cloth_world_id world, const cloth_collider_desc* desc,
                                                    const float normal[3], float offset,
                                                    cloth_collider_id* out_collider);
-/// The convex hull of `point_count` local points (4..4096, 3 floats each, not
+/// The convex hull of `point_count` local points (4..CLOTH_MAX_HULL_POINTS, 3 floats each, not
 /// all in one plane: else CLOTH_ERROR_DEGENERATE_GEOMETRY).
 CLOTH_API cloth_result cloth_collider_create_convex_hull(cloth_world_id world,
                                                          const cloth_collider_desc* desc,
@@ -1159,7 +1261,8 @@ CLOTH_API cloth_result cloth_collider_create_convex_hull(cloth_world_id world,
 /// one-sided solids of shallow depth: the front is where the winding
 /// (counter-clockwise) normal points. A particle closer than the thickness
 /// in front, or whose path crosses a triangle from the front, is pushed back
-/// in front. 1..2^24 vertices and triangles; no degenerate triangle; the
+/// in front. 3..CLOTH_MAX_MESH_COLLIDER_VERTICES vertices and
+/// 1..CLOTH_MAX_MESH_COLLIDER_TRIANGLES triangles; no degenerate triangle; the
 /// vertices' span must fit a float (else CLOTH_ERROR_INVALID_VALUE).
 CLOTH_API cloth_result cloth_collider_create_triangle_mesh(cloth_world_id world,
                                                            const cloth_collider_desc* desc,
@@ -1175,9 +1278,9 @@ CLOTH_API cloth_result cloth_collider_create_triangle_mesh(cloth_world_id world,
 typedef struct cloth_heightfield_desc {
     /// sizeof(cloth_heightfield_desc)
     uint32_t struct_size;
-    /// samples along x, 2..65536; default 2
+    /// samples along x, 2..CLOTH_MAX_HEIGHTFIELD_SIDE; default 2
     uint32_t columns;
-    /// samples along z, 2..65536; default 2
+    /// samples along z, 2..CLOTH_MAX_HEIGHTFIELD_SIDE; default 2
     uint32_t rows;
     /// m, > 0; default 1
     float spacing_x;
@@ -1317,7 +1420,7 @@ typedef struct cloth_self_collision_desc {
     float friction;
     /// 1: skip pairs inside collision-free regions; 0 or 1, default 1
     uint8_t use_regions;
-    /// at most this many projection passes per substep, 1..16; default 8
+    /// at most this many projection passes per substep, 1..CLOTH_MAX_SELF_COLLISION_PASSES; default 8
     uint32_t passes;
     /// set by the struct\'s cloth_default_*() function; do not change
     uint32_t internal_cookie;

@@ -52,11 +52,16 @@ SurfaceQuery query_box(const Vec3& e, const Vec3& p) {
     return q;
 }
 
+Status not_finite(const char* what) {
+    return Status::error(CLOTH_ERROR_NOT_FINITE, "%s is not finite", what);
+}
+
 }  // namespace
 
 Status build_sphere(float radius, Shape& shape) {
+    if (!std::isfinite(radius)) return not_finite("sphere radius");
     if (!positive_finite(radius))
-        return Status::error(CLOTH_ERROR_INVALID_VALUE, "sphere radius must be > 0 and finite");
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "sphere radius must be > 0");
     shape.kind = ShapeKind::kSphere;
     shape.radius = radius;
     shape.bound_radius = radius;
@@ -64,10 +69,11 @@ Status build_sphere(float radius, Shape& shape) {
 }
 
 Status build_capsule(float radius, float half_height, Shape& shape) {
+    if (!std::isfinite(radius)) return not_finite("capsule radius");
+    if (!std::isfinite(half_height)) return not_finite("capsule half_height");
     if (!positive_finite(radius))
-        return Status::error(CLOTH_ERROR_INVALID_VALUE, "capsule radius must be > 0 and finite");
-    if (!std::isfinite(half_height) || half_height < 0)
-        return Status::error(CLOTH_ERROR_INVALID_VALUE, "capsule half_height must be >= 0 and finite");
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "capsule radius must be > 0");
+    if (half_height < 0) return Status::error(CLOTH_ERROR_INVALID_VALUE, "capsule half_height must be >= 0");
     shape.kind = ShapeKind::kCapsule;
     shape.radius = radius;
     shape.half_height = half_height;
@@ -76,9 +82,10 @@ Status build_capsule(float radius, float half_height, Shape& shape) {
 }
 
 Status build_box(const Vec3& half_extents, Shape& shape) {
+    if (!half_extents.allFinite()) return not_finite("box half extents");
     for (int k = 0; k < 3; ++k) {
         if (!positive_finite(half_extents[k]))
-            return Status::error(CLOTH_ERROR_INVALID_VALUE, "box half extents must be > 0 and finite");
+            return Status::error(CLOTH_ERROR_INVALID_VALUE, "box half extents must be > 0");
     }
     shape.kind = ShapeKind::kBox;
     shape.half_extents = half_extents;
@@ -87,12 +94,23 @@ Status build_box(const Vec3& half_extents, Shape& shape) {
 }
 
 Status build_plane(const Vec3& normal, float offset, Shape& shape) {
-    const float length = normal.norm();
-    if (!std::isfinite(length) || !std::isfinite(offset))
+    if (!normal.allFinite() || !std::isfinite(offset))
         return Status::error(CLOTH_ERROR_NOT_FINITE, "plane normal or offset is not finite");
-    if (!(length > 1e-12f)) return Status::error(CLOTH_ERROR_INVALID_VALUE, "plane normal is zero");
+    Vec3 unit = Vec3::Zero();
+    float length = normal.norm();
+    if (std::isfinite(length)) {
+        if (!(length > 1e-12f)) return Status::error(CLOTH_ERROR_INVALID_VALUE, "plane normal is zero");
+        unit = normal / length;
+    } else {
+        // A finite normal whose squared length overflows: scaled by its
+        // largest component first.
+        const float largest = normal.cwiseAbs().maxCoeff();
+        const Vec3 scaled = normal / largest;
+        unit = scaled / scaled.norm();
+        length = scaled.norm() * largest;
+    }
     shape.kind = ShapeKind::kPlane;
-    shape.plane_normal = normal / length;
+    shape.plane_normal = unit;
     shape.plane_offset = offset / length;
     shape.bound_radius = kInfinity;
     return {};

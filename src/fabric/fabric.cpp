@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "base/hash.h"
+
 namespace cloth {
 
 Fabric::Fabric(const HostMemory* memory)
@@ -161,7 +163,43 @@ Status finish_fabric(const std::vector<SpringSpec>& springs, Fabric& f) {
 
 bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
+// Within CLOTH_MAX_COORDINATE (cloth.h, "Coordinates"); v is finite.
+bool within_range3(const float* v) {
+    return std::abs(v[0]) <= CLOTH_MAX_COORDINATE && std::abs(v[1]) <= CLOTH_MAX_COORDINATE &&
+           std::abs(v[2]) <= CLOTH_MAX_COORDINATE;
+}
+
 }  // namespace
+
+uint64_t fabric_identity(const Fabric& f) {
+    const uint32_t counts[] = {f.particle_count(),
+                               f.triangle_count(),
+                               f.spring_count(),
+                               f.springs_of_kind[0],
+                               f.springs_of_kind[1],
+                               f.springs_of_kind[2],
+                               static_cast<uint32_t>(f.grid_families.size())};
+    uint64_t h = hash_bytes(counts, sizeof counts);
+    auto add = [&h](const auto& values) {
+        h = hash_bytes(values.data(), values.size() * sizeof(values[0]), h);
+    };
+    for (const Vec3& p : f.rest_positions) h = hash_bytes(p.data(), 3 * sizeof(float), h);
+    add(f.rest_area);
+    add(f.triangles);
+    add(f.spring_first);
+    add(f.spring_second);
+    add(f.spring_rest_length);
+    add(f.spring_kind);
+    add(f.particle_of_vertex);
+    for (const SpringFamily& family : f.grid_families) {
+        const float rest = family.rest_length;
+        const uint32_t shape[] = {family.offset, static_cast<uint32_t>(family.kind)};
+        h = hash_bytes(shape, sizeof shape, h);
+        h = hash_bytes(&rest, sizeof rest, h);
+        add(family.mask);
+    }
+    return h;
+}
 
 Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
     const uint32_t cols = desc.columns, rows = desc.rows;
@@ -175,6 +213,11 @@ Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
     }
     if (!finite3(desc.origin) || !finite3(desc.u) || !finite3(desc.v)) {
         return Status::error(CLOTH_ERROR_NOT_FINITE, "grid origin, u or v is not finite");
+    }
+    if (!within_range3(desc.origin) || !within_range3(desc.u) || !within_range3(desc.v)) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE,
+                             "grid origin, u or v has a coordinate beyond CLOTH_MAX_COORDINATE (%g m)",
+                             double(CLOTH_MAX_COORDINATE));
     }
     if (desc.spring_kinds & ~static_cast<uint32_t>(CLOTH_SPRING_ALL)) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown spring kind bits 0x%x", desc.spring_kinds);
@@ -274,9 +317,9 @@ Status build_mesh_in_given_order(const float* positions, uint32_t vertex_count, 
         return Status::error(CLOTH_ERROR_INVALID_COUNT, "mesh vertex_count %u is not in 3..%u", vertex_count,
                              kMaxParticles);
     }
-    if (triangle_count == 0 || triangle_count > 4 * kMaxParticles) {
+    if (triangle_count == 0 || triangle_count > kMaxTriangles) {
         return Status::error(CLOTH_ERROR_INVALID_COUNT, "mesh triangle_count %u is not in 1..%u",
-                             triangle_count, 4 * kMaxParticles);
+                             triangle_count, kMaxTriangles);
     }
     if (spring_kinds & ~static_cast<uint32_t>(CLOTH_SPRING_ALL)) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE, "unknown spring kind bits 0x%x", spring_kinds);
@@ -284,6 +327,13 @@ Status build_mesh_in_given_order(const float* positions, uint32_t vertex_count, 
     for (uint32_t p = 0; p < vertex_count; ++p) {
         if (!finite3(positions + 3 * p))
             return Status::error(CLOTH_ERROR_NOT_FINITE, "vertex %u is not finite", p);
+    }
+    for (uint32_t p = 0; p < vertex_count; ++p) {
+        if (!within_range3(positions + 3 * p)) {
+            return Status::error(CLOTH_ERROR_INVALID_VALUE,
+                                 "vertex %u has a coordinate beyond CLOTH_MAX_COORDINATE (%g m)", p,
+                                 double(CLOTH_MAX_COORDINATE));
+        }
     }
     for (uint32_t t = 0; t < triangle_count; ++t) {
         const uint32_t* tri = indices + 3 * t;

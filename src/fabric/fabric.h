@@ -133,10 +133,24 @@ struct Fabric {
     uint32_t vertex(uint32_t particle) const {
         return vertex_of_particle.empty() ? particle : vertex_of_particle[particle];
     }
+
+    // A hash of the counts and the rest data above (fabric_identity), set
+    // when the world takes the fabric: equal for fabrics built from the same
+    // description, so a snapshot names the fabric it belongs to.
+    uint64_t identity = 0;
 };
 
-// Largest particle count a fabric may have.
-constexpr uint32_t kMaxParticles = 1u << 24;
+// The identity of a built fabric: XXH3 of its particle, triangle and spring
+// counts, rest positions and areas, triangles, springs with their rest
+// lengths and kinds, grid families and vertex order.
+uint64_t fabric_identity(const Fabric& fabric);
+
+// Largest particle count a fabric may have, and triangle count a mesh
+// fabric may have (cloth.h).
+constexpr uint32_t kMaxParticles = CLOTH_MAX_PARTICLES;
+constexpr uint32_t kMaxTriangles = CLOTH_MAX_TRIANGLES;
+static_assert(kMaxParticles == 1u << 24 && kMaxTriangles == 2 * kMaxParticles,
+              "a grid at the particle limit has fewer triangles than the triangle limit");
 
 // Builders fill a freshly constructed `out`; on error, discard it.
 // Build from a grid description.

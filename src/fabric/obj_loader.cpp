@@ -30,6 +30,10 @@ Status build_obj_fabric(const char* path, uint32_t spring_kinds, Fabric& out) {
     if (vertices.empty() || indices.empty()) {
         return Status::error(CLOTH_ERROR_IO, "OBJ '%s' has no triangles", path);
     }
+    if (vertices.size() / 3 > kMaxParticles || indices.size() / 3 > kMaxTriangles) {
+        return Status::error(CLOTH_ERROR_INVALID_COUNT, "OBJ '%s' has more than %u vertices or %u triangles",
+                             path, kMaxParticles, kMaxTriangles);
+    }
     return build_mesh_fabric(vertices.data(), static_cast<uint32_t>(vertices.size() / 3), indices.data(),
                              static_cast<uint32_t>(indices.size() / 3), spring_kinds, out);
 }

@@ -8,21 +8,35 @@
 // Layout (native endianness, floats IEEE 754):
 //   SnapshotHeader, then x, y, z of positions, of velocities and of pin
 //   targets (n floats each), then the pinned flags (n floats, 0 or 1).
+// The header's checksum is XXH3 of every byte before it and every byte
+// after it, so a restore checks it before it reads anything else: a
+// snapshot is either exactly what was saved or refused as corrupt.
+//
+// Format versions: 1 had no library version, size, fabric identity or
+// checksum (libraries up to 1.4); 2 is this one. A library reads its own
+// format only (cloth.h, "Snapshots").
+#include <cloth/cloth.h>
+
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 
+#include "base/hash.h"
 #include "step/cloth_instance.h"
 
 namespace cloth {
 namespace {
 
 constexpr uint32_t kSnapshotMagic = 0x4E534C43;  // "CLSN"
-constexpr uint32_t kSnapshotVersion = 1;
+constexpr uint32_t kSnapshotFormat = 2;
 
 struct SnapshotHeader {
     uint32_t magic;
-    uint32_t version;
+    uint32_t format;
     uint32_t size_of_header;
+    uint32_t library_major, library_minor, library_patch;  // the library that wrote it
+    uint64_t total_size;                                   // header and arrays, in bytes
+    uint64_t fabric_identity;                              // Fabric::identity
     uint32_t particle_count;
     uint32_t solver_kind;
     uint32_t iterations;
@@ -31,9 +45,25 @@ struct SnapshotHeader {
     uint32_t rest_frames;
     float wind[3];
     float air_density, drag_coefficient, lift_coefficient, linear_drag;
+    uint32_t reserved;  // zero; keeps the checksum 8-byte aligned
+    uint64_t checksum;  // XXH3 of every other byte of the snapshot
 };
 
+constexpr size_t kChecksumAt = offsetof(SnapshotHeader, checksum);
+constexpr size_t kAfterChecksum = kChecksumAt + sizeof(uint64_t);
+static_assert(kAfterChecksum == sizeof(SnapshotHeader), "the checksum ends the header");
+
 constexpr size_t kArrays = 10;  // x, v, pin target (3 each) and pinned
+
+uint64_t checksum_of(const unsigned char* bytes, size_t size) {
+    const uint64_t head = hash_bytes(bytes, kChecksumAt);
+    return hash_bytes(bytes + kAfterChecksum, size - kAfterChecksum, head);
+}
+
+Status corrupt(const char* why) {
+    return Status::error(CLOTH_ERROR_CORRUPT_SNAPSHOT, "the snapshot is corrupt: %s; nothing was restored",
+                         why);
+}
 
 }  // namespace
 
@@ -44,8 +74,13 @@ size_t ClothInstance::snapshot_size() const {
 void ClothInstance::save_snapshot(void* out) const {
     SnapshotHeader h{};
     h.magic = kSnapshotMagic;
-    h.version = kSnapshotVersion;
+    h.format = kSnapshotFormat;
     h.size_of_header = sizeof h;
+    h.library_major = CLOTH_VERSION_MAJOR;
+    h.library_minor = CLOTH_VERSION_MINOR;
+    h.library_patch = CLOTH_VERSION_PATCH;
+    h.total_size = snapshot_size();
+    h.fabric_identity = fabric().identity;
     h.particle_count = particle_count();
     h.solver_kind = static_cast<uint32_t>(solver_.kind);
     h.iterations = solver_.iterations;
@@ -57,7 +92,8 @@ void ClothInstance::save_snapshot(void* out) const {
     h.drag_coefficient = aero_.drag_coefficient;
     h.lift_coefficient = aero_.lift_coefficient;
     h.linear_drag = aero_.linear_drag;
-    auto* bytes = static_cast<unsigned char*>(out);
+    auto* const start = static_cast<unsigned char*>(out);
+    unsigned char* bytes = start;
     std::memcpy(bytes, &h, sizeof h);
     bytes += sizeof h;
     const size_t row = sizeof(float) * particle_count();
@@ -66,50 +102,62 @@ void ClothInstance::save_snapshot(void* out) const {
         std::memcpy(bytes, a->data(), row);
         bytes += row;
     }
+    const uint64_t checksum = checksum_of(start, snapshot_size());
+    std::memcpy(start + kChecksumAt, &checksum, sizeof checksum);
 }
 
 Status ClothInstance::restore_snapshot(const void* in, size_t size) {
     const uint32_t n = particle_count();
-    if (size < sizeof(SnapshotHeader)) {
-        return Status::error(CLOTH_ERROR_INVALID_VALUE, "snapshot of %zu bytes is shorter than its header",
-                             size);
-    }
+    const auto* const bytes = static_cast<const unsigned char*>(in);
+    // The buffer may be unaligned: every field is read through memcpy.
+    if (size < sizeof(SnapshotHeader)) return corrupt("it is shorter than a snapshot header");
     SnapshotHeader h;
-    std::memcpy(&h, in, sizeof h);
-    if (h.magic != kSnapshotMagic || h.size_of_header != sizeof h) {
-        return Status::error(CLOTH_ERROR_INVALID_VALUE, "buffer is not a cloth snapshot");
+    std::memcpy(&h, bytes, sizeof h);
+    if (h.magic != kSnapshotMagic) return corrupt("it does not start as a cloth snapshot");
+    if (h.format != kSnapshotFormat) {
+        return Status::error(CLOTH_ERROR_CORRUPT_SNAPSHOT,
+                             "the snapshot has format %u; this library (%d.%d.%d) reads format %u only; "
+                             "nothing was restored",
+                             h.format, CLOTH_VERSION_MAJOR, CLOTH_VERSION_MINOR, CLOTH_VERSION_PATCH,
+                             kSnapshotFormat);
     }
-    if (h.version != kSnapshotVersion) {
-        return Status::error(CLOTH_ERROR_INVALID_VALUE, "snapshot version %u, expected %u", h.version,
-                             kSnapshotVersion);
+    if (h.size_of_header != sizeof h) return corrupt("its header size is wrong");
+    if (h.total_size != size) {
+        return Status::error(CLOTH_ERROR_CORRUPT_SNAPSHOT,
+                             "the snapshot was saved as %llu bytes, but %zu were given; nothing was restored",
+                             static_cast<unsigned long long>(h.total_size), size);
     }
+    if (h.checksum != checksum_of(bytes, size)) return corrupt("its checksum does not match its bytes");
+
+    // Intact: it is what some cloth saved. Is it this cloth's kind?
     if (h.particle_count != n || size != snapshot_size()) {
         return Status::error(CLOTH_ERROR_INVALID_COUNT,
                              "snapshot of %u particles (%zu bytes) does not fit this cloth of %u particles",
                              h.particle_count, size, n);
     }
-    if (h.solver_kind > CLOTH_SOLVER_CHEBYSHEV || h.iterations < 1 || h.iterations > 256 || h.substeps < 1 ||
-        h.substeps > 64) {
-        return Status::error(CLOTH_ERROR_INVALID_VALUE, "snapshot solver settings are out of range");
+    if (h.fabric_identity != fabric().identity) {
+        return Status::error(CLOTH_ERROR_INVALID_VALUE,
+                             "the snapshot is of another fabric (same particle count, other topology or "
+                             "rest shape)");
     }
-    const float* values = reinterpret_cast<const float*>(static_cast<const unsigned char*>(in) + sizeof h);
-    float air[7] = {h.wind[0],          h.wind[1],          h.wind[2],    h.air_density,
-                    h.drag_coefficient, h.lift_coefficient, h.linear_drag};
+    // What a library of this format writes; checked again, so that a bug
+    // elsewhere cannot restore a state no step could have made.
+    if (h.solver_kind > CLOTH_SOLVER_CHEBYSHEV || h.iterations < 1 || h.iterations > CLOTH_MAX_ITERATIONS ||
+        h.substeps < 1 || h.substeps > CLOTH_MAX_SUBSTEPS) {
+        return corrupt("its solver settings are out of range");
+    }
+    const float air[7] = {h.wind[0],          h.wind[1],          h.wind[2],    h.air_density,
+                          h.drag_coefficient, h.lift_coefficient, h.linear_drag};
     for (float a : air) {
-        if (!std::isfinite(a))
-            return Status::error(CLOTH_ERROR_NOT_FINITE, "snapshot air parameters are not finite");
+        if (!std::isfinite(a)) return corrupt("its air parameters are not finite");
     }
-    // The buffer may be unaligned: read through memcpy.
+    const unsigned char* values = bytes + sizeof h;
     for (size_t k = 0; k < kArrays * n; ++k) {
         float value;
-        std::memcpy(&value, values + k, sizeof value);
-        if (!std::isfinite(value)) {
-            return Status::error(CLOTH_ERROR_NOT_FINITE, "snapshot value %zu is not finite", k);
-        }
-        if (k >= 9 * static_cast<size_t>(n) && value != 0.0f && value != 1.0f) {
-            return Status::error(CLOTH_ERROR_INVALID_VALUE, "snapshot pinned flag %zu is neither 0 nor 1",
-                                 k - 9 * static_cast<size_t>(n));
-        }
+        std::memcpy(&value, values + k * sizeof(float), sizeof value);
+        if (!std::isfinite(value)) return corrupt("it holds a value that is not finite");
+        if (k >= 9 * static_cast<size_t>(n) && value != 0.0f && value != 1.0f)
+            return corrupt("it holds a pinned flag that is neither 0 nor 1");
     }
 
     // Valid: apply.
@@ -121,12 +169,11 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
     aero_.drag_coefficient = h.drag_coefficient;
     aero_.lift_coefficient = h.lift_coefficient;
     aero_.linear_drag = h.linear_drag;
-    const auto* bytes = reinterpret_cast<const unsigned char*>(values);
     const size_t row = sizeof(float) * n;
     for (HostVector<float>* a : {&x_.x, &x_.y, &x_.z, &v_.x, &v_.y, &v_.z, &pin_target_.x, &pin_target_.y,
                                  &pin_target_.z, &pinned_}) {
-        std::memcpy(a->data(), bytes, row);
-        bytes += row;
+        std::memcpy(a->data(), values, row);
+        values += row;
     }
     pinned_list_.clear();
     for (uint32_t i = 0; i < n; ++i) {

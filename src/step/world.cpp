@@ -53,7 +53,10 @@ std::shared_ptr<const Fabric> World::find_fabric(cloth_fabric_id id) const {
 
 Status World::destroy_fabric(cloth_fabric_id id) {
     const uint32_t slot = fabrics_.find(id.index1, id.generation);
-    if (slot == fabrics_.kFull) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "fabric handle is not live");
+    if (slot == fabrics_.kFull) {
+        return Status::error(CLOTH_ERROR_INVALID_HANDLE,
+                             "fabric handle names no live fabric in its world (destroyed, or never created)");
+    }
     fabrics_.release(slot);
     return {};
 }
@@ -88,7 +91,10 @@ ClothInstance* World::find_cloth(cloth_id id) const {
 
 Status World::destroy_cloth(cloth_id id) {
     const uint32_t slot = cloths_.find(id.index1, id.generation);
-    if (slot == cloths_.kFull) return Status::error(CLOTH_ERROR_INVALID_HANDLE, "cloth handle is not live");
+    if (slot == cloths_.kFull) {
+        return Status::error(CLOTH_ERROR_INVALID_HANDLE,
+                             "cloth handle names no live cloth in its world (destroyed, or never created)");
+    }
     cloths_.release(slot);
     return {};
 }

@@ -145,6 +145,7 @@ Status World::create_fabric(Build build, cloth_fabric_id* out) {
     auto fabric = std::allocate_shared<Fabric>(HostAllocator<Fabric>(&memory_), &memory_);
     Status status = build(*fabric);
     if (!status.ok()) return status;
+    fabric->identity = fabric_identity(*fabric);
     const uint16_t generation = fabrics_.occupy(slot, std::move(fabric));
     *out = cloth_fabric_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1), generation,
                            generation_};

@@ -184,7 +184,7 @@ TEST_F(ContactBadInput, ColliderCreationRejectsBadShapesAndChangesNothing) {
     EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_collider_create_sphere(a_.world, &bad, 1.0f, &out));
 
     EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_collider_create_sphere(a_.world, &d, 0.0f, &out));
-    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_collider_create_sphere(a_.world, &d, kNaN, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_collider_create_sphere(a_.world, &d, kNaN, &out));
     EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE,
                     cloth_collider_create_capsule(a_.world, &d, -1.0f, 1.0f, &out));
     EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE,
@@ -238,6 +238,8 @@ TEST_F(ContactBadInput, ColliderCreationRejectsBadShapesAndChangesNothing) {
     h.rows = 1;
     EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, cloth_collider_create_heightfield(a_.world, &d, &h, &out));
     h.rows = 2;
+    const float level[6] = {0, 0, 0, 0, 0, 0};  // one fault at a time: a NaN height is reported first
+    h.heights = level;
     h.spacing_z = 0.0f;
     EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_collider_create_heightfield(a_.world, &d, &h, &out));
     cloth_heightfield_desc raw_h{};

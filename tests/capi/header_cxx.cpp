@@ -72,6 +72,7 @@ static_assert(CLOTH_ERROR_NONFINITE_STATE == 12, "");
 static_assert(CLOTH_ERROR_SOLVER_FAILED == 13, "");
 static_assert(CLOTH_ERROR_INTERNAL == 14, "");
 static_assert(CLOTH_ERROR_OVER_BUDGET == 15, "");
+static_assert(CLOTH_ERROR_CORRUPT_SNAPSHOT == 16, "");
 static_assert(CLOTH_SPRING_ALL == (CLOTH_SPRING_STRUCTURAL | CLOTH_SPRING_SHEAR | CLOTH_SPRING_BEND), "");
 static_assert(CLOTH_SOLVER_DEFAULT == 0, "");
 static_assert(CLOTH_VERSION_MAJOR == 1, "");
@@ -190,6 +191,7 @@ std::uint32_t cloth_header_cxx_uses_every_type() {
         CLOTH_ERROR_SOLVER_FAILED,
         CLOTH_ERROR_INTERNAL,
         CLOTH_ERROR_OVER_BUDGET,
+        CLOTH_ERROR_CORRUPT_SNAPSHOT,
         CLOTH_RESULT_FORCE_U32,
     };
     const cloth_log_level levels[] = {CLOTH_LOG_ERROR, CLOTH_LOG_WARNING, CLOTH_LOG_INFO,

@@ -11,6 +11,9 @@
 
 #include "base/id_pool.h"
 
+// tests/capi/enum_from_int.c: an out-of-range kind passed the way a C caller can (in C++ the
+// load of such an enum value is undefined, and UBSan reports it).
+extern "C" size_t cloth_test_struct_size_of_int(int32_t value);
 namespace {
 
 struct Scene {
@@ -261,8 +264,6 @@ TEST_F(Ids, IdsWithAStaleWorldGenerationAreRefused) {
     EXPECT_EQ(cloth_body_destroy(stale(a_.body)), CLOTH_ERROR_INVALID_HANDLE);
     EXPECT_EQ(cloth_collider_destroy(stale(a_.collider)), CLOTH_ERROR_INVALID_HANDLE);
 }
-
-extern "C" size_t cloth_test_struct_size_of_int(int32_t value);
 
 TEST(StructSize, MatchesSizeofForEveryKind) {
     struct Kind {

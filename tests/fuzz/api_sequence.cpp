@@ -1,4 +1,6 @@
 // Decoder and contract checks of the C API fuzz harness (see api_sequence.h).
+// One file over 400 lines: every op shares the harness's state and checks,
+// and one decoder keeps the byte-to-op mapping (the corpus) in one place.
 //
 // Bounded work per input, so that executions stay fast: at most kMaxCalls
 // calls, grids of at most 16 x 16 particles, meshes of at most 48 vertices,
@@ -223,6 +225,7 @@ class Harness {
     void body();
     void collider();
     void attachment();
+    void snapshot();
 
     cloth_body_id pick_body();
     cloth_collider_id pick_collider();
@@ -1242,6 +1245,61 @@ void Harness::profiling() {
     }
 }
 
+// ---------------------------------------------------------------- snapshots
+
+// A snapshot saved, then restored as it is, with bytes changed, cut short,
+// lengthened, or into another cloth. A restore is either refused with
+// nothing changed, or takes the snapshot exactly: the cloth then saves the
+// very bytes it was given. A changed snapshot is never taken.
+void Harness::snapshot() {
+    const cloth_id id = pick_cloth();
+    const uint8_t what = in_.u8();
+    size_t size = 0;
+    if (check(cloth_get_snapshot_size(id, &size), "cloth_get_snapshot_size") != CLOTH_OK) return;
+    std::vector<unsigned char> saved(size);
+    const size_t capacity = (what & 1) ? size - 1 : size;
+    if (guarded(watch_of(id), "cloth_save_snapshot",
+                [&] { return cloth_save_snapshot(id, saved.data(), capacity); }) != CLOTH_OK)
+        return;
+    std::vector<unsigned char> input = saved;
+    switch (in_.u8() % 5) {
+        case 0:  // intact
+            break;
+        case 1: {  // a few bytes changed
+            const uint32_t changes = 1 + in_.u8() % 4;
+            for (uint32_t k = 0; k < changes; ++k)
+                input[in_.u16() % size] ^= static_cast<unsigned char>(in_.u8() | 1);
+            break;
+        }
+        case 2:  // cut short
+            input.resize(in_.u16() % size);
+            break;
+        case 3:  // lengthened
+            input.push_back(in_.u8());
+            break;
+        default: {  // a float written over one of its values (the same value leaves it intact)
+            const float value = in_.any_float();
+            const size_t at = (in_.u16() % (size / sizeof(float))) * sizeof(float);
+            std::memcpy(input.data() + at, &value, sizeof value);
+        }
+    }
+    const cloth_id target = (what & 2) ? pick_cloth() : id;
+    if (input.empty()) input.reserve(1);  // data() of an empty vector may be NULL
+    const cloth_result r = guarded(watch_of(target), "cloth_restore_snapshot", [&] {
+        return cloth_restore_snapshot(target, input.empty() ? saved.data() : input.data(), input.size());
+    });
+    if (r != CLOTH_OK) {
+        if (r == CLOTH_ERROR_CORRUPT_SNAPSHOT && input == saved)
+            broken("cloth_restore_snapshot refused an intact snapshot as corrupt");
+        return;
+    }
+    if (input != saved) broken("cloth_restore_snapshot took a snapshot with changed bytes");
+    std::vector<unsigned char> again(input.size());
+    if (check(cloth_save_snapshot(target, again.data(), again.size()), "cloth_save_snapshot") != CLOTH_OK ||
+        again != input)
+        broken("a restored cloth does not save the snapshot it was given");
+}
+
 RunStats Harness::run() {
     for (size_t calls = 0; calls < kMaxCalls && !in_.empty(); ++calls) {
         // -Werror=switch (CMakeLists.txt): every opcode must have its case.
@@ -1320,6 +1378,9 @@ RunStats Harness::run() {
                 break;
             case kWorldShiftOrigin:
                 world_shift_origin();
+                break;
+            case kSnapshot:
+                snapshot();
                 break;
             case kOpCount:
                 break;

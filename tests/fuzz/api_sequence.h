@@ -41,6 +41,7 @@ enum Op : uint8_t {
     kCollider,           // create each shape, destroy, group bits
     kAttachment,         // attach, detach, get attachment, collision params, carrier, teleported
     kWorldShiftOrigin,   // origin rebasing
+    kSnapshot,  // size, save (short capacity too), restore intact, damaged, cut, or into another cloth
     kOpCount
 };
 

@@ -168,6 +168,21 @@ std::vector<std::vector<uint8_t>> seed_inputs() {
     contact.op(kCollider).u8(7).slot(1).step(0, 1);                                        // destroy plane
     seeds.push_back(contact.bytes);
 
+    // Snapshots: restored intact, with two bytes changed, cut short,
+    // lengthened, with a NaN written over a value, into a second cloth of
+    // the same fabric, and saved into a buffer one byte short; stepped on.
+    Encoder snapshot;
+    snapshot.world(0).grid(0, 8, 8).cloth(0, 0).cloth(0, 0).step(0, 2);
+    snapshot.op(kSnapshot).slot(0).u8(0).u8(0);                                       // intact
+    snapshot.op(kSnapshot).slot(0).u8(0).u8(1).u8(1).u16(7).u8(0x10).u16(300).u8(1);  // two bytes changed
+    snapshot.op(kSnapshot).slot(0).u8(0).u8(2).u16(50);                               // cut to 50 bytes
+    snapshot.op(kSnapshot).slot(0).u8(0).u8(3).u8(0);                                 // one byte more
+    snapshot.op(kSnapshot).slot(0).u8(0).u8(4).edge(13).u16(40);                      // NaN over float 40
+    snapshot.op(kSnapshot).slot(0).u8(2).u8(0).slot(1);                               // into cloth 1
+    snapshot.op(kSnapshot).slot(0).u8(1);                                             // capacity one short
+    snapshot.step(0, 2);
+    seeds.push_back(snapshot.bytes);
+
     return seeds;
 }
 

@@ -195,11 +195,12 @@ TEST(OriginShift, StaticCollidersMoveWithTheWorld) {
 
 TEST(OriginShift, AShiftThatWouldOverflowAPositionIsRefusedAndMovesNothing) {
     // A fuzzer finding: a finite shift can still take a far position to
-    // infinity, which no later step could undo.
+    // infinity, which no later step could undo. A shift, like every
+    // coordinate a call takes, is now bounded by CLOTH_MAX_COORDINATE.
     Scene s(4, 4);
     const cloth_body_id body = make_body(s.world);
     const uint32_t far = 5;
-    const float out_there[3] = {-3e38f, 0.0f, 0.0f};
+    const float out_there[3] = {-CLOTH_MAX_COORDINATE, 0.0f, 0.0f};
     ASSERT_EQ(cloth_set_positions(s.cloth, &far, out_there, 1), CLOTH_OK);
     const std::vector<float> before = s.positions();
     const float shift[3] = {3e38f, 1.0f, 0.0f};

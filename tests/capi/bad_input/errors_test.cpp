@@ -119,13 +119,14 @@ TEST_F(BadInput, ResultNameIsTheEnumeratorNameAndNeverNull) {
         {CLOTH_ERROR_SOLVER_FAILED, "CLOTH_ERROR_SOLVER_FAILED"},
         {CLOTH_ERROR_INTERNAL, "CLOTH_ERROR_INTERNAL"},
         {CLOTH_ERROR_OVER_BUDGET, "CLOTH_ERROR_OVER_BUDGET"},
+        {CLOTH_ERROR_CORRUPT_SNAPSHOT, "CLOTH_ERROR_CORRUPT_SNAPSHOT"},
     };
     for (const auto& [code, name] : names) {
         const char* got = cloth_result_name(code);
         ASSERT_NE(got, nullptr) << static_cast<int>(code);
         EXPECT_STREQ(got, name);
     }
-    for (int bad : {16, 99, -1, 0x7FFFFFFF}) {
+    for (int bad : {17, 99, -1, 0x7FFFFFFF}) {
         ++cloth_test::bad_inputs();
         const char* got = cloth_result_name(static_cast<cloth_result>(bad));
         ASSERT_NE(got, nullptr) << "cloth_result_name(" << bad << ") returned NULL";

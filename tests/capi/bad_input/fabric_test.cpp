@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "bad_input/fixture.h"
+#include "support/guarded_buffer.h"
 
 namespace cloth_bad_input {
 namespace {
@@ -98,6 +99,65 @@ TEST_F(BadInputDeathTest, MeshWithHugeCountsReturnsInvalidCountWithoutReadingThe
     triangles.triangle_count = UINT32_MAX;
     EXPECT_REJECTED_IN_CHILD(CLOTH_ERROR_INVALID_COUNT,
                              cloth_fabric_create_mesh(a_.world, &triangles, &outs_.fabric));
+}
+
+// Every count the header limits is refused one past its CLOTH_MAX_* macro
+// before the buffer it sizes is read: each buffer here holds what a small
+// valid call needs and ends at an inaccessible page, so a read past it
+// crashes the test.
+TEST_F(BadInput, CountsOnePastTheirStatedLimitAreRefusedBeforeTheBufferIsRead) {
+    using cloth_test::GuardedBuffer;
+    const GuardedBuffer positions(kQuadPositions, sizeof kQuadPositions);
+    const GuardedBuffer indices(kQuadIndices, sizeof kQuadIndices);
+    ASSERT_TRUE(positions.ok() && indices.ok());
+
+    cloth_mesh_desc mesh = QuadMesh();
+    mesh.positions = positions.as<float>();
+    mesh.indices = indices.as<uint32_t>();
+    mesh.vertex_count = CLOTH_MAX_PARTICLES + 1;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, cloth_fabric_create_mesh(a_.world, &mesh, &outs_.fabric));
+    mesh.vertex_count = 4;
+    mesh.triangle_count = CLOTH_MAX_TRIANGLES + 1;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, cloth_fabric_create_mesh(a_.world, &mesh, &outs_.fabric));
+    // Every count between the collider limit (2^24) and the old unstated
+    // one (2^26) was read, whatever buffer came with it.
+    mesh.triangle_count = (1u << 26) - 1;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, cloth_fabric_create_mesh(a_.world, &mesh, &outs_.fabric));
+
+    const cloth_collider_desc collider = cloth_default_collider_desc();
+    cloth_collider_id out{};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                    cloth_collider_create_convex_hull(a_.world, &collider, positions.as<float>(),
+                                                      CLOTH_MAX_HULL_POINTS + 1, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                    cloth_collider_create_triangle_mesh(a_.world, &collider, positions.as<float>(),
+                                                        CLOTH_MAX_MESH_COLLIDER_VERTICES + 1,
+                                                        indices.as<uint32_t>(), 2, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                    cloth_collider_create_triangle_mesh(a_.world, &collider, positions.as<float>(), 4,
+                                                        indices.as<uint32_t>(),
+                                                        CLOTH_MAX_MESH_COLLIDER_TRIANGLES + 1, &out));
+    cloth_heightfield_desc field = cloth_default_heightfield_desc();
+    field.heights = positions.as<float>();
+    field.columns = CLOTH_MAX_HEIGHTFIELD_SIDE + 1;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                    cloth_collider_create_heightfield(a_.world, &collider, &field, &out));
+    field.columns = 2;
+    field.rows = CLOTH_MAX_HEIGHTFIELD_SIDE + 1;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                    cloth_collider_create_heightfield(a_.world, &collider, &field, &out));
+
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                    cloth_world_set_profiling(a_.world, CLOTH_MAX_PROFILED_TASKS + 1));
+    cloth_world_desc world = a_.host.world_desc();
+    world.max_cloths = CLOTH_MAX_CLOTHS + 1;
+    EXPECT_REJECTED_NOT_LOGGED(CLOTH_ERROR_INVALID_COUNT, cloth_world_create(&world, &outs_.world));
+    world.max_cloths = 4;
+    world.max_fabrics = CLOTH_MAX_FABRICS + 1;
+    EXPECT_REJECTED_NOT_LOGGED(CLOTH_ERROR_INVALID_COUNT, cloth_world_create(&world, &outs_.world));
+    world.max_fabrics = 4;
+    world.worker_count = CLOTH_MAX_WORKERS + 1;
+    EXPECT_REJECTED_NOT_LOGGED(CLOTH_ERROR_INVALID_COUNT, cloth_world_create(&world, &outs_.world));
 }
 
 TEST_F(BadInput, GridWithNonFiniteOriginOrEdgeReturnsNotFinite) {

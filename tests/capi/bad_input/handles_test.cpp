@@ -162,6 +162,136 @@ TEST_F(BadInput, CreateClothFromAFabricOfAnotherWorldReturnsInvalidHandleAndChan
     EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_create(a_.world, &desc, &outs_.cloth));
 }
 
+// The message of a call that fails on this thread.
+std::string MessageOf(cloth_result result) {
+    EXPECT_NE(result, CLOTH_OK);
+    return cloth_get_last_error();
+}
+
+bool Contains(const std::string& text, const char* part) { return text.find(part) != std::string::npos; }
+
+// cloth.h, "Which log hears of an error": a handle whose world part names a
+// live world reports to that world's log, even when the object it names is
+// gone; one that names no live world reports to no log. Each message says
+// which of null, no live world, no live object or another world it is.
+TEST_F(BadInput, InvalidHandlesAreLoggedToTheWorldTheyNameAndTheMessageSaysWhatIsWrong) {
+    const cloth_id c = a_.cloth;
+    const NamedCloth in_live_world[] = {
+        {"zero index in a live world", {0, c.world1, c.generation, c.world_generation}},
+        {"index past the cloth table", {kMaxCloths + 1, c.world1, c.generation, c.world_generation}},
+        {"wrong generation of a live slot",
+         {c.index1, c.world1, static_cast<uint16_t>(c.generation + 1), c.world_generation}},
+        {"destroyed cloth whose slot was re-used", a_.stale_cloth},
+        {"destroyed cloth whose slot is free", a_.freed_cloth},
+    };
+    for (const NamedCloth& b : in_live_world) {
+        SCOPED_TRACE(b.what);
+        EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_get_particle_count(b.id, &outs_.count));
+        EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_destroy(b.id));
+        const std::string m = MessageOf(cloth_get_particle_count(b.id, &outs_.count));
+        EXPECT_TRUE(Contains(m, "no live cloth")) << m;
+    }
+    const NamedCloth in_no_world[] = {
+        {"zero world", {c.index1, 0, c.generation, c.world_generation}},
+        {"world index past the world table", {c.index1, 0xFFFF, c.generation, c.world_generation}},
+        {"wrong world generation",
+         {c.index1, c.world1, c.generation, static_cast<uint16_t>(c.world_generation + 1)}},
+        {"cloth of a destroyed world", dead_cloth_},
+    };
+    for (const NamedCloth& b : in_no_world) {
+        SCOPED_TRACE(b.what);
+        EXPECT_REJECTED_NOT_LOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_get_particle_count(b.id, &outs_.count));
+        EXPECT_REJECTED_NOT_LOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_destroy(b.id));
+        const std::string m = MessageOf(cloth_get_particle_count(b.id, &outs_.count));
+        EXPECT_TRUE(Contains(m, "no live world")) << m;
+    }
+    EXPECT_REJECTED_NOT_LOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                               cloth_get_particle_count(cloth_null_id, &outs_.count));
+    EXPECT_TRUE(
+        Contains(MessageOf(cloth_get_particle_count(cloth_null_id, &outs_.count)), "cloth handle is null"));
+
+    // Fabrics the same way.
+    const cloth_fabric_id f = a_.fabric;
+    const cloth_fabric_id stale_fabric_in_live_world = {
+        f.index1, f.world1, static_cast<uint16_t>(f.generation + 1), f.world_generation};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE,
+                    cloth_fabric_get_particle_count(stale_fabric_in_live_world, &outs_.count));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE,
+                    cloth_fabric_get_particle_count(a_.freed_fabric, &outs_.count));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_fabric_destroy(a_.freed_fabric));
+    EXPECT_TRUE(Contains(MessageOf(cloth_fabric_get_particle_count(a_.freed_fabric, &outs_.count)),
+                         "no live fabric"));
+    EXPECT_REJECTED_NOT_LOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                               cloth_fabric_get_particle_count(dead_fabric_, &outs_.count));
+    EXPECT_REJECTED_NOT_LOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_fabric_destroy(dead_fabric_));
+    EXPECT_REJECTED_NOT_LOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                               cloth_fabric_get_particle_count(cloth_null_fabric_id, &outs_.count));
+
+    // Worlds: a bad world handle names no live world.
+    const float gravity[3] = {0.0f, -1.0f, 0.0f};
+    EXPECT_REJECTED_NOT_LOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_world_set_gravity(dead_world_, gravity));
+    EXPECT_REJECTED_NOT_LOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                               cloth_world_set_gravity(cloth_null_world_id, gravity));
+    EXPECT_TRUE(
+        Contains(MessageOf(cloth_world_set_gravity(cloth_null_world_id, gravity)), "world handle is null"));
+    EXPECT_TRUE(Contains(MessageOf(cloth_world_set_gravity(dead_world_, gravity)), "no live world"));
+
+    // Bodies and colliders: none exist in this world, so any id of it names no live one.
+    const cloth_body_id body{1, a_.world.index1, 1, a_.world.generation};
+    const float p[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_body_set_pose(body, p, q));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_body_destroy(body));
+    EXPECT_TRUE(Contains(MessageOf(cloth_body_set_pose(body, p, q)), "no live body"));
+    EXPECT_REJECTED_NOT_LOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_body_set_pose(cloth_null_body_id, p, q));
+    const cloth_collider_id collider{1, a_.world.index1, 1, a_.world.generation};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_collider_set_group_bits(collider, 3));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_collider_destroy(collider));
+    EXPECT_TRUE(Contains(MessageOf(cloth_collider_set_group_bits(collider, 3)), "no live collider"));
+    EXPECT_REJECTED_NOT_LOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                               cloth_collider_set_group_bits(cloth_null_collider_id, 3));
+
+    // A handle argument beside a live one: the call's world logs it.
+    const uint32_t index[] = {0};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE,
+                    cloth_attach(a_.cloth, cloth_null_body_id, index, nullptr, 1));
+    EXPECT_TRUE(Contains(MessageOf(cloth_attach(a_.cloth, cloth_null_body_id, index, nullptr, 1)),
+                         "body handle is null"));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_attach(a_.cloth, body, index, nullptr, 1));
+    cloth_collider_desc on_body = cloth_default_collider_desc();
+    on_body.body = body;
+    cloth_collider_id out_collider{};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE,
+                    cloth_collider_create_sphere(a_.world, &on_body, 1.0f, &out_collider));
+    EXPECT_TRUE(Contains(MessageOf(cloth_collider_create_sphere(a_.world, &on_body, 1.0f, &out_collider)),
+                         "no live body"));
+}
+
+TEST_F(BadInput, ANullFabricInAClothDescIsReportedAsNullAndAForeignOneAsOfAnotherWorld) {
+    cloth_desc desc = ValidClothDesc();
+    desc.fabric = cloth_null_fabric_id;
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_create(a_.world, &desc, &outs_.cloth));
+    std::string m = MessageOf(cloth_create(a_.world, &desc, &outs_.cloth));
+    EXPECT_TRUE(Contains(m, "fabric handle is null")) << m;
+    EXPECT_FALSE(Contains(m, "another world")) << m;
+
+    desc.fabric = b_.fabric;  // alive, in the twin world
+    m = MessageOf(cloth_create(a_.world, &desc, &outs_.cloth));
+    EXPECT_TRUE(Contains(m, "another world")) << m;
+
+    desc.fabric = a_.freed_fabric;  // this world's, destroyed
+    m = MessageOf(cloth_create(a_.world, &desc, &outs_.cloth));
+    EXPECT_TRUE(Contains(m, "no live fabric")) << m;
+    EXPECT_FALSE(Contains(m, "another world")) << m;
+
+    cloth_collider_desc on_null_world_body = cloth_default_collider_desc();
+    on_null_world_body.body = cloth_body_id{1, 0, 1, 0};
+    cloth_collider_id out{};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE,
+                    cloth_collider_create_sphere(a_.world, &on_null_world_body, 1.0f, &out));
+    m = MessageOf(cloth_collider_create_sphere(a_.world, &on_null_world_body, 1.0f, &out));
+    EXPECT_TRUE(Contains(m, "another world")) << m;
+}
+
 TEST_F(BadInput, DestroyingTwiceReturnsInvalidHandleTheSecondTime) {
     check_twin_ = false;
     cloth_id extra{};

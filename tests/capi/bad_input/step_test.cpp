@@ -16,6 +16,51 @@ TEST_F(BadInput, StepWithDtNotInZeroToOneReturnsInvalidValueAndAdvancesNothing) 
     }
 }
 
+// A dt inside (0, 1] but below CLOTH_MIN_DT (denormals among them) is the
+// caller's range error, refused before any cloth moves, for every solver.
+TEST_F(BadInput, StepWithDtBelowTheMinimumReturnsInvalidValueForEverySolverAndAdvancesNothing) {
+    const float tiny[] = {
+        std::numeric_limits<float>::denorm_min(), 1e-40f, std::numeric_limits<float>::min(), 1e-30f, 1e-7f,
+        std::nextafter(CLOTH_MIN_DT, 0.0f)};
+    for (cloth_solver_kind kind : {CLOTH_SOLVER_DEFAULT, CLOTH_SOLVER_JACOBI, CLOTH_SOLVER_CG,
+                                   CLOTH_SOLVER_EXPLICIT, CLOTH_SOLVER_PCG, CLOTH_SOLVER_CHEBYSHEV}) {
+        cloth_solver_settings solver = cloth_default_solver_settings();
+        solver.kind = kind;
+        solver.substeps = 4;
+        for (const Scene* s : {&a_, &b_}) {
+            ASSERT_EQ(cloth_set_solver(s->cloth, &solver), CLOTH_OK);
+            ASSERT_EQ(cloth_set_solver(s->other, &solver), CLOTH_OK);
+        }
+        for (float dt : tiny) {
+            SCOPED_TRACE("solver " + std::to_string(kind) + ", dt = " + std::to_string(dt));
+            EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_step(a_.world, dt));
+        }
+    }
+}
+
+// The smallest dt steps every solver kind, with the most substeps, pins
+// moving and a carrier, to a finite state.
+TEST_F(BadInput, StepWithTheMinimumDtAdvancesEverySolverFinitely) {
+    check_twin_ = false;
+    const uint32_t corner[] = {0};
+    const float target[3] = {1e-6f, 0.0f, 0.0f};  // 1 m/s over one step
+    for (cloth_solver_kind kind : {CLOTH_SOLVER_DEFAULT, CLOTH_SOLVER_JACOBI, CLOTH_SOLVER_CG,
+                                   CLOTH_SOLVER_EXPLICIT, CLOTH_SOLVER_PCG, CLOTH_SOLVER_CHEBYSHEV}) {
+        SCOPED_TRACE("solver " + std::to_string(kind));
+        cloth_solver_settings solver = cloth_default_solver_settings();
+        solver.kind = kind;
+        solver.substeps = CLOTH_MAX_SUBSTEPS;
+        ASSERT_EQ(cloth_set_solver(a_.cloth, &solver), CLOTH_OK);
+        ASSERT_EQ(cloth_set_pin_targets(a_.cloth, corner, target, 1), CLOTH_OK);
+        for (int frame = 0; frame < 3; ++frame) {
+            EXPECT_EQ(cloth_step(a_.world, CLOTH_MIN_DT), CLOTH_OK) << cloth_get_last_error();
+        }
+        const ClothState state = ReadState(a_.cloth);
+        EXPECT_TRUE(AllFinite(state.positions));
+        EXPECT_TRUE(AllFinite(state.velocities));
+    }
+}
+
 TEST_F(BadInput, StepWithNonFiniteDtReturnsNotFiniteAndAdvancesNothing) {
     for (float dt : {kNaN, kInf, -kInf}) {
         SCOPED_TRACE("dt = " + std::to_string(dt));

@@ -8,7 +8,7 @@
 namespace cloth_test {
 namespace {
 
-constexpr int kLastResultCode = CLOTH_ERROR_OVER_BUDGET;
+constexpr int kLastResultCode = CLOTH_ERROR_CORRUPT_SNAPSHOT;
 
 template <typename T>
 std::string str(const T& value) {
@@ -289,6 +289,13 @@ std::vector<std::string> rejection_problems(cloth_result expected, const CallOut
         problems.push_back("cloth_get_last_error() is not \"\" on a thread that made no call");
     if (o.error_after_null) problems.push_back("cloth_get_last_error() returned NULL after the call");
     if (o.error_after.empty()) problems.push_back("the call failed, but cloth_get_last_error() is empty");
+    if (logged == Logged::kNo) {
+        if (!errors.empty()) {
+            problems.push_back("the call names no live world, yet a world's log received \"" +
+                               errors.back().message + "\"");
+        }
+        return problems;
+    }
     if (logged == Logged::kYes || !errors.empty()) {
         if (errors.size() != 1) {
             problems.push_back("the world's log received " + str(errors.size()) +

@@ -113,7 +113,8 @@ CallOutcome call_on_fresh_thread(const std::function<cloth_result()>& call);
 
 enum class Logged {
     kYes,    // the world's log received exactly one error, with the call's code and message
-    kMaybe,  // a call whose handle names no live world: no error logged, or one as above
+    kMaybe,  // no error logged, or one as above
+    kNo,     // a call that names no live world: no log hears of it (cloth.h, "Which log hears of an error")
 };
 
 // Each clause of the rejection contract `outcome` broke (empty if none):

@@ -34,6 +34,9 @@ void ExpectRejected(const Watch& watch, const CountingAllocator& host, cloth_res
 // For a call whose handle names no live world, so that no log need hear of it.
 #define EXPECT_REJECTED_MAYBE_LOGGED(expected, call) \
     CLOTH_EXPECT_REJECTED_((expected), call, ::cloth_test::Logged::kMaybe)
+// For a call that names no live world: no log may hear of it.
+#define EXPECT_REJECTED_NOT_LOGGED(expected, call) \
+    CLOTH_EXPECT_REJECTED_((expected), call, ::cloth_test::Logged::kNo)
 #define CLOTH_EXPECT_REJECTED_(expected, call, logged)                                         \
     do {                                                                                       \
         const ::testing::ScopedTrace cloth_call_site_(__FILE__, __LINE__, #call);              \
