@@ -5,6 +5,7 @@
 
 #include <cstring>
 
+#include "collide/self_collision.h"
 #include "jobs/task_system.h"
 #include "test_support.h"
 
@@ -109,6 +110,64 @@ TEST(StepStages, EveryParticleStageHasOneTaskPerGroupOfAtMostGroupSizeParticles)
     EXPECT_TRUE(cloth.end_frame().ok());
     // Air, forces, assembly, one sweep, integration.
     EXPECT_EQ(stages, 5u);
+}
+
+// The stage of every round of one frame, consecutive repeats (a solver's
+// iterations, strain-limit rounds, projection passes) folded into one.
+std::vector<Stage> stage_sequence(ClothInstance& cloth) {
+    std::vector<Stage> seen;
+    cloth.begin_frame(1.0f / 60.0f, kGravity);
+    while (!cloth.frame_done()) {
+        cloth.prepare_stage();
+        if (seen.empty() || seen.back() != cloth.stage()) seen.push_back(cloth.stage());
+        for (uint32_t t = 0; t < cloth.task_count(); ++t) cloth.run_task(t, 0);
+        cloth.finish_stage();
+    }
+    EXPECT_TRUE(cloth.end_frame().ok());
+    return seen;
+}
+
+// The order frame_plan.cpp writes down, with every optional stage on: air,
+// a staged solver, a strain limit and self-collision, over two substeps.
+TEST(StepStages, AFrameRunsThePlannedStagesInThePlannedOrderEverySubstep) {
+    auto fabric = make_grid(40, 30);
+    SolverSettings solver;
+    solver.kind = CLOTH_SOLVER_PCG;
+    solver.iterations = 4;
+    solver.substeps = 2;
+    solver.strain_limit.max_strain = 0.05f;
+    ClothInstance cloth(cloth::testing::heap(), fabric, Material{}, solver, AeroParams{});
+    cloth.pin(0);
+    SelfCollisionSettings self;
+    self.thickness = 0.5f * mean_rest_edge(*fabric);
+    cloth.set_self_collision(&self);
+    const std::vector<Stage> substep = {
+        Stage::kAir,          Stage::kForces,      Stage::kAssemble,      Stage::kIterativeSolve,
+        Stage::kIntegrate,    Stage::kStrainLimit, Stage::kSelfCollision, Stage::kSelfSort,
+        Stage::kSelfContacts, Stage::kSelfProject, Stage::kSelfRespond};
+    std::vector<Stage> expected = substep;
+    expected.insert(expected.end(), substep.begin(), substep.end());
+    const std::vector<Stage> seen = stage_sequence(cloth);
+    ASSERT_EQ(seen.size(), expected.size());
+    for (size_t i = 0; i < seen.size(); ++i) {
+        EXPECT_EQ(seen[i], expected[i])
+            << i << ": " << stage_name(seen[i]) << " where the plan has " << stage_name(expected[i]);
+    }
+}
+
+// A feature that is off adds no stage; the explicit baseline replaces the
+// assembly, the solve and the implicit integration.
+TEST(StepStages, StagesThatAreOffAreNotRun) {
+    auto fabric = make_grid(40, 30);
+    SolverSettings solver;
+    solver.kind = CLOTH_SOLVER_EXPLICIT;
+    AeroParams still;
+    still.air_density = 0;
+    ClothInstance cloth(cloth::testing::heap(), fabric, Material{}, solver, still);
+    const std::vector<Stage> seen = stage_sequence(cloth);
+    ASSERT_EQ(seen.size(), 2u);
+    EXPECT_EQ(seen[0], Stage::kForces);
+    EXPECT_EQ(seen[1], Stage::kExplicit);
 }
 
 }  // namespace
