@@ -22,6 +22,14 @@ bool same_bits(const T& a, const T& b) {
     return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
+// A settings or stats struct read through its getter: zeroed, struct_size set.
+template <class T, class Id>
+cloth_result read_struct(cloth_result (*get)(Id, T*), Id id, T& out) {
+    std::memset(&out, 0, sizeof out);
+    out.struct_size = sizeof out;
+    return get(id, &out);
+}
+
 std::string read_failed(const char* call, cloth_result r) {
     return std::string(call) + " failed while reading the state: " + result_name(r) + " " +
            cloth_get_last_error();
@@ -75,23 +83,15 @@ std::string read_cloth_state(cloth_id cloth, ClothState* out) {
             CLOTH_OK)
             return read_failed("cloth_get_attachment", r);
     }
-    std::memset(&s.solver, 0, sizeof s.solver);
-    s.solver.struct_size = sizeof s.solver;
-    if ((r = cloth_get_solver(cloth, &s.solver)) != CLOTH_OK) return read_failed("cloth_get_solver", r);
-    std::memset(&s.strain_limit, 0, sizeof s.strain_limit);
-    s.strain_limit.struct_size = sizeof s.strain_limit;
-    if ((r = cloth_get_strain_limit(cloth, &s.strain_limit)) != CLOTH_OK)
+    if ((r = read_struct(cloth_get_solver, cloth, s.solver)) != CLOTH_OK)
+        return read_failed("cloth_get_solver", r);
+    if ((r = read_struct(cloth_get_strain_limit, cloth, s.strain_limit)) != CLOTH_OK)
         return read_failed("cloth_get_strain_limit", r);
-    std::memset(&s.stats, 0, sizeof s.stats);
-    s.stats.struct_size = sizeof s.stats;
-    if ((r = cloth_get_stats(cloth, &s.stats)) != CLOTH_OK) return read_failed("cloth_get_stats", r);
-    std::memset(&s.collision, 0, sizeof s.collision);
-    s.collision.struct_size = sizeof s.collision;
-    if ((r = cloth_get_collision(cloth, &s.collision)) != CLOTH_OK)
+    if ((r = read_struct(cloth_get_stats, cloth, s.stats)) != CLOTH_OK)
+        return read_failed("cloth_get_stats", r);
+    if ((r = read_struct(cloth_get_collision, cloth, s.collision)) != CLOTH_OK)
         return read_failed("cloth_get_collision", r);
-    std::memset(&s.self_collision, 0, sizeof s.self_collision);
-    s.self_collision.struct_size = sizeof s.self_collision;
-    if ((r = cloth_get_self_collision(cloth, &s.self_collision)) != CLOTH_OK)
+    if ((r = read_struct(cloth_get_self_collision, cloth, s.self_collision)) != CLOTH_OK)
         return read_failed("cloth_get_self_collision", r);
     if ((r = read_flag(cloth_get_teleported, cloth, &s.teleported)) != CLOTH_OK)
         return read_failed("cloth_get_teleported", r);
