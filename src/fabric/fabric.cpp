@@ -36,6 +36,13 @@ Fabric::Fabric(const HostMemory* memory)
 
 namespace {
 
+// |b - a| formed as the spring terms form a length (springs.h), so a spring
+// at rest has a stretch of exactly zero.
+float spring_length(const Vec3& a, const Vec3& b) {
+    const float dx = b.x() - a.x(), dy = b.y() - a.y(), dz = b.z() - a.z();
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
 // Build CSR lists: for each particle, the items (in increasing item order)
 // that touch it. `ends(item, out)` writes the particles an item touches.
 template <class Ends>
@@ -119,7 +126,7 @@ Status finish_fabric(const std::vector<SpringSpec>& springs, Fabric& f) {
     f.spring_kind.resize(count);
     for (uint32_t s = 0; s < count; ++s) {
         const SpringSpec& spec = springs[s];
-        const float length = (f.rest_positions[spec.j] - f.rest_positions[spec.i]).norm();
+        const float length = spring_length(f.rest_positions[spec.i], f.rest_positions[spec.j]);
         if (!(length > 0.0f)) {
             return Status::error(CLOTH_ERROR_DEGENERATE_GEOMETRY,
                                  "particles %u and %u coincide (zero-length spring)", spec.i, spec.j);
@@ -188,11 +195,10 @@ uint64_t fabric_identity(const Fabric& f) {
     add(f.spring_kind);
     add(f.particle_of_vertex);
     for (const SpringFamily& family : f.grid_families) {
-        const float rest = family.rest_length;
         const uint32_t shape[] = {family.offset, static_cast<uint32_t>(family.kind)};
         h = hash_bytes(shape, sizeof shape, h);
-        h = hash_bytes(&rest, sizeof rest, h);
         add(family.mask);
+        add(family.rest_length);
     }
     return h;
 }
@@ -268,14 +274,15 @@ Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
         SpringFamily& family = f.grid_families.emplace_back(f.memory);
         family.offset = static_cast<uint32_t>(d.dr * static_cast<int>(cols) + d.dc);
         family.kind = d.kind;
-        family.rest_length = (u * (static_cast<float>(d.dc) / static_cast<float>(cols - 1)) +
-                              v * (static_cast<float>(d.dr) / static_cast<float>(rows - 1)))
-                                 .norm();
         family.mask.assign(static_cast<size_t>(cols) * rows, 0.0f);
+        family.rest_length.assign(static_cast<size_t>(cols) * rows, 0.0f);
         for (uint32_t r = 0; r + d.dr < rows; ++r) {
             for (uint32_t c = 0; c < cols; ++c) {
                 const int to = static_cast<int>(c) + d.dc;
-                if (to >= 0 && to < static_cast<int>(cols)) family.mask[index(c, r)] = 1.0f;
+                if (to < 0 || to >= static_cast<int>(cols)) continue;
+                const uint32_t p = index(c, r);
+                family.mask[p] = 1.0f;
+                family.rest_length[p] = spring_length(f.rest_positions[p], f.rest_positions[p + family.offset]);
             }
         }
     }

@@ -25,14 +25,18 @@ enum SpringKind : uint8_t { kStructural = 0, kShear = 1, kBend = 2, kSpringKindC
 
 // A regular grid's springs grouped by direction: family f joins particle p
 // to p + offset wherever mask[p] is 1 (columns at the edge have no
-// neighbour on that side).
+// neighbour on that side), with rest length rest_length[p]: the distance
+// between the two float rest positions, which differs from spring to
+// spring in the last bits (one length per family would leave springs a
+// few micrometres off rest, a stiffness no one asked for).
 struct SpringFamily {
-    explicit SpringFamily(const HostMemory* memory) : mask(HostAllocator<float>(memory)) {}
+    explicit SpringFamily(const HostMemory* memory)
+        : mask(HostAllocator<float>(memory)), rest_length(HostAllocator<float>(memory)) {}
 
     uint32_t offset = 0;
     SpringKind kind = kStructural;
-    float rest_length = 0;
     HostVector<float> mask;
+    HostVector<float> rest_length;  // per first particle; 0 where mask is 0
 };
 
 // Incidence lists laid out for vectorized gathers. Particles are taken in

@@ -18,8 +18,9 @@ namespace {
 // Every array is a __restrict parameter so GCC vectorizes the loops.
 // kCable: with the strain cable (springs.h).
 template <bool kCable>
-CLOTH_HOT_LOOP void evaluate_family_kernel(uint32_t begin, uint32_t end, uint32_t offset, float rest, float k,
-                                           float c, float h, SpringModel model, const float* __restrict mask,
+CLOTH_HOT_LOOP void evaluate_family_kernel(uint32_t begin, uint32_t end, uint32_t offset, float k, float c,
+                                           float h, SpringModel model, const float* __restrict mask,
+                                           const float* __restrict rest,
                                            const float* __restrict px, const float* __restrict py,
                                            const float* __restrict pz, const float* __restrict vx,
                                            const float* __restrict vy, const float* __restrict vz,
@@ -35,7 +36,7 @@ CLOTH_HOT_LOOP void evaluate_family_kernel(uint32_t begin, uint32_t end, uint32_
         // which zeroes the whole term.
         const SpringTerm t =
             spring_term<kCable>(px[j] - px[p], py[j] - py[p], pz[j] - pz[p], vx[j] - vx[p], vy[j] - vy[p],
-                                vz[j] - vz[p], rest, k * mask[p], c * mask[p], h, model);
+                                vz[j] - vz[p], rest[p], k * mask[p], c * mask[p], h, model);
         fx[p] = t.fx;
         fy[p] = t.fy;
         fz[p] = t.fz;
@@ -173,8 +174,8 @@ class GridSprings final : public SpringTerms {
         for (size_t f = 0; f < terms_.size(); ++f) {
             const SpringFamily& family = fabric_->grid_families[f];
             FamilyTerms& t = terms_[f];
-            kernel(begin, std::min(end, n - family.offset), family.offset, family.rest_length, t.stiffness,
-                   t.damping, h, model, family.mask.data(), x.x.data(), x.y.data(), x.z.data(), v.x.data(),
+            kernel(begin, std::min(end, n - family.offset), family.offset, t.stiffness, t.damping, h, model,
+                   family.mask.data(), family.rest_length.data(), x.x.data(), x.y.data(), x.z.data(), v.x.data(),
                    v.y.data(), v.z.data(), t.force.x.data() + pad, t.force.y.data() + pad,
                    t.force.z.data() + pad, t.block.xx.data() + pad, t.block.xy.data() + pad,
                    t.block.xz.data() + pad, t.block.yy.data() + pad, t.block.yz.data() + pad,

@@ -152,9 +152,9 @@ TEST(Fabric, GridFamiliesHoldExactlyTheGridSprings) {
             if (family.mask[p] == 0.0f) continue;
             ASSERT_LT(p + family.offset, c * r);
             ++per_kind[family.kind];
-            // The family's rest length is the distance at rest.
+            // The spring's rest length is the distance at rest.
             const float rest = (fabric->rest_positions[p + family.offset] - fabric->rest_positions[p]).norm();
-            EXPECT_NEAR(family.rest_length, rest, 1e-6f);
+            EXPECT_NEAR(family.rest_length[p], rest, 1e-6f);
         }
     }
     for (int k = 0; k < kSpringKindCount; ++k)
