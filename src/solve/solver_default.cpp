@@ -5,15 +5,18 @@
 
 namespace cloth {
 
-float stiffness_over_mass(const Material& material, const float* mass, const float* pinned, uint32_t count) {
-    float k = 0;
-    for (const SpringParams& s : material.springs) k = std::max(k, s.stiffness);
-    float m = 0;
-    for (uint32_t i = 0; i < count; ++i) {
+float stiffness_over_mass(const Fabric& fabric, const Material& material, const float* mass,
+                          const float* pinned) {
+    float largest = 0;
+    for (uint32_t i = 0; i < fabric.particle_count(); ++i) {
         if (pinned[i] != 0.0f) continue;
-        m = m == 0 ? mass[i] : std::min(m, mass[i]);
+        float k = 0;
+        for (uint32_t e = fabric.incidence_offset[i]; e < fabric.incidence_offset[i + 1]; ++e) {
+            k += material.springs[fabric.spring_kind[fabric.incidence_spring[e]]].stiffness;
+        }
+        largest = std::max(largest, k / mass[i]);
     }
-    return m > 0 ? k / m : 0.0f;
+    return largest;
 }
 
 SolverSettings resolve_solver(const SolverSettings& requested, float dt, float stiffness_per_mass) {
@@ -22,14 +25,15 @@ SolverSettings resolve_solver(const SolverSettings& requested, float dt, float s
     out.kind = CLOTH_SOLVER_PCG;
     out.iterations = kDefaultPcgIterations;
     out.cg_tolerance = kDefaultPcgTolerance;
-    // Substeps: the fewest that bring the substep's gamma to kDefaultSubstepGamma
-    // (gamma falls with the square of the substep count). The gamma is the
+    // Substeps: the fewest that bring the substep's Gamma to kDefaultSubstepGamma
+    // (Gamma falls with the square of the substep count). The Gamma is the
     // springs' own: a taut strain cable is 101 times as stiff, and the choice
     // does not count it (it would multiply the cost of every stiff cloth);
     // docs/stability.md measures where this holds, and the few cells of
     // 1/30-1/10 s steps of soft, heavy cloth where it gains energy.
     const double gamma = static_cast<double>(dt) * dt * stiffness_per_mass;
-    const double wanted = std::ceil(std::sqrt(gamma / kDefaultSubstepGamma));
+    const double wanted = std::max(std::ceil(std::sqrt(gamma / kDefaultSubstepGamma)),
+                                   std::ceil(static_cast<double>(dt) / kDefaultLongestSubstep - 1e-6));
     const uint32_t substeps = static_cast<uint32_t>(
         std::min<double>(std::max(wanted, 1.0), static_cast<double>(kDefaultMaxSubsteps)));
     out.substeps = std::max(requested.substeps, substeps);
