@@ -81,6 +81,17 @@ RunResult run_scene(const cloth_samples::SceneConfig& config, float dt, uint32_t
     return out;
 }
 
+double jacobi_k1_ms(const cloth_samples::SceneConfig& config, float dt) {
+    cloth_samples::SceneConfig jacobi = config;
+    jacobi.solver = cloth_default_solver_settings();
+    jacobi.solver.kind = CLOTH_SOLVER_JACOBI;
+    jacobi.solver.iterations = 1;
+    jacobi.solver.substeps = 1;
+    jacobi.strain_limit = 0;
+    constexpr uint32_t kFrames = 60;
+    return run_scene(jacobi, dt, kFrames).ms_per_frame;
+}
+
 double rms_distance(const std::vector<float>& a, const std::vector<float>& b) {
     if (a.size() != b.size() || a.empty()) return INFINITY;
     double sum = 0;

@@ -24,6 +24,14 @@ struct RunResult {
 
 RunResult run_scene(const cloth_samples::SceneConfig& config, float dt, uint32_t frames);
 
+// The unit every cost is quoted in: the median wall time of one frame of
+// `dt` of the same scene (resolution, stiffness, wind) stepped with the
+// paper's method, JACOBI with one sweep and one substep, timed here so the
+// ratio compares two runs of the same process on the same machine state.
+// Frames after a failed step (JACOBI k=1 blows up in some scenes) are not
+// timed.
+double jacobi_k1_ms(const cloth_samples::SceneConfig& config, float dt);
+
 // Root-mean-square distance between two position sets (same particle count).
 double rms_distance(const std::vector<float>& a, const std::vector<float>& b);
 

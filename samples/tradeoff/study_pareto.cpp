@@ -25,6 +25,8 @@ struct Row {
     RunResult run;
     double error;        // RMS position error at the end, m
     double ms_per_60hz;  // wall time per 1/60 s of simulated time, ms
+    double x_jacobi;     // ms_per_60hz over one JACOBI k=1 frame of 1/60 s of the scene
+    bool kind_front;     // on the Pareto front of its solver kind in its scene
     bool holds;          // finite, max strain < 10 %, no energy gain (wind: no late rise)
 };
 
@@ -39,6 +41,20 @@ std::string setting_name(const Row& r) {
     return buffer;
 }
 
+// Whether another finite setting of the same scene (and, if same_kind, the
+// same solver kind) is at least as good in both error and cost and better in one.
+bool dominated_by_any(const std::vector<Row>& rows, const Row& r, bool same_kind) {
+    for (const Row& other : rows) {
+        if (other.scene != r.scene || !std::isfinite(other.error) || &other == &r) continue;
+        if (same_kind && other.kind != r.kind) continue;
+        if (other.error <= r.error && other.ms_per_60hz <= r.ms_per_60hz &&
+            (other.error < r.error || other.ms_per_60hz < r.ms_per_60hz)) {
+            return true;
+        }
+    }
+    return false;
+}
+
 }  // namespace
 
 int run_pareto(const ParetoOptions& o) {
@@ -50,7 +66,7 @@ int run_pareto(const ParetoOptions& o) {
     if (csv) {
         std::fprintf(csv,
                      "scene,solver,iterations,substeps,dt,ms_per_frame,ms_per_60hz,error_m,max_strain,"
-                     "mean_strain,energy_gain,late_energy_rise,holds\n");
+                     "mean_strain,energy_gain,late_energy_rise,holds,x_jacobi_k1,kind_front\n");
     }
     std::vector<Row> rows;
     const float dts[] = {1.0f / 30.0f, 1.0f / 60.0f, 1.0f / 120.0f};
@@ -87,15 +103,18 @@ int run_pareto(const ParetoOptions& o) {
                                                {},
                                                0,
                                                0,
+                                               0,
+                                               false,
                                                false});
                     }
                 }
             }
             settings.push_back(
-                Row{cloth_samples::scene_name(scene), CLOTH_SOLVER_CG, 1, 1, dt, {}, 0, 0, false});
+                Row{cloth_samples::scene_name(scene), CLOTH_SOLVER_CG, 1, 1, dt, {}, 0, 0, 0, false, false});
             settings.push_back(
-                Row{cloth_samples::scene_name(scene), CLOTH_SOLVER_DEFAULT, 1, 1, dt, {}, 0, 0, false});
+                Row{cloth_samples::scene_name(scene), CLOTH_SOLVER_DEFAULT, 1, 1, dt, {}, 0, 0, 0, false, false});
         }
+        const double unit = jacobi_k1_ms(base, 1.0f / 60.0f);
         for (Row& row : settings) {
             SceneConfig config = base;
             config.solver.kind = row.kind;
@@ -106,42 +125,39 @@ int run_pareto(const ParetoOptions& o) {
             row.run.energy_gain = row.run.ok ? row.run.energy_gain : INFINITY;
             row.error = row.run.ok ? rms_distance(row.run.positions, reference.positions) : INFINITY;
             row.ms_per_60hz = row.run.ms_per_frame * (1.0 / 60.0) / row.dt;
+            row.x_jacobi = row.ms_per_60hz / unit;
             const bool wind = scene == SceneKind::kFlagInWind;
             row.holds = row.run.ok && row.run.max_strain < 0.1 &&
                         (wind ? row.run.late_energy_rise < 0.5 : row.run.energy_gain < 1e-2);
-            if (csv) {
-                std::fprintf(csv, "%s,%s,%u,%u,%.6f,%.4f,%.4f,%.6g,%.5g,%.5g,%.5g,%.5g,%d\n",
-                             row.scene.c_str(), kind_name(row.kind), row.iterations, row.substeps,
-                             double(row.dt), row.run.ms_per_frame, row.ms_per_60hz, row.error,
-                             row.run.max_strain, row.run.mean_strain, row.run.energy_gain,
-                             row.run.late_energy_rise, row.holds ? 1 : 0);
-                std::fflush(csv);
-            }
             rows.push_back(row);
         }
     }
-    if (csv) std::fclose(csv);
+    // Each kind's own front in its scene, for the plot's lines.
+    for (Row& r : rows) {
+        r.kind_front = std::isfinite(r.error) && !dominated_by_any(rows, r, true);
+    }
+    if (csv) {
+        for (const Row& row : rows) {
+            std::fprintf(csv, "%s,%s,%u,%u,%.6f,%.4f,%.4f,%.6g,%.5g,%.5g,%.5g,%.5g,%d,%.2f,%d\n",
+                         row.scene.c_str(), kind_name(row.kind), row.iterations, row.substeps, double(row.dt),
+                         row.run.ms_per_frame, row.ms_per_60hz, row.error, row.run.max_strain,
+                         row.run.mean_strain, row.run.energy_gain, row.run.late_energy_rise, row.holds ? 1 : 0,
+                         row.x_jacobi, row.kind_front ? 1 : 0);
+        }
+        std::fclose(csv);
+    }
 
     // Markdown: the Pareto front per scene (finite settings no other setting
     // beats in both error and cost), with whether each holds.
     std::printf("### Pareto front at %ux%u, k = %g N/m, %.2f s simulated\n\n", o.resolution, o.resolution,
                 double(o.stiffness), double(o.seconds));
     std::printf(
-        "| scene | setting | ms per 1/60 s | RMS error (mm) | max strain | energy gain (J) | holds |\n");
-    std::printf("| --- | --- | ---: | ---: | ---: | ---: | --- |\n");
+        "| scene | setting | ms per 1/60 s | x JACOBI k=1 | RMS error (mm) | max strain | energy gain (J) | holds "
+        "|\n");
+    std::printf("| --- | --- | ---: | ---: | ---: | ---: | ---: | --- |\n");
     std::vector<const Row*> front;
     for (const Row& r : rows) {
-        if (!std::isfinite(r.error)) continue;
-        bool dominated = false;
-        for (const Row& other : rows) {
-            if (other.scene != r.scene || !std::isfinite(other.error) || &other == &r) continue;
-            if (other.error <= r.error && other.ms_per_60hz <= r.ms_per_60hz &&
-                (other.error < r.error || other.ms_per_60hz < r.ms_per_60hz)) {
-                dominated = true;
-                break;
-            }
-        }
-        if (!dominated) front.push_back(&r);
+        if (std::isfinite(r.error) && !dominated_by_any(rows, r, false)) front.push_back(&r);
     }
     // Scenes stay in study order; within a scene, cheapest first.
     auto order = [&](const Row* r) {
@@ -154,9 +170,9 @@ int run_pareto(const ParetoOptions& o) {
     });
     std::string last_scene;
     for (const Row* r : front) {
-        std::printf("| %s | %s | %.3f | %.3g | %.3f | %.3g | %s |\n",
+        std::printf("| %s | %s | %.3f | %.1f | %.3g | %.3f | %.3g | %s |\n",
                     r->scene == last_scene ? "" : r->scene.c_str(), setting_name(*r).c_str(), r->ms_per_60hz,
-                    1e3 * r->error, r->run.max_strain, r->run.energy_gain, r->holds ? "yes" : "no");
+                    r->x_jacobi, 1e3 * r->error, r->run.max_strain, r->run.energy_gain, r->holds ? "yes" : "no");
         last_scene = r->scene;
     }
     return 0;
