@@ -5,18 +5,15 @@
 
 namespace cloth {
 
-float stiffness_over_mass(const Fabric& fabric, const Material& material, const float* mass,
-                          const float* pinned) {
-    float largest = 0;
-    for (uint32_t i = 0; i < fabric.particle_count(); ++i) {
+float stiffness_over_mass(const Material& material, const float* mass, const float* pinned, uint32_t count) {
+    float k = 0;
+    for (const SpringParams& s : material.springs) k = std::max(k, s.stiffness);
+    float m = 0;
+    for (uint32_t i = 0; i < count; ++i) {
         if (pinned[i] != 0.0f) continue;
-        float k = 0;
-        for (uint32_t e = fabric.incidence_offset[i]; e < fabric.incidence_offset[i + 1]; ++e) {
-            k += material.springs[fabric.spring_kind[fabric.incidence_spring[e]]].stiffness;
-        }
-        largest = std::max(largest, k / mass[i]);
+        m = m == 0 ? mass[i] : std::min(m, mass[i]);
     }
-    return largest;
+    return m > 0 ? k / m : 0.0f;
 }
 
 SolverSettings resolve_solver(const SolverSettings& requested, float dt, float stiffness_per_mass) {
@@ -25,8 +22,8 @@ SolverSettings resolve_solver(const SolverSettings& requested, float dt, float s
     out.kind = CLOTH_SOLVER_PCG;
     out.iterations = kDefaultPcgIterations;
     out.cg_tolerance = kDefaultPcgTolerance;
-    // Substeps: the fewest that bring the substep's Gamma to kDefaultSubstepGamma
-    // (Gamma falls with the square of the substep count). The Gamma is the
+    // Substeps: the fewest that bring the substep's gamma to kDefaultSubstepGamma
+    // (gamma falls with the square of the substep count). The gamma is the
     // springs' own: a taut strain cable is 101 times as stiff, and the choice
     // does not count it (it would multiply the cost of every stiff cloth);
     // docs/stability.md measures where this holds, and the few cells of

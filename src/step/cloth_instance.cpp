@@ -64,7 +64,6 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
 void ClothInstance::set_material(const Material& material) {
     wake();
     material_ = material;
-    stiffness_per_mass_ = -1;
     const Fabric& f = *fabric_;
     for (uint32_t i = 0; i < f.particle_count(); ++i) {
         mass_[i] =
@@ -81,7 +80,6 @@ void ClothInstance::set_pinned(const uint32_t* indices, uint32_t count, bool pin
         pinned_[i] = pinned ? 1.0f : 0.0f;
         if (!pinned) contact_.detach(i);
     }
-    stiffness_per_mass_ = -1;
     pinned_list_.clear();  // keeps its capacity of one entry per particle
     for (uint32_t i = 0; i < particle_count(); ++i) {
         if (pinned_[i] != 0.0f) pinned_list_.push_back(i);

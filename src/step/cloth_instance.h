@@ -236,7 +236,6 @@ class ClothInstance {
     Material material_;
     SolverSettings solver_;
     SolverSettings frame_solver_;  // what this frame runs: solver_ with CLOTH_SOLVER_DEFAULT resolved
-    float stiffness_per_mass_ = -1;  // stiffness_over_mass, for the default's choice; < 0: not known yet
     AeroParams aero_;
 
     // State.

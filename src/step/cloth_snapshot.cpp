@@ -175,7 +175,6 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
         std::memcpy(a->data(), values, row);
         values += row;
     }
-    stiffness_per_mass_ = -1;
     pinned_list_.clear();
     for (uint32_t i = 0; i < n; ++i) {
         if (pinned_[i] != 0.0f) pinned_list_.push_back(i);

@@ -92,12 +92,12 @@ Status ClothInstance::step(float dt, const Vec3& gravity, TaskSystem* tasks) {
 }
 
 void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
-    // Only the default solver's choice depends on k / m (a pass over the
-    // springs, kept until the material, the masses or the pins change).
-    if (solver_.kind == CLOTH_SOLVER_DEFAULT && stiffness_per_mass_ < 0) {
-        stiffness_per_mass_ = stiffness_over_mass(*fabric_, material_, mass_.data(), pinned_.data());
-    }
-    frame_solver_ = resolve_solver(solver_, dt, std::max(stiffness_per_mass_, 0.0f));
+    // Only the default solver's choice depends on k / m (a pass over every particle).
+    const float stiffness_per_mass =
+        solver_.kind == CLOTH_SOLVER_DEFAULT
+            ? stiffness_over_mass(material_, mass_.data(), pinned_.data(), particle_count())
+            : 0.0f;
+    frame_solver_ = resolve_solver(solver_, dt, stiffness_per_mass);
     if (contact_.carrier().active() || frame_solver_.kind == CLOTH_SOLVER_EXPLICIT) {
         backup_ = Backup::kCopied;
         backup_x_ = x_;
