@@ -22,6 +22,7 @@
 #include "course.h"
 #include "course_checks.h"
 #include "flag_rig.h"
+#include "flag_trailing.h"
 #include "scene_render.h"
 #include "trace_writer.h"
 
@@ -67,6 +68,7 @@ struct Options {
     double budget_ms = 2.0;
     uint32_t threads = 1;
     std::string trace;
+    std::string trace_frames;  // "FIRST:LAST"; empty: the second around the jump
     std::string png = "vehicle_flag.png";
     std::string obj_dir;
     int obj_every = 10;
@@ -74,6 +76,9 @@ struct Options {
     float tolerance = 1e-3f;
     float max_strain = 1.0f;
     float max_speed = 120.0f;
+    double trail_speed = 10.0;     // m/s: the trailing check counts frames faster than this...
+    double trail_degrees = 30.0;   // ...where the free edge is within this of straight behind the pole
+    double trail_fraction = 0.9;   // in at least this share of them
 };
 
 struct Timings {
@@ -208,7 +213,9 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     app.add_option("--threads", o.threads, "cloth worker threads (1: the calling thread only)")
         ->check(CLI::Range(1, 256));
-    app.add_option("--trace", o.trace, "Chrome trace-event JSON of the run (empty: none)");
+    app.add_option("--trace", o.trace, "Chrome trace-event JSON of a window of the run (empty: none)");
+    app.add_option("--trace-frames", o.trace_frames,
+                   "frames the trace keeps, FIRST:LAST (default: the second around the jump)");
     app.add_option("--png", o.png, "picture of a few moments of the course (empty: none)");
     app.add_option("--obj-dir", o.obj_dir, "write the flag as OBJ files into this directory (empty: none)");
     app.add_option("--obj-every", o.obj_every, "write every Nth frame as OBJ")->check(CLI::Range(1, 1000000));
@@ -217,6 +224,12 @@ int main(int argc, char** argv) {
     app.add_option("--tolerance", o.tolerance, "check: penetration depth tolerated, m");
     app.add_option("--max-strain", o.max_strain, "check: bound on the flag's max structural strain");
     app.add_option("--max-speed", o.max_speed, "check: bound on the flag's max particle speed, m/s");
+    app.add_option("--trail-degrees", o.trail_degrees,
+                   "check: the free edge trails the pole within this of the reverse travel direction");
+    app.add_option("--trail-fraction", o.trail_fraction,
+                   "check: ... in at least this share of the frames above --trail-speed on the straight "
+                   "and in the slalom");
+    app.add_option("--trail-speed", o.trail_speed, "check: the trailing check counts frames above this, m/s");
     CLI11_PARSE(app, argc, argv);
 
     const Terrain terrain;
@@ -274,10 +287,13 @@ int main(int argc, char** argv) {
     int failed_steps = 0, frames_run = 0, bad_frames = 0;
     int carrier_teleports = 0, missed_teleports = 0;  // teleport handling fired / not when the course jumped
     Phase last_phase = driver.phase();
+    int jump_frame = -1;  // the first airborne frame, the centre of the default trace window
+    TrailingCount trailing;
 
     for (int frame = 0; o.frames == 0 || frame < o.frames; ++frame) {
         if (o.frames == 0 && driver.done()) break;
         const float time = frame * kDt;
+        trace.set_frame(frame);
         const double frame_start_us = trace.now_us();
 
         const Controls controls = driver.drive(time, vehicle);
@@ -329,6 +345,13 @@ int main(int argc, char** argv) {
                          stats.max_strain > o.max_strain || stats.max_speed > o.max_speed || teleport_wrong;
         bad_frames += bad;
         penetrations.add(p);
+        const Phase phase = driver.phase();
+        const bool on_the_straight = phase == Phase::kAccelerate || phase == Phase::kCruise ||
+                                     phase == Phase::kSlalom || phase == Phase::kToRamp;
+        if (on_the_straight && std::abs(vehicle.forward_speed()) > o.trail_speed) {
+            trailing.add(trailing_angle_degrees(flag.positions(), o.columns, o.rows, vehicle.chassis_velocity()),
+                         o.trail_degrees);
+        }
         worst_attach = std::max(worst_attach, attach);
         worst_strain = finite ? std::max(worst_strain, stats.max_strain) : INFINITY;
         worst_speed = finite ? std::max(worst_speed, stats.max_speed) : INFINITY;
@@ -342,6 +365,7 @@ int main(int argc, char** argv) {
                         vehicle.wheels_in_contact(), stats.max_strain, stats.max_speed, attach,
                         bad ? "  CHECK FAILED" : "");
         }
+        if (driver.phase() == Phase::kAirborne && jump_frame < 0) jump_frame = frame;
         last_phase = driver.phase();
 
         if (next_moment < std::size(kMoments) && driver.phase() == kMoments[next_moment].phase &&
@@ -385,12 +409,30 @@ int main(int argc, char** argv) {
                 o.max_strain, worst_speed, o.max_speed);
     std::printf("  carrier teleports: %d for %d course teleport(s); frames where they disagree: %d\n",
                 carrier_teleports, driver.teleports(), missed_teleports);
+    const bool trails = trailing.fraction() >= o.trail_fraction;
+    std::printf(
+        "  looks like a flag: above %.0f m/s on the straight and in the slalom, the free edge trails the pole "
+        "within %.0f degrees of the reverse travel direction in %d of %d frames (%.1f %%, at least %.0f %% "
+        "asked), worst %.1f degrees%s\n",
+        o.trail_speed, o.trail_degrees, trailing.trailing, trailing.frames, 100.0 * trailing.fraction(),
+        100.0 * o.trail_fraction, trailing.worst, trails ? "" : "  CHECK FAILED");
     std::printf("  cloth calls that failed: %d; frames failing a check: %d\n", failed_steps, bad_frames);
-    int status = failed_steps == 0 && bad_frames == 0 ? 0 : 1;
+    int status = failed_steps == 0 && bad_frames == 0 && trails ? 0 : 1;
 
     if (!o.trace.empty()) {
-        if (trace.write(o.trace)) {
-            std::printf("wrote %s (%zu events)\n", o.trace.c_str(), trace.event_count());
+        // The whole course is about a million events (87 MB), more than a
+        // trace viewer opens comfortably: by default the second around the
+        // take-off of the jump, where every stage runs and the flag works
+        // hardest, with every task of every round.
+        int first = 0, last = 0;
+        if (o.trace_frames.empty() || std::sscanf(o.trace_frames.c_str(), "%d:%d", &first, &last) != 2) {
+            const int centre = jump_frame >= 0 ? jump_frame : std::max(0, frames_run - 30);
+            first = centre - 30;
+            last = centre + 29;
+        }
+        if (trace.write(o.trace, first, last)) {
+            std::printf("wrote %s (frames %d to %d, %zu events)\n", o.trace.c_str(), first, last,
+                        trace.written());
         } else {
             std::fprintf(stderr, "cannot write %s\n", o.trace.c_str());
             status = 1;

@@ -50,7 +50,7 @@ void check_picture(const char* path, int panels) {
     stbi_image_free(pixels);
 }
 
-void check_trace(const char* path) {
+void check_trace(const char* path, long max_bytes) {
     std::ifstream in(path);
     expect(static_cast<bool>(in), std::string(path) + " opens");
     if (!in) return;
@@ -72,6 +72,12 @@ void check_trace(const char* path) {
         }
     }
     expect(counts["frame"] > 0, "trace has frame events");
+    // A window a trace viewer opens comfortably (the whole course was 87 MB).
+    if (max_bytes > 0) {
+        in.clear();
+        in.seekg(0, std::ios::end);
+        expect(in.tellg() < max_bytes, std::string(path) + " is under " + std::to_string(max_bytes) + " bytes");
+    }
     expect(counts["cloth_step"] == counts["frame"], "one cloth_step event per frame");
     expect(counts["bullet step"] == counts["frame"], "one bullet step event per frame");
 }
@@ -79,12 +85,12 @@ void check_trace(const char* path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 4) {
-        std::fprintf(stderr, "usage: %s PICTURE.png TRACE.json PANELS\n", argv[0]);
+    if (argc != 4 && argc != 5) {
+        std::fprintf(stderr, "usage: %s PICTURE.png TRACE.json PANELS [MAX_TRACE_BYTES]\n", argv[0]);
         return 2;
     }
     check_picture(argv[1], std::atoi(argv[2 + 1]));
-    check_trace(argv[2]);
+    check_trace(argv[2], argc == 5 ? std::atol(argv[4]) : 0);
     if (failures == 0) std::printf("outputs valid\n");
     return failures == 0 ? 0 : 1;
 }
