@@ -25,6 +25,7 @@
 #include "flag_trailing.h"
 #include "scene_render.h"
 #include "trace_writer.h"
+#include "video_writer.h"
 
 using namespace vehicle_flag;
 
@@ -70,6 +71,7 @@ struct Options {
     std::string trace;
     std::string trace_frames;  // "FIRST:LAST"; empty: the second around the jump
     std::string png = "vehicle_flag.png";
+    std::string video;  // MP4 of the run at 30 fps (empty: none)
     std::string obj_dir;
     int obj_every = 10;
     float max_attach_error = 1e-5f;
@@ -213,10 +215,14 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     app.add_option("--threads", o.threads, "cloth worker threads (1: the calling thread only)")
         ->check(CLI::Range(1, 256));
-    app.add_option("--trace", o.trace, "Chrome trace-event JSON of a window of the run (empty: none)");
+    app.add_option("--trace", o.trace, "Chrome trace-event JSON of a window of the run (empty: none)")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     app.add_option("--trace-frames", o.trace_frames,
                    "frames the trace keeps, FIRST:LAST (default: the second around the jump)");
-    app.add_option("--png", o.png, "picture of a few moments of the course (empty: none)");
+    app.add_option("--png", o.png, "picture of a few moments of the course (empty: none)")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    app.add_option("--video", o.video, "MP4 of the run at 30 fps through ffmpeg (empty: none)")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     app.add_option("--obj-dir", o.obj_dir, "write the flag as OBJ files into this directory (empty: none)");
     app.add_option("--obj-every", o.obj_every, "write every Nth frame as OBJ")->check(CLI::Range(1, 1000000));
     app.add_option("--max-attach-error", o.max_attach_error,
@@ -289,6 +295,14 @@ int main(int argc, char** argv) {
     Phase last_phase = driver.phase();
     int jump_frame = -1;  // the first airborne frame, the centre of the default trace window
     TrailingCount trailing;
+    // The video: every other 60 Hz frame, drawn after the frame's timing.
+    constexpr int kVideoWidth = 640, kVideoHeight = 360, kVideoFps = 30;
+    VideoWriter video;
+    std::string video_error;
+    if (!o.video.empty() && !video.open(o.video, kVideoWidth, kVideoHeight, kVideoFps, &video_error)) {
+        std::fprintf(stderr, "%s\n", video_error.c_str());
+        return 1;
+    }
 
     for (int frame = 0; o.frames == 0 || frame < o.frames; ++frame) {
         if (o.frames == 0 && driver.done()) break;
@@ -374,6 +388,16 @@ int main(int argc, char** argv) {
                 capture_moment(kMoments[next_moment].label, time, vehicle, flag.positions(), flag.normals()));
             ++next_moment;
         }
+        if (video.is_open() && frame % (60 / kVideoFps) == 0) {
+            std::vector<uint8_t> rgb;
+            const Moment now = capture_moment("", time, vehicle, flag.positions(), flag.normals());
+            if (!render_moment(now, terrain, vehicle.layout(), flag.triangles(), kVideoWidth, kVideoHeight, &rgb,
+                               &video_error) ||
+                !video.add(rgb)) {
+                std::fprintf(stderr, "video frame %d: %s\n", frame, video_error.c_str());
+                return 1;
+            }
+        }
         if (!o.obj_dir.empty() && frame % o.obj_every == 0) {
             char name[64];
             std::snprintf(name, sizeof name, "/flag_%05d.obj", frame);
@@ -435,6 +459,15 @@ int main(int argc, char** argv) {
                         trace.written());
         } else {
             std::fprintf(stderr, "cannot write %s\n", o.trace.c_str());
+            status = 1;
+        }
+    }
+    if (video.is_open()) {
+        const int frames = video.frames();
+        if (video.close(&video_error)) {
+            std::printf("wrote %s (%d frames at %d fps)\n", o.video.c_str(), frames, kVideoFps);
+        } else {
+            std::fprintf(stderr, "%s\n", video_error.c_str());
             status = 1;
         }
     }

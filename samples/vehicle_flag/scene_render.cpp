@@ -83,6 +83,41 @@ Moment capture_moment(const std::string& label, float time, const VehicleWorld& 
     return m;
 }
 
+bool render_moment(const Moment& m, const Terrain& terrain, const VehicleLayout& v,
+                   const std::vector<uint32_t>& flag_triangles, int width, int height,
+                   std::vector<uint8_t>* rgb, std::string* error) {
+    const btVector3 origin = m.chassis.getOrigin();
+    Mesh ground, body, pole, wheels;
+    terrain.patch_mesh(origin.x(), origin.z(), 40.0f, &ground.positions, &ground.indices);
+    append_box(m.chassis, btVector3(v.box_center[0], v.box_center[1], v.box_center[2]),
+               btVector3(v.box_half_extents[0], v.box_half_extents[1], v.box_half_extents[2]), &body);
+    append_cylinder(m.chassis, btVector3(v.pole_base[0], v.pole_base[1] + 0.5f * v.pole_height, v.pole_base[2]),
+                    1, v.pole_radius, 0.5f * v.pole_height, 12, &pole);
+    for (const btTransform& wheel : m.wheels) {
+        append_cylinder(wheel, btVector3(0, 0, 0), 0, v.wheel_radius, v.wheel_half_width, 16, &wheels);
+    }
+    Mesh flag;
+    flag.positions = m.flag_positions;
+    flag.indices = flag_triangles;
+    const cloth_samples::RenderMesh meshes[] = {
+        as_render_mesh(ground, nullptr, 150, 170, 120),
+        as_render_mesh(body, nullptr, 60, 90, 160),
+        as_render_mesh(pole, nullptr, 200, 200, 205),
+        as_render_mesh(wheels, nullptr, 40, 40, 45),
+        as_render_mesh(flag, m.flag_normals.data(), 215, 40, 45),
+    };
+    // Chase camera behind and to the side of the vehicle, level with the world's up.
+    const btVector3 eye = m.chassis * btVector3(4.5f, 3.4f, -6.5f);
+    const btVector3 target = m.chassis * btVector3(0.0f, 2.0f, -1.5f);
+    const cloth_samples::Camera camera{
+        {eye.x(), eye.y(), eye.z()}, {target.x(), target.y(), target.z()}, {0, 1, 0}, 40.0f};
+    cloth_samples::RenderOptions options;
+    options.width = width;
+    options.height = height;
+    options.draw_ground_grid = false;
+    return cloth_samples::render_rgb(camera, meshes, sizeof meshes / sizeof meshes[0], options, rgb, error);
+}
+
 bool render_moments(const std::string& path, const std::vector<Moment>& moments, const Terrain& terrain,
                     const VehicleLayout& v, const std::vector<uint32_t>& flag_triangles, int panel_width,
                     int panel_height, std::string* error) {
@@ -96,40 +131,8 @@ bool render_moments(const std::string& path, const std::vector<Moment>& moments,
     std::vector<uint8_t> picture(static_cast<size_t>(width) * height * 3, 255);
 
     for (size_t i = 0; i < moments.size(); ++i) {
-        const Moment& m = moments[i];
-        const btVector3 origin = m.chassis.getOrigin();
-        Mesh ground, body, pole, wheels;
-        terrain.patch_mesh(origin.x(), origin.z(), 40.0f, &ground.positions, &ground.indices);
-        append_box(m.chassis, btVector3(v.box_center[0], v.box_center[1], v.box_center[2]),
-                   btVector3(v.box_half_extents[0], v.box_half_extents[1], v.box_half_extents[2]), &body);
-        append_cylinder(m.chassis,
-                        btVector3(v.pole_base[0], v.pole_base[1] + 0.5f * v.pole_height, v.pole_base[2]), 1,
-                        v.pole_radius, 0.5f * v.pole_height, 12, &pole);
-        for (const btTransform& wheel : m.wheels) {
-            append_cylinder(wheel, btVector3(0, 0, 0), 0, v.wheel_radius, v.wheel_half_width, 16, &wheels);
-        }
-        Mesh flag;
-        flag.positions = m.flag_positions;
-        flag.indices = flag_triangles;
-        const cloth_samples::RenderMesh meshes[] = {
-            as_render_mesh(ground, nullptr, 150, 170, 120),
-            as_render_mesh(body, nullptr, 60, 90, 160),
-            as_render_mesh(pole, nullptr, 200, 200, 205),
-            as_render_mesh(wheels, nullptr, 40, 40, 45),
-            as_render_mesh(flag, m.flag_normals.data(), 215, 40, 45),
-        };
-        // Chase camera behind and to the side of the vehicle, level with the world's up.
-        const btVector3 eye = m.chassis * btVector3(4.5f, 3.4f, -6.5f);
-        const btVector3 target = m.chassis * btVector3(0.0f, 2.0f, -1.5f);
-        const cloth_samples::Camera camera{
-            {eye.x(), eye.y(), eye.z()}, {target.x(), target.y(), target.z()}, {0, 1, 0}, 40.0f};
-        cloth_samples::RenderOptions options;
-        options.width = panel_width;
-        options.height = panel_height;
-        options.draw_ground_grid = false;
         std::vector<uint8_t> panel;
-        if (!cloth_samples::render_rgb(camera, meshes, sizeof meshes / sizeof meshes[0], options, &panel,
-                                       error)) {
+        if (!render_moment(moments[i], terrain, v, flag_triangles, panel_width, panel_height, &panel, error)) {
             return false;
         }
         const int px = static_cast<int>(i % columns) * panel_width,

@@ -3,6 +3,7 @@
 // rasterizer (samples/common/render_png.h).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,12 @@ struct Moment {
 
 Moment capture_moment(const std::string& label, float time, const VehicleWorld& vehicle,
                       const std::vector<float>& flag_positions, const std::vector<float>& flag_normals);
+
+// Renders one moment, seen by the chase camera, into width x height RGB
+// pixels (rows top to bottom). Returns false with a message in *error on failure.
+bool render_moment(const Moment& moment, const Terrain& terrain, const VehicleLayout& vehicle,
+                   const std::vector<uint32_t>& flag_triangles, int width, int height,
+                   std::vector<uint8_t>* rgb, std::string* error);
 
 // Renders the moments as panels of panel_width x panel_height, two per row,
 // into one PNG. Returns false with a message in *error on failure.
