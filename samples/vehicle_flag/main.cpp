@@ -60,7 +60,7 @@ constexpr uint32_t kProfileTasks = 8192;    // task records per frame, for the s
 struct Options {
     int frames = 0;  // 0: the whole course
     uint32_t columns = 48, rows = 32;
-    std::string solver = "jacobi";
+    std::string solver = "default";
     uint32_t iterations = 0;  // 0: the solver kind's own (see solver_plan)
     uint32_t substeps = 0;    // 0: what the solver kind needs at these settings (see solver_plan)
     float strain_limit = 0.1f;
