@@ -111,8 +111,8 @@ int run_pareto(const ParetoOptions& o) {
             }
             settings.push_back(
                 Row{cloth_samples::scene_name(scene), CLOTH_SOLVER_CG, 1, 1, dt, {}, 0, 0, 0, false, false});
-            settings.push_back(
-                Row{cloth_samples::scene_name(scene), CLOTH_SOLVER_DEFAULT, 1, 1, dt, {}, 0, 0, 0, false, false});
+            settings.push_back(Row{
+                cloth_samples::scene_name(scene), CLOTH_SOLVER_DEFAULT, 1, 1, dt, {}, 0, 0, 0, false, false});
         }
         const double unit = jacobi_k1_ms(base, 1.0f / 60.0f);
         for (Row& row : settings) {
@@ -141,8 +141,8 @@ int run_pareto(const ParetoOptions& o) {
             std::fprintf(csv, "%s,%s,%u,%u,%.6f,%.4f,%.4f,%.6g,%.5g,%.5g,%.5g,%.5g,%d,%.2f,%d\n",
                          row.scene.c_str(), kind_name(row.kind), row.iterations, row.substeps, double(row.dt),
                          row.run.ms_per_frame, row.ms_per_60hz, row.error, row.run.max_strain,
-                         row.run.mean_strain, row.run.energy_gain, row.run.late_energy_rise, row.holds ? 1 : 0,
-                         row.x_jacobi, row.kind_front ? 1 : 0);
+                         row.run.mean_strain, row.run.energy_gain, row.run.late_energy_rise,
+                         row.holds ? 1 : 0, row.x_jacobi, row.kind_front ? 1 : 0);
         }
         std::fclose(csv);
     }
@@ -152,7 +152,8 @@ int run_pareto(const ParetoOptions& o) {
     std::printf("### Pareto front at %ux%u, k = %g N/m, %.2f s simulated\n\n", o.resolution, o.resolution,
                 double(o.stiffness), double(o.seconds));
     std::printf(
-        "| scene | setting | ms per 1/60 s | x JACOBI k=1 | RMS error (mm) | max strain | energy gain (J) | holds "
+        "| scene | setting | ms per 1/60 s | x JACOBI k=1 | RMS error (mm) | max strain | energy gain (J) | "
+        "holds "
         "|\n");
     std::printf("| --- | --- | ---: | ---: | ---: | ---: | ---: | --- |\n");
     std::vector<const Row*> front;
@@ -172,7 +173,8 @@ int run_pareto(const ParetoOptions& o) {
     for (const Row* r : front) {
         std::printf("| %s | %s | %.3f | %.1f | %.3g | %.3f | %.3g | %s |\n",
                     r->scene == last_scene ? "" : r->scene.c_str(), setting_name(*r).c_str(), r->ms_per_60hz,
-                    r->x_jacobi, 1e3 * r->error, r->run.max_strain, r->run.energy_gain, r->holds ? "yes" : "no");
+                    r->x_jacobi, 1e3 * r->error, r->run.max_strain, r->run.energy_gain,
+                    r->holds ? "yes" : "no");
         last_scene = r->scene;
     }
     return 0;

@@ -26,7 +26,8 @@ double trailing_angle_degrees(const std::vector<float>& positions, uint32_t colu
 void TrailingCount::add(double angle_degrees, double bound_degrees) {
     ++frames;
     if (angle_degrees <= bound_degrees) ++trailing;  // NaN never trails
-    if (std::isnan(angle_degrees) || angle_degrees > worst) worst = std::isnan(angle_degrees) ? 180.0 : angle_degrees;
+    if (std::isnan(angle_degrees) || angle_degrees > worst)
+        worst = std::isnan(angle_degrees) ? 180.0 : angle_degrees;
 }
 
 }  // namespace vehicle_flag

@@ -78,9 +78,9 @@ struct Options {
     float tolerance = 1e-3f;
     float max_strain = 1.0f;
     float max_speed = 120.0f;
-    double trail_speed = 10.0;     // m/s: the trailing check counts frames faster than this...
-    double trail_degrees = 30.0;   // ...where the free edge is within this of straight behind the pole
-    double trail_fraction = 0.9;   // in at least this share of them
+    double trail_speed = 10.0;    // m/s: the trailing check counts frames faster than this...
+    double trail_degrees = 30.0;  // ...where the free edge is within this of straight behind the pole
+    double trail_fraction = 0.9;  // in at least this share of them
 };
 
 struct Timings {
@@ -363,8 +363,9 @@ int main(int argc, char** argv) {
         const bool on_the_straight = phase == Phase::kAccelerate || phase == Phase::kCruise ||
                                      phase == Phase::kSlalom || phase == Phase::kToRamp;
         if (on_the_straight && std::abs(vehicle.forward_speed()) > o.trail_speed) {
-            trailing.add(trailing_angle_degrees(flag.positions(), o.columns, o.rows, vehicle.chassis_velocity()),
-                         o.trail_degrees);
+            trailing.add(
+                trailing_angle_degrees(flag.positions(), o.columns, o.rows, vehicle.chassis_velocity()),
+                o.trail_degrees);
         }
         worst_attach = std::max(worst_attach, attach);
         worst_strain = finite ? std::max(worst_strain, stats.max_strain) : INFINITY;
@@ -391,8 +392,8 @@ int main(int argc, char** argv) {
         if (video.is_open() && frame % (60 / kVideoFps) == 0) {
             std::vector<uint8_t> rgb;
             const Moment now = capture_moment("", time, vehicle, flag.positions(), flag.normals());
-            if (!render_moment(now, terrain, vehicle.layout(), flag.triangles(), kVideoWidth, kVideoHeight, &rgb,
-                               &video_error) ||
+            if (!render_moment(now, terrain, vehicle.layout(), flag.triangles(), kVideoWidth, kVideoHeight,
+                               &rgb, &video_error) ||
                 !video.add(rgb)) {
                 std::fprintf(stderr, "video frame %d: %s\n", frame, video_error.c_str());
                 return 1;
@@ -435,7 +436,8 @@ int main(int argc, char** argv) {
                 carrier_teleports, driver.teleports(), missed_teleports);
     const bool trails = trailing.fraction() >= o.trail_fraction;
     std::printf(
-        "  looks like a flag: above %.0f m/s on the straight and in the slalom, the free edge trails the pole "
+        "  looks like a flag: above %.0f m/s on the straight and in the slalom, the free edge trails the "
+        "pole "
         "within %.0f degrees of the reverse travel direction in %d of %d frames (%.1f %%, at least %.0f %% "
         "asked), worst %.1f degrees%s\n",
         o.trail_speed, o.trail_degrees, trailing.trailing, trailing.frames, 100.0 * trailing.fraction(),

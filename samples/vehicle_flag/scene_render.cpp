@@ -91,8 +91,9 @@ bool render_moment(const Moment& m, const Terrain& terrain, const VehicleLayout&
     terrain.patch_mesh(origin.x(), origin.z(), 40.0f, &ground.positions, &ground.indices);
     append_box(m.chassis, btVector3(v.box_center[0], v.box_center[1], v.box_center[2]),
                btVector3(v.box_half_extents[0], v.box_half_extents[1], v.box_half_extents[2]), &body);
-    append_cylinder(m.chassis, btVector3(v.pole_base[0], v.pole_base[1] + 0.5f * v.pole_height, v.pole_base[2]),
-                    1, v.pole_radius, 0.5f * v.pole_height, 12, &pole);
+    append_cylinder(m.chassis,
+                    btVector3(v.pole_base[0], v.pole_base[1] + 0.5f * v.pole_height, v.pole_base[2]), 1,
+                    v.pole_radius, 0.5f * v.pole_height, 12, &pole);
     for (const btTransform& wheel : m.wheels) {
         append_cylinder(wheel, btVector3(0, 0, 0), 0, v.wheel_radius, v.wheel_half_width, 16, &wheels);
     }
@@ -132,7 +133,8 @@ bool render_moments(const std::string& path, const std::vector<Moment>& moments,
 
     for (size_t i = 0; i < moments.size(); ++i) {
         std::vector<uint8_t> panel;
-        if (!render_moment(moments[i], terrain, v, flag_triangles, panel_width, panel_height, &panel, error)) {
+        if (!render_moment(moments[i], terrain, v, flag_triangles, panel_width, panel_height, &panel,
+                           error)) {
             return false;
         }
         const int px = static_cast<int>(i % columns) * panel_width,

@@ -27,7 +27,8 @@ bool TraceWriter::write(const std::string& path, int first, int last) {
     std::fprintf(out, "{\"displayTimeUnit\":\"ms\",\"traceEvents\":[");
     const char* separator = "";
     for (size_t t = 0; t < tracks_.size(); ++t) {
-        std::fprintf(out, "%s{\"name\":\"thread_name\",\"ph\":\"M\",\"pid\":1,\"tid\":%zu,\"args\":{\"name\":%s}}",
+        std::fprintf(out,
+                     "%s{\"name\":\"thread_name\",\"ph\":\"M\",\"pid\":1,\"tid\":%zu,\"args\":{\"name\":%s}}",
                      separator, t + 1, nlohmann::json(tracks_[t]).dump().c_str());
         separator = ",\n";
     }

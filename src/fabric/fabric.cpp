@@ -282,7 +282,8 @@ Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
                 if (to < 0 || to >= static_cast<int>(cols)) continue;
                 const uint32_t p = index(c, r);
                 family.mask[p] = 1.0f;
-                family.rest_length[p] = spring_length(f.rest_positions[p], f.rest_positions[p + family.offset]);
+                family.rest_length[p] =
+                    spring_length(f.rest_positions[p], f.rest_positions[p + family.offset]);
             }
         }
     }

@@ -18,16 +18,13 @@ namespace {
 // Every array is a __restrict parameter so GCC vectorizes the loops.
 // kCable: with the strain cable (springs.h).
 template <bool kCable>
-CLOTH_HOT_LOOP void evaluate_family_kernel(uint32_t begin, uint32_t end, uint32_t offset, float k, float c,
-                                           float h, SpringModel model, const float* __restrict mask,
-                                           const float* __restrict rest,
-                                           const float* __restrict px, const float* __restrict py,
-                                           const float* __restrict pz, const float* __restrict vx,
-                                           const float* __restrict vy, const float* __restrict vz,
-                                           float* __restrict fx, float* __restrict fy, float* __restrict fz,
-                                           float* __restrict bxx, float* __restrict bxy,
-                                           float* __restrict bxz, float* __restrict byy,
-                                           float* __restrict byz, float* __restrict bzz) {
+CLOTH_HOT_LOOP void evaluate_family_kernel(
+    uint32_t begin, uint32_t end, uint32_t offset, float k, float c, float h, SpringModel model,
+    const float* __restrict mask, const float* __restrict rest, const float* __restrict px,
+    const float* __restrict py, const float* __restrict pz, const float* __restrict vx,
+    const float* __restrict vy, const float* __restrict vz, float* __restrict fx, float* __restrict fy,
+    float* __restrict fz, float* __restrict bxx, float* __restrict bxy, float* __restrict bxz,
+    float* __restrict byy, float* __restrict byz, float* __restrict bzz) {
     // 64-bit indices: with j = p + offset in 32 bits (which could wrap) GCC
     // loads the second ends lane by lane instead of as one vector.
     for (size_t p = begin; p < end; ++p) {
@@ -175,8 +172,8 @@ class GridSprings final : public SpringTerms {
             const SpringFamily& family = fabric_->grid_families[f];
             FamilyTerms& t = terms_[f];
             kernel(begin, std::min(end, n - family.offset), family.offset, t.stiffness, t.damping, h, model,
-                   family.mask.data(), family.rest_length.data(), x.x.data(), x.y.data(), x.z.data(), v.x.data(),
-                   v.y.data(), v.z.data(), t.force.x.data() + pad, t.force.y.data() + pad,
+                   family.mask.data(), family.rest_length.data(), x.x.data(), x.y.data(), x.z.data(),
+                   v.x.data(), v.y.data(), v.z.data(), t.force.x.data() + pad, t.force.y.data() + pad,
                    t.force.z.data() + pad, t.block.xx.data() + pad, t.block.xy.data() + pad,
                    t.block.xz.data() + pad, t.block.yy.data() + pad, t.block.yz.data() + pad,
                    t.block.zz.data() + pad);

@@ -76,7 +76,8 @@ void check_trace(const char* path, long max_bytes) {
     if (max_bytes > 0) {
         in.clear();
         in.seekg(0, std::ios::end);
-        expect(in.tellg() < max_bytes, std::string(path) + " is under " + std::to_string(max_bytes) + " bytes");
+        expect(in.tellg() < max_bytes,
+               std::string(path) + " is under " + std::to_string(max_bytes) + " bytes");
     }
     expect(counts["cloth_step"] == counts["frame"], "one cloth_step event per frame");
     expect(counts["bullet step"] == counts["frame"], "one bullet step event per frame");
