@@ -54,6 +54,9 @@ uint32_t ClothContact::collide(float h, float from, float to, const float* kinem
             moving.end = body_pose(c.body, to) * c.local;
             moving.body = &world_->body(c.body).body;
         }
+        // Culled by the range's bounds first: a flag high above a terrain
+        // or beside a box needs no per-particle work for it.
+        if (range_is_clear(moving, collision_, h, kinematic, begin, end, x, v)) continue;
         contacts += collide_particles(moving, collision_, h, kinematic, begin, end, x, v);
     }
     return contacts;

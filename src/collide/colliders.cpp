@@ -147,7 +147,88 @@ float distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
 
 constexpr int kMaxSweepSteps = 32;
 
+// The bounds of a particle range over a substep (start and end positions)
+// and its longest path, computed as collide_particles computes them.
+struct RangeBounds {
+    Vec3 lo = Vec3::Constant(kInfinity), hi = Vec3::Constant(-kInfinity);
+    float travel = 0;
+    bool any = false;  // a free particle in the range
+};
+
+RangeBounds range_bounds(float h, const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x,
+                         const Vec3Soa& v) {
+    RangeBounds b;
+    for (uint32_t i = begin; i < end; ++i) {
+        if (kinematic[i] != 0.0f) continue;
+        const Vec3 x_end = x.get(i);
+        const Vec3 x_start = x_end - v.get(i) * h;
+        b.lo = b.lo.cwiseMin(x_end).cwiseMin(x_start);
+        b.hi = b.hi.cwiseMax(x_end).cwiseMax(x_start);
+        b.travel = std::max(b.travel, (x_end - x_start).norm());
+        b.any = true;
+    }
+    return b;
+}
+
+// Slack on the culling tests below: float rounding in the per-particle
+// tests they stand for is far smaller, and a particle culled within it is
+// still more than the thickness from the shape.
+constexpr float kCullMargin = 1e-4f;
+
+// Whether a static height field is clear of every particle of the range:
+// each particle's own query would stop at its early out (the highest
+// sample within its query radius is more than that radius below it), so
+// none can touch the field. Mirrors query_heightfield's cell range.
+bool heightfield_clear(const MovingCollider& c, const RangeBounds& b, float thickness) {
+    const HeightfieldShape& f = c.shape->heightfield;
+    Vec3 lo = Vec3::Constant(kInfinity), hi = Vec3::Constant(-kInfinity);
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p((corner & 1) ? b.hi.x() : b.lo.x(), (corner & 2) ? b.hi.y() : b.lo.y(),
+                     (corner & 4) ? b.hi.z() : b.lo.z());
+        const Vec3 local = c.end.apply_inverse(p);
+        lo = lo.cwiseMin(local);
+        hi = hi.cwiseMax(local);
+    }
+    const float radius = thickness + std::max(b.travel, c.shape->query_step) + kCullMargin;
+    const float c_lo = (lo.x() - radius) / f.spacing_x, c_hi = (hi.x() + radius) / f.spacing_x;
+    const float r_lo = (lo.z() - radius) / f.spacing_z, r_hi = (hi.z() + radius) / f.spacing_z;
+    if (!(c_hi >= 0 && r_hi >= 0 && c_lo < static_cast<float>(f.columns - 1) &&
+          r_lo < static_cast<float>(f.rows - 1))) {
+        return lo.y() > -kInfinity;  // beside the field: nothing within reach (and not inside: the field is open)
+    }
+    const uint32_t c0 = static_cast<uint32_t>(std::max(c_lo, 0.0f));
+    const uint32_t c1 = static_cast<uint32_t>(std::min(c_hi, static_cast<float>(f.columns - 2)));
+    const uint32_t r0 = static_cast<uint32_t>(std::max(r_lo, 0.0f));
+    const uint32_t r1 = static_cast<uint32_t>(std::min(r_hi, static_cast<float>(f.rows - 2)));
+    float highest = -kInfinity;
+    for (uint32_t r = r0; r <= r1 + 1; ++r) {
+        for (uint32_t col = c0; col <= c1 + 1; ++col) highest = std::max(highest, f.height(col, r));
+    }
+    return lo.y() - highest > radius + kCullMargin;
+}
+
 }  // namespace
+
+bool range_is_clear(const MovingCollider& collider, const CollisionParams& params, float h,
+                    const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x, const Vec3Soa& v) {
+    const RangeBounds b = range_bounds(h, kinematic, begin, end, x, v);
+    if (!b.any) return true;
+    const Shape& shape = *collider.shape;
+    const bool is_static = collider.start.position == collider.end.position &&
+                           collider.start.rotation.coeffs() == collider.end.rotation.coeffs();
+    if (shape.kind == ShapeKind::kHeightfield && is_static) return heightfield_clear(collider, b, params.thickness);
+    if (!std::isfinite(shape.bound_radius)) return false;
+    // Bounded shapes: every particle's own early out in collide_particles
+    // (its end point farther from the bound centre's chord than the reach
+    // plus its path) holds for the whole box when the box is that far from
+    // the chord's bounds.
+    const Vec3 center_start = collider.start.apply(shape.bound_center);
+    const Vec3 center_end = collider.end.apply(shape.bound_center);
+    const float reach = shape.bound_radius + params.thickness + 0.5f * (center_end - center_start).norm();
+    const Vec3 chord_lo = center_start.cwiseMin(center_end), chord_hi = center_start.cwiseMax(center_end);
+    const Vec3 gap = (chord_lo - b.hi).cwiseMax(b.lo - chord_hi).cwiseMax(0.0f);
+    return gap.norm() - b.travel > reach + kCullMargin;
+}
 
 uint32_t collide_particles(const MovingCollider& collider, const CollisionParams& params, float h,
                            const float* kinematic, uint32_t begin, uint32_t end, Vec3Soa& x, Vec3Soa& v) {

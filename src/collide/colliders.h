@@ -139,6 +139,15 @@ struct CollisionParams {
     uint32_t collider_mask = 0xFFFFFFFFu;
 };
 
+// Whether no particle of [begin, end) can touch the collider over the
+// substep, decided from the range's bounds alone (one pass of min and max,
+// no shape query): a static height field whose highest sample under the
+// range is far enough below it, or a bounded shape whose swept bound is far
+// enough away. Exact: where it says yes, collide_particles would change
+// nothing (tests check the two paths give the same bits).
+bool range_is_clear(const MovingCollider& collider, const CollisionParams& params, float h,
+                    const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x, const Vec3Soa& v);
+
 // Push particles [begin, end) out of one moving collider. x and v are the
 // positions and velocities after integration of a substep of length h (so
 // a particle's substep start is x - h v); kinematic particles (kinematic[i]
