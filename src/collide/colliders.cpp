@@ -194,7 +194,8 @@ bool heightfield_clear(const MovingCollider& c, const RangeBounds& b, float thic
     const float r_lo = (lo.z() - radius) / f.spacing_z, r_hi = (hi.z() + radius) / f.spacing_z;
     if (!(c_hi >= 0 && r_hi >= 0 && c_lo < static_cast<float>(f.columns - 1) &&
           r_lo < static_cast<float>(f.rows - 1))) {
-        return lo.y() > -kInfinity;  // beside the field: nothing within reach (and not inside: the field is open)
+        return lo.y() >
+               -kInfinity;  // beside the field: nothing within reach (and not inside: the field is open)
     }
     const uint32_t c0 = static_cast<uint32_t>(std::max(c_lo, 0.0f));
     const uint32_t c1 = static_cast<uint32_t>(std::min(c_hi, static_cast<float>(f.columns - 2)));
@@ -210,13 +211,15 @@ bool heightfield_clear(const MovingCollider& c, const RangeBounds& b, float thic
 }  // namespace
 
 bool range_is_clear(const MovingCollider& collider, const CollisionParams& params, float h,
-                    const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x, const Vec3Soa& v) {
+                    const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x,
+                    const Vec3Soa& v) {
     const RangeBounds b = range_bounds(h, kinematic, begin, end, x, v);
     if (!b.any) return true;
     const Shape& shape = *collider.shape;
     const bool is_static = collider.start.position == collider.end.position &&
                            collider.start.rotation.coeffs() == collider.end.rotation.coeffs();
-    if (shape.kind == ShapeKind::kHeightfield && is_static) return heightfield_clear(collider, b, params.thickness);
+    if (shape.kind == ShapeKind::kHeightfield && is_static)
+        return heightfield_clear(collider, b, params.thickness);
     if (!std::isfinite(shape.bound_radius)) return false;
     // Bounded shapes: every particle's own early out in collide_particles
     // (its end point farther from the bound centre's chord than the reach
