@@ -12,7 +12,7 @@ set format x "1e%L"
 set format y "1e%L"
 set xlabel "wall time per 1/60 s of simulated time (ms, shared noisy machine)"
 set ylabel "RMS position error against converged CG at 1/960 s (m)"
-set key bottom left
+set key bottom left Left reverse
 set xrange [0.01:10000]
 set yrange [1e-6:1]
 kinds = "JACOBI CHEBYSHEV PCG CG DEFAULT"
