@@ -42,6 +42,8 @@ void ClothContact::begin_step(float dt, const float* pinned, Vec3Soa& x, Vec3Soa
 uint32_t ClothContact::collide(float h, float from, float to, const float* kinematic, uint32_t begin,
                                uint32_t end, Vec3Soa& x, Vec3Soa& v) const {
     uint32_t contacts = 0;
+    RangeBounds bounds;
+    bool bounded = false;  // bounds taken (once, at the first collider)
     for (const auto& slot : world_->colliders()) {
         const Collider& c = slot.object;
         if (!slot.live || !(c.group_bits & collision_.collider_mask)) continue;
@@ -56,7 +58,11 @@ uint32_t ClothContact::collide(float h, float from, float to, const float* kinem
         }
         // Culled by the range's bounds first: a flag high above a terrain
         // or beside a box needs no per-particle work for it.
-        if (range_is_clear(moving, collision_, h, kinematic, begin, end, x, v)) continue;
+        if (!bounded) {
+            bounds = range_bounds(h, kinematic, begin, end, x, v);
+            bounded = true;
+        }
+        if (range_is_clear(moving, collision_, bounds)) continue;
         contacts += collide_particles(moving, collision_, h, kinematic, begin, end, x, v);
     }
     return contacts;

@@ -147,29 +147,6 @@ float distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
 
 constexpr int kMaxSweepSteps = 32;
 
-// The bounds of a particle range over a substep (start and end positions)
-// and its longest path, computed as collide_particles computes them.
-struct RangeBounds {
-    Vec3 lo = Vec3::Constant(kInfinity), hi = Vec3::Constant(-kInfinity);
-    float travel = 0;
-    bool any = false;  // a free particle in the range
-};
-
-RangeBounds range_bounds(float h, const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x,
-                         const Vec3Soa& v) {
-    RangeBounds b;
-    for (uint32_t i = begin; i < end; ++i) {
-        if (kinematic[i] != 0.0f) continue;
-        const Vec3 x_end = x.get(i);
-        const Vec3 x_start = x_end - v.get(i) * h;
-        b.lo = b.lo.cwiseMin(x_end).cwiseMin(x_start);
-        b.hi = b.hi.cwiseMax(x_end).cwiseMax(x_start);
-        b.travel = std::max(b.travel, (x_end - x_start).norm());
-        b.any = true;
-    }
-    return b;
-}
-
 // Slack on the culling tests below: float rounding in the per-particle
 // tests they stand for is far smaller, and a particle culled within it is
 // still more than the thickness from the shape.
@@ -210,10 +187,26 @@ bool heightfield_clear(const MovingCollider& c, const RangeBounds& b, float thic
 
 }  // namespace
 
-bool range_is_clear(const MovingCollider& collider, const CollisionParams& params, float h,
-                    const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x,
-                    const Vec3Soa& v) {
-    const RangeBounds b = range_bounds(h, kinematic, begin, end, x, v);
+RangeBounds range_bounds(float h, const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x,
+                         const Vec3Soa& v) {
+    RangeBounds b;
+    float travel_squared = 0;
+    for (uint32_t i = begin; i < end; ++i) {
+        if (kinematic[i] != 0.0f) continue;
+        const Vec3 x_end = x.get(i);
+        const Vec3 x_start = x_end - v.get(i) * h;
+        b.lo = b.lo.cwiseMin(x_end).cwiseMin(x_start);
+        b.hi = b.hi.cwiseMax(x_end).cwiseMax(x_start);
+        travel_squared = std::max(travel_squared, (x_end - x_start).squaredNorm());
+        b.any = true;
+    }
+    // sqrt is monotonic and correctly rounded: this is the largest of the
+    // particles' own path lengths, bit for bit.
+    b.travel = std::sqrt(travel_squared);
+    return b;
+}
+
+bool range_is_clear(const MovingCollider& collider, const CollisionParams& params, const RangeBounds& b) {
     if (!b.any) return true;
     const Shape& shape = *collider.shape;
     const bool is_static = collider.start.position == collider.end.position &&

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include "base/host_allocator.h"
@@ -139,14 +140,25 @@ struct CollisionParams {
     uint32_t collider_mask = 0xFFFFFFFFu;
 };
 
-// Whether no particle of [begin, end) can touch the collider over the
-// substep, decided from the range's bounds alone (one pass of min and max,
-// no shape query): a static height field whose highest sample under the
-// range is far enough below it, or a bounded shape whose swept bound is far
-// enough away. Exact: where it says yes, collide_particles would change
-// nothing (tests check the two paths give the same bits).
-bool range_is_clear(const MovingCollider& collider, const CollisionParams& params, float h,
-                    const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x, const Vec3Soa& v);
+// The bounds of the free particles of [begin, end) over a substep of
+// length h (start and end positions, x - h v and x) and their longest path,
+// as collide_particles forms them: one pass, shared by every collider.
+struct RangeBounds {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<float>::infinity());
+    Vec3 hi = Vec3::Constant(-std::numeric_limits<float>::infinity());
+    float travel = 0;
+    bool any = false;  // a free particle in the range
+};
+RangeBounds range_bounds(float h, const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x,
+                         const Vec3Soa& v);
+
+// Whether no particle of the range can touch the collider over the
+// substep, decided from the range's bounds alone (no shape query): a
+// static height field whose highest sample under the range is far enough
+// below it, or a bounded shape whose swept bound is far enough away. Exact:
+// where it says yes, collide_particles would change nothing (tests check
+// the two paths give the same bits).
+bool range_is_clear(const MovingCollider& collider, const CollisionParams& params, const RangeBounds& bounds);
 
 // Push particles [begin, end) out of one moving collider. x and v are the
 // positions and velocities after integration of a substep of length h (so

@@ -90,8 +90,8 @@ TEST(CollisionCulling, WhereARangeIsCulledTheFullStageChangesNoBitOfIt) {
         for (int trial = 0; trial < 400; ++trial) {
             Patch patch = random_patch(rng, Vec3(where(rng), height(rng), where(rng)), size(rng), 3.0f);
             const uint32_t begin = trial % 5, end = 64 - trial % 7;
-            const bool clear =
-                range_is_clear(c.collider, params, h, patch.kinematic.data(), begin, end, patch.x, patch.v);
+            const bool clear = range_is_clear(
+                c.collider, params, range_bounds(h, patch.kinematic.data(), begin, end, patch.x, patch.v));
             Patch full = patch;
             const uint32_t contacts =
                 collide_particles(c.collider, params, h, full.kinematic.data(), begin, end, full.x, full.v);
