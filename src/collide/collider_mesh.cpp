@@ -242,34 +242,47 @@ float surface_height(const HeightfieldShape& f, float x, float z) {
 
 }  // namespace
 
+bool heightfield_cells(const HeightfieldShape& f, float x_lo, float x_hi, float z_lo, float z_hi,
+                       float radius, HeightfieldCells& out) {
+    const float c_lo = (x_lo - radius) / f.spacing_x, c_hi = (x_hi + radius) / f.spacing_x;
+    const float r_lo = (z_lo - radius) / f.spacing_z, r_hi = (z_hi + radius) / f.spacing_z;
+    if (!(c_hi >= 0 && r_hi >= 0 && c_lo < static_cast<float>(f.columns - 1) &&
+          r_lo < static_cast<float>(f.rows - 1))) {
+        return false;
+    }
+    // Clamped to the field in float before the cast: a particle that moves
+    // far in one substep asks with a radius past any uint32_t.
+    out.c0 = static_cast<uint32_t>(std::max(c_lo, 0.0f));
+    out.c1 = static_cast<uint32_t>(std::min(c_hi, static_cast<float>(f.columns - 2)));
+    out.r0 = static_cast<uint32_t>(std::max(r_lo, 0.0f));
+    out.r1 = static_cast<uint32_t>(std::min(r_hi, static_cast<float>(f.rows - 2)));
+    return true;
+}
+
+float highest_sample(const HeightfieldShape& f, const HeightfieldCells& cells) {
+    float highest = -kInfinity;
+    for (uint32_t r = cells.r0; r <= cells.r1 + 1; ++r) {
+        for (uint32_t c = cells.c0; c <= cells.c1 + 1; ++c) highest = std::max(highest, f.height(c, r));
+    }
+    return highest;
+}
+
 SurfaceQuery query_heightfield(const HeightfieldShape& f, const Vec3& p, float radius) {
     const float width = f.spacing_x * static_cast<float>(f.columns - 1);
     const float depth = f.spacing_z * static_cast<float>(f.rows - 1);
     const bool over = p.x() >= 0 && p.x() <= width && p.z() >= 0 && p.z() <= depth;
     const float below = over ? p.y() - surface_height(f, p.x(), p.z()) : kInfinity;
 
-    const float c_lo = (p.x() - radius) / f.spacing_x, c_hi = (p.x() + radius) / f.spacing_x;
-    const float r_lo = (p.z() - radius) / f.spacing_z, r_hi = (p.z() + radius) / f.spacing_z;
     Nearest nearest;
-    if (c_hi >= 0 && r_hi >= 0 && c_lo < static_cast<float>(f.columns - 1) &&
-        r_lo < static_cast<float>(f.rows - 1)) {
-        // Clamped to the field in float before the cast: a particle that
-        // moves far in one substep asks with a radius past any uint32_t.
-        const uint32_t c0 = static_cast<uint32_t>(std::max(c_lo, 0.0f));
-        const uint32_t c1 = static_cast<uint32_t>(std::min(c_hi, static_cast<float>(f.columns - 2)));
-        const uint32_t r0 = static_cast<uint32_t>(std::max(r_lo, 0.0f));
-        const uint32_t r1 = static_cast<uint32_t>(std::min(r_hi, static_cast<float>(f.rows - 2)));
+    HeightfieldCells cells;
+    if (heightfield_cells(f, p.x(), p.x(), p.z(), p.z(), radius, cells)) {
         // Early out for the usual case, a particle well above the ground:
         // every triangle of these cells lies below their highest sample, so
         // a point more than `radius` above it is clear of all of them (the
         // same answer as testing each triangle, for a fraction of the cost).
-        float highest = -kInfinity;
-        for (uint32_t r = r0; r <= r1 + 1; ++r) {
-            for (uint32_t c = c0; c <= c1 + 1; ++c) highest = std::max(highest, f.height(c, r));
-        }
-        if (p.y() - highest > radius) return {radius, Vec3::UnitY()};
-        for (uint32_t r = r0; r <= r1; ++r) {
-            for (uint32_t c = c0; c <= c1; ++c) {
+        if (p.y() - highest_sample(f, cells) > radius) return {radius, Vec3::UnitY()};
+        for (uint32_t r = cells.r0; r <= cells.r1; ++r) {
+            for (uint32_t c = cells.c0; c <= cells.c1; ++c) {
                 Vec3 tri[2][3];
                 cell_triangles(f, c, r, tri);
                 for (auto& t : tri) {

@@ -167,22 +167,12 @@ bool heightfield_clear(const MovingCollider& c, const RangeBounds& b, float thic
         hi = hi.cwiseMax(local);
     }
     const float radius = thickness + std::max(b.travel, c.shape->query_step) + kCullMargin;
-    const float c_lo = (lo.x() - radius) / f.spacing_x, c_hi = (hi.x() + radius) / f.spacing_x;
-    const float r_lo = (lo.z() - radius) / f.spacing_z, r_hi = (hi.z() + radius) / f.spacing_z;
-    if (!(c_hi >= 0 && r_hi >= 0 && c_lo < static_cast<float>(f.columns - 1) &&
-          r_lo < static_cast<float>(f.rows - 1))) {
-        return lo.y() >
-               -kInfinity;  // beside the field: nothing within reach (and not inside: the field is open)
-    }
-    const uint32_t c0 = static_cast<uint32_t>(std::max(c_lo, 0.0f));
-    const uint32_t c1 = static_cast<uint32_t>(std::min(c_hi, static_cast<float>(f.columns - 2)));
-    const uint32_t r0 = static_cast<uint32_t>(std::max(r_lo, 0.0f));
-    const uint32_t r1 = static_cast<uint32_t>(std::min(r_hi, static_cast<float>(f.rows - 2)));
-    float highest = -kInfinity;
-    for (uint32_t r = r0; r <= r1 + 1; ++r) {
-        for (uint32_t col = c0; col <= c1 + 1; ++col) highest = std::max(highest, f.height(col, r));
-    }
-    return lo.y() - highest > radius + kCullMargin;
+    HeightfieldCells cells;
+    // Beside the field nothing is within reach (the field is solid only
+    // below its surface); positions that are not finite go to the full stage.
+    if (!heightfield_cells(f, lo.x(), hi.x(), lo.z(), hi.z(), radius, cells))
+        return lo.allFinite() && hi.allFinite();
+    return lo.y() - highest_sample(f, cells) > radius + kCullMargin;
 }
 
 }  // namespace

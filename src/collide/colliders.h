@@ -116,6 +116,18 @@ SurfaceQuery query_hull(const HullShape& hull, const Vec3& p, float radius);
 SurfaceQuery query_mesh(const MeshShape& mesh, const Vec3& p, float radius);
 SurfaceQuery query_heightfield(const HeightfieldShape& field, const Vec3& p, float radius);
 
+// The cells of a height field within `radius` of the local xz rectangle
+// [x_lo, x_hi] x [z_lo, z_hi], clamped to the field (false: none), and the
+// highest sample at their corners: every triangle of those cells lies
+// below it (collider_mesh.cpp; the query and the collision stage's culling
+// both use them, so they agree bit for bit).
+struct HeightfieldCells {
+    uint32_t c0 = 0, c1 = 0, r0 = 0, r1 = 0;
+};
+bool heightfield_cells(const HeightfieldShape& field, float x_lo, float x_hi, float z_lo, float z_hi,
+                       float radius, HeightfieldCells& out);
+float highest_sample(const HeightfieldShape& field, const HeightfieldCells& cells);
+
 // Closest point to p on triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
 Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
