@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
     pareto_cmd->add_option("--seconds", pareto.seconds, "simulated time per run");
     pareto_cmd->add_option("--stiffness", pareto.stiffness);
     pareto_cmd->add_option("--csv", pareto.csv);
+    pareto_cmd->add_flag("--default-only", pareto.default_only,
+                         "only the DEFAULT at 1/60 s against the reference");
     pareto_cmd->add_option(
         "--scenes", pareto.scenes,
         "scenes to run: hanging, falling_flat, flag_in_wind, draped_sphere (default: all)");

@@ -34,6 +34,7 @@ struct ParetoOptions {
     float seconds = 1.0f;
     float stiffness = 1000.0f;
     std::string csv;
+    bool default_only = false;  // only the DEFAULT at 1/60 s against the reference
 };
 
 struct StabilityOptions {

@@ -92,6 +92,22 @@ int run_pareto(const ParetoOptions& o) {
 
         std::vector<Row> settings;
         for (float dt : dts) {
+            if (o.default_only) {
+                if (dt == 1.0f / 60.0f) {
+                    settings.push_back(Row{cloth_samples::scene_name(scene),
+                                           CLOTH_SOLVER_DEFAULT,
+                                           1,
+                                           1,
+                                           dt,
+                                           {},
+                                           0,
+                                           0,
+                                           0,
+                                           false,
+                                           false});
+                }
+                continue;
+            }
             for (cloth_solver_kind kind : {CLOTH_SOLVER_JACOBI, CLOTH_SOLVER_CHEBYSHEV, CLOTH_SOLVER_PCG}) {
                 for (uint32_t iterations : {1u, 2u, 4u, 8u, 16u}) {
                     for (uint32_t substeps = 1; substeps <= 4; ++substeps) {

@@ -221,6 +221,22 @@ class GridSprings final : public SpringTerms {
         }
     }
 
+    void add_blocks(const float* pinned, const uint32_t* target, Sym3* out) const override {
+        const uint32_t n = fabric_->particle_count();
+        size_t s = 0;
+        for (size_t f = 0; f < terms_.size(); ++f) {
+            const SpringFamily& family = fabric_->grid_families[f];
+            const Sym3Soa& block = terms_[f].block;
+            for (uint32_t p = 0; p + family.offset < n; ++p) {
+                if (family.mask[p] == 0.0f) continue;
+                if (pinned[p] == 0.0f && pinned[p + family.offset] == 0.0f) {
+                    out[target[s]] += block.get(max_offset_ + p);
+                }
+                ++s;
+            }
+        }
+    }
+
   private:
     std::shared_ptr<const Fabric> fabric_;
     std::vector<FamilyTerms, HostAllocator<FamilyTerms>> terms_;

@@ -156,6 +156,14 @@ class IndexedSprings final : public SpringTerms {
         }
     }
 
+    void add_blocks(const float* pinned, const uint32_t* target, Sym3* out) const override {
+        for (uint32_t s = 0; s < fabric_->spring_count(); ++s) {
+            if (pinned[fabric_->spring_first[s]] == 0.0f && pinned[fabric_->spring_second[s]] == 0.0f) {
+                out[target[s]] += block_.get(s);
+            }
+        }
+    }
+
   private:
     std::shared_ptr<const Fabric> fabric_;
     HostVector<float> stiffness_, damping_;  // per spring, from the material

@@ -33,13 +33,30 @@ void IterativeSolve::run(const GroupTask& task) {
             jacobi_sweep(sys, *current_, begin, end, *next_);
             break;
         case Round::kPcgStart:
-            pcg_start(sys, dv, begin, end, work);
+            if (problem_.multigrid) {
+                pcg_start_multigrid(sys, dv, begin, end, work);
+            } else {
+                pcg_start(sys, dv, begin, end, work);
+            }
             break;
         case Round::kPcgProduct:
             pcg_product(sys, begin, end, work);
             break;
         case Round::kPcgUpdate:
-            pcg_update(sys, alpha_, begin, end, dv, work);
+            if (problem_.multigrid) {
+                pcg_update_multigrid(sys, alpha_, begin, end, dv, work);
+            } else {
+                pcg_update(sys, alpha_, begin, end, dv, work);
+            }
+            break;
+        case Round::kMultigridResidual:
+            Multigrid::residual(sys, work.r, work.z, begin, end, work.q);
+            break;
+        case Round::kMultigridProlong:
+            problem_.multigrid->prolong(sys.pinned, begin, end, work.z);
+            break;
+        case Round::kMultigridSmooth:
+            pcg_smooth(sys, starting_, begin, end, work);
             break;
         case Round::kPcgDirection:
             pcg_direction(beta_, begin, end, work);
@@ -70,7 +87,8 @@ void IterativeSolve::run(const GroupTask& task) {
 
 // After a round's barrier: its sums, and the round that follows.
 void IterativeSolve::finish_round() {
-    const SolverWorkspace& work = *problem_.work;
+    SolverWorkspace& work = *problem_.work;
+    Multigrid* multigrid = problem_.multigrid;
     bool go_on = true;
     switch (round_) {
         case Round::kJacobiSweep:
@@ -79,6 +97,13 @@ void IterativeSolve::finish_round() {
             go_on = iteration_ < budget_;
             break;
         case Round::kPcgStart:
+            if (multigrid) {
+                multigrid->assemble(problem_.system);
+                starting_ = true;
+                go_on = budget_ > 0;
+                round_ = Round::kMultigridResidual;
+                break;
+            }
             rz0_ = rz_ = sum_partials(work);
             go_on = budget_ > 0 && rz_ > 0 && rz_ > tolerance_ * tolerance_ * rz0_;
             round_ = Round::kPcgProduct;
@@ -91,6 +116,12 @@ void IterativeSolve::finish_round() {
             break;
         }
         case Round::kPcgUpdate: {
+            if (multigrid) {
+                ++iteration_;
+                go_on = iteration_ < budget_;
+                round_ = Round::kMultigridResidual;
+                break;
+            }
             const double rz_next = sum_partials(work);
             ++iteration_;
             go_on = iteration_ < budget_ && rz_next > tolerance_ * tolerance_ * rz0_;
@@ -102,6 +133,29 @@ void IterativeSolve::finish_round() {
         case Round::kPcgDirection:
             round_ = Round::kPcgProduct;
             break;
+        case Round::kMultigridResidual:
+            multigrid->correct_coarse(work.q);
+            round_ = Round::kMultigridProlong;
+            break;
+        case Round::kMultigridProlong:
+            round_ = Round::kMultigridSmooth;
+            break;
+        case Round::kMultigridSmooth: {
+            work.z.swap_buffers(work.q);  // pcg_smooth left the new z in q
+            const double rz_next = sum_partials(work);
+            if (starting_) {
+                starting_ = false;
+                rz0_ = rz_ = rz_next;
+                go_on = rz_ > 0;
+                round_ = Round::kPcgProduct;
+                break;
+            }
+            go_on = rz_next > tolerance_ * tolerance_ * rz0_;
+            beta_ = rz_next / rz_;
+            rz_ = rz_next;
+            round_ = Round::kPcgDirection;
+            break;
+        }
         case Round::kChebyshevBound: {
             double a = 1.0;
             for (double partial : work.partial) a = std::min(a, partial);
@@ -149,9 +203,10 @@ void IterativeSolve::finish_round() {
 // The serial forms: the same rounds on this thread.
 
 SolveReport solve_pcg(const LinearSystem& system, uint32_t max_iterations, float tolerance, Vec3Soa& dv,
-                      SolverWorkspace& work) {
+                      SolverWorkspace& work, Multigrid* multigrid) {
     IterativeSolve solve;
-    solve.begin(CLOTH_SOLVER_PCG, max_iterations, tolerance, {system, AssemblyPass{}, &dv, &work});
+    solve.begin(CLOTH_SOLVER_PCG, max_iterations, tolerance,
+                {system, AssemblyPass{}, &dv, &work, nullptr, multigrid});
     run_serially(solve, system.particle_count);
     return solve.report();
 }

@@ -9,7 +9,10 @@
 //   PCG:       start (r = b - W dv, z = P r, p = z; r.z)
 //              then per iteration: product (q = W p; p.q),
 //              update (dv += a p, r -= a q, z = P r; r.z), direction (p = z + beta p)
-//              until the budget or sqrt(r.z / r0.z0) < tolerance
+//              until the budget or sqrt(r.z / r0.z0) < tolerance.
+//              With multigrid, z = M r is three more rounds after the
+//              start and each update: residual (then the coarse levels
+//              on one thread), prolong, smooth (r.z).
 //   CHEBYSHEV: bound (the eigenvalue interval), start, then per iteration
 //              product and direction; then the line search: energy
 //              (dv.W dv, b.dv), and scale (only when the length is not 1)
@@ -20,6 +23,7 @@
 #pragma once
 
 #include "base/staged.h"
+#include "solve/multigrid.h"
 #include "solve/solvers.h"
 
 namespace cloth {
@@ -33,6 +37,9 @@ class IterativeSolve final : public StagedAlgorithm {
         Vec3Soa* dv = nullptr;  // the start on entry; the solution on exit, but for JACOBI (solution())
         SolverWorkspace* work = nullptr;
         Vec3Soa* scratch = nullptr;  // JACOBI: the second iterate buffer
+        // PCG: the multigrid preconditioner (planned for this cloth), or
+        // null for block Jacobi.
+        Multigrid* multigrid = nullptr;
     };
 
     // `kind` is CLOTH_SOLVER_JACOBI, CLOTH_SOLVER_PCG or
@@ -56,6 +63,9 @@ class IterativeSolve final : public StagedAlgorithm {
         kPcgProduct,
         kPcgUpdate,
         kPcgDirection,
+        kMultigridResidual,  // t = r - W z, then (one thread) the coarse levels
+        kMultigridProlong,   // z += P e
+        kMultigridSmooth,    // z = z + w W_ii^-1 (r - W z); r.z
         kChebyshevBound,
         kChebyshevStart,
         kChebyshevProduct,
@@ -73,6 +83,7 @@ class IterativeSolve final : public StagedAlgorithm {
     bool done_ = true;
     uint32_t iteration_ = 0;
     double rz0_ = 0, rz_ = 0, alpha_ = 0, beta_ = 0;  // PCG
+    bool starting_ = false;                           // PCG with multigrid: the first z = M r
     double sigma_ = 0, delta_ = 0, rho_ = 0;          // Chebyshev
     double step_scale_ = 1;                           // Chebyshev: the energy-minimising step length
     SolveReport report_;

@@ -16,20 +16,23 @@ float stiffness_over_mass(const Material& material, const float* mass, const flo
     return m > 0 ? k / m : 0.0f;
 }
 
-SolverSettings resolve_solver(const SolverSettings& requested, float dt, float stiffness_per_mass) {
+SolverSettings resolve_solver(const SolverSettings& requested, float dt, float stiffness_per_mass,
+                              bool multigrid) {
     if (requested.kind != CLOTH_SOLVER_DEFAULT) return requested;
     SolverSettings out = requested;
     out.kind = CLOTH_SOLVER_PCG;
-    out.iterations = kDefaultPcgIterations;
+    out.multigrid = multigrid;
+    out.iterations = multigrid ? kDefaultMultigridIterations : kDefaultPcgIterations;
     out.cg_tolerance = kDefaultPcgTolerance;
-    // Substeps: the fewest that bring the substep's gamma to kDefaultSubstepGamma
+    const double gamma_limit = multigrid ? kDefaultMultigridSubstepGamma : kDefaultSubstepGamma;
+    // Substeps: the fewest that bring the substep's gamma to the limit
     // (gamma falls with the square of the substep count). The gamma is the
     // springs' own: a taut strain cable is 101 times as stiff, and the choice
     // does not count it (it would multiply the cost of every stiff cloth);
     // docs/stability.md measures where this holds, and the few cells of
     // 1/30-1/10 s steps of soft, heavy cloth where it gains energy.
     const double gamma = static_cast<double>(dt) * dt * stiffness_per_mass;
-    const double wanted = std::max(std::ceil(std::sqrt(gamma / kDefaultSubstepGamma)),
+    const double wanted = std::max(std::ceil(std::sqrt(gamma / gamma_limit)),
                                    std::ceil(static_cast<double>(dt) / kDefaultLongestSubstep - 1e-6));
     const uint32_t substeps = static_cast<uint32_t>(
         std::min<double>(std::max(wanted, 1.0), static_cast<double>(kDefaultMaxSubsteps)));

@@ -28,6 +28,9 @@ struct SolverSettings {
     float cg_tolerance = 1e-6f;
     uint32_t cg_max_iterations = 1000;
     bool compression_safe_jacobian = true;
+    // PCG preconditioned by multigrid (multigrid.h) rather than block
+    // Jacobi: what CLOTH_SOLVER_DEFAULT resolves to.
+    bool multigrid = false;
     StrainLimit strain_limit;  // set with cloth_set_strain_limit, kept by cloth_set_solver
 };
 

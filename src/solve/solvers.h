@@ -18,6 +18,8 @@
 
 namespace cloth {
 
+class Multigrid;
+
 constexpr uint32_t kReductionBlock = 256;
 inline uint32_t reduction_block_count(uint32_t particle_count) {
     return (particle_count + kReductionBlock - 1) / kReductionBlock;
@@ -79,8 +81,10 @@ SolveReport solve_cg(const LinearSystem& system, float tolerance, uint32_t max_i
 // At most `max_iterations` iterations; stops earlier once the preconditioned
 // residual sqrt(r.z / r0.z0) is below `tolerance`. A budgeted solver: it
 // never reports failure. Each iteration: one W p gather, two dot products.
+// With `multigrid` (planned for the system's fabric) the preconditioner is
+// its V-cycle instead (multigrid.h): two more gathers per iteration.
 SolveReport solve_pcg(const LinearSystem& system, uint32_t max_iterations, float tolerance, Vec3Soa& dv,
-                      SolverWorkspace& work);
+                      SolverWorkspace& work, Multigrid* multigrid = nullptr);
 
 // The passes solve_pcg runs (r, z, p, q live in `work`). Reducing passes
 // write work.partial for the blocks their range covers.
@@ -91,6 +95,15 @@ void pcg_product(const LinearSystem& system, uint32_t begin, uint32_t end,
 void pcg_update(const LinearSystem& system, double alpha, uint32_t begin, uint32_t end, Vec3Soa& dv,
                 SolverWorkspace& work);  // dv += a p, r -= a q, z = P r; partial r.z
 void pcg_direction(double beta, uint32_t begin, uint32_t end, SolverWorkspace& work);  // p = z + beta p
+// With the multigrid preconditioner (multigrid.h), z = M r is a V-cycle
+// that the start and the update begin (z = w W_ii^-1 r, no dot product) and
+// pcg_smooth ends: q = z + w W_ii^-1 (r - W z), the new z (the caller swaps
+// z and q), with partial r.q, and on the first application p = q.
+void pcg_start_multigrid(const LinearSystem& system, const Vec3Soa& dv, uint32_t begin, uint32_t end,
+                         SolverWorkspace& work);
+void pcg_update_multigrid(const LinearSystem& system, double alpha, uint32_t begin, uint32_t end, Vec3Soa& dv,
+                          SolverWorkspace& work);
+void pcg_smooth(const LinearSystem& system, bool first, uint32_t begin, uint32_t end, SolverWorkspace& work);
 
 // Chebyshev-accelerated block Jacobi (the Chebyshev semi-iteration of
 // Golub-Varga, as used for cloth by Wang 2015) over the interval [a, 2]

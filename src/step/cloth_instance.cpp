@@ -37,6 +37,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       backup_x_(memory),
       backup_v_(memory),
       pin_velocity_start_(memory),
+      multigrid_(memory),
       group_finite_(HostAllocator<uint8_t>(memory)),
       group_speed_squared_(HostAllocator<float>(memory)),
       contact_(memory) {
@@ -59,6 +60,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     group_finite_.assign(group_count_, 1);
     group_speed_squared_.assign(group_count_, 0.0f);
     set_material(material);
+    multigrid_.plan(f, *springs_);
 }
 
 void ClothInstance::set_material(const Material& material) {

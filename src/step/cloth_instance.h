@@ -288,6 +288,7 @@ class ClothInstance {
     PlannedStage plan_[kMaxPlannedStages] = {};
     uint32_t plan_size_ = 0;
     IterativeSolve iterative_;  // JACOBI, PCG, CHEBYSHEV
+    Multigrid multigrid_;       // PCG's preconditioner when the settings ask for it
     StrainLimiter strain_limiter_;
     uint32_t group_count_ = 0;
     Cursor cursor_;

@@ -49,7 +49,8 @@ void ClothInstance::plan_substep() {
             plan(Stage::kSerialSolve, &C::solve_by_cg, &C::record_cg_result);
         } else {
             iterative_.begin(kind, frame_solver_.iterations, frame_solver_.cg_tolerance,
-                             {system(), assembly(), &dv_, &solver_work_, &dv_scratch_});
+                             {system(), assembly(), &dv_, &solver_work_, &dv_scratch_,
+                              frame_solver_.multigrid ? &multigrid_ : nullptr});
             const Stage stage = kind == CLOTH_SOLVER_JACOBI ? Stage::kJacobiSweep : Stage::kIterativeSolve;
             plan(stage, &C::iterate_solver, &C::record_iterative_result, &iterative_);
         }
@@ -97,7 +98,7 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
         solver_.kind == CLOTH_SOLVER_DEFAULT
             ? stiffness_over_mass(material_, mass_.data(), pinned_.data(), particle_count())
             : 0.0f;
-    frame_solver_ = resolve_solver(solver_, dt, stiffness_per_mass);
+    frame_solver_ = resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty());
     if (contact_.carrier().active() || frame_solver_.kind == CLOTH_SOLVER_EXPLICIT) {
         backup_ = Backup::kCopied;
         backup_x_ = x_;

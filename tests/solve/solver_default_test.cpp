@@ -109,25 +109,37 @@ TEST(DefaultSolver, ThePaperStepFailsWhereTheDefaultHolds) {
 TEST(DefaultSolver, SubstepsFollowGamma) {
     cloth::SolverSettings requested;
     requested.kind = CLOTH_SOLVER_DEFAULT;
-    // gamma = dt^2 k / m; one substep while gamma <= kDefaultSubstepGamma.
+    // gamma = dt^2 k / m; one substep while gamma is at most the limit: the
+    // multigrid one for a cloth with coarse levels, the block-Jacobi one
+    // for a cloth too small for them.
     const float dt = 1.0f / 60.0f;
-    const float low =
-        float(cloth::kDefaultSubstepGamma) / (dt * dt);  // k/m giving gamma exactly at the limit
-    EXPECT_EQ(cloth::resolve_solver(requested, dt, 0.99f * low).substeps, 1u);
-    EXPECT_EQ(cloth::resolve_solver(requested, dt, 1.2f * low).substeps, 2u);
-    EXPECT_EQ(cloth::resolve_solver(requested, dt, 3.9f * low).substeps, 2u);
-    EXPECT_EQ(cloth::resolve_solver(requested, dt, 8.9f * low).substeps, 3u);
-    EXPECT_EQ(cloth::resolve_solver(requested, dt, 1e12f * low).substeps, cloth::kDefaultMaxSubsteps);
-    EXPECT_EQ(cloth::resolve_solver(requested, dt, low).kind, CLOTH_SOLVER_PCG);
-    // However soft the cloth, no substep is longer than kDefaultLongestSubstep.
-    EXPECT_EQ(cloth::resolve_solver(requested, 1.0f / 30.0f, 0.0f).substeps, 1u);
-    EXPECT_EQ(cloth::resolve_solver(requested, 0.05f, 0.0f).substeps, 2u);
-    EXPECT_EQ(cloth::resolve_solver(requested, 0.1f, 0.0f).substeps, 3u);
+    for (const bool multigrid : {true, false}) {
+        SCOPED_TRACE(multigrid ? "multigrid" : "block Jacobi");
+        const double limit = multigrid ? cloth::kDefaultMultigridSubstepGamma : cloth::kDefaultSubstepGamma;
+        const float low = float(limit) / (dt * dt);  // k/m giving gamma exactly at the limit
+        const auto resolve = [&](float dt_, float k_over_m) {
+            return cloth::resolve_solver(requested, dt_, k_over_m, multigrid);
+        };
+        EXPECT_EQ(resolve(dt, 0.99f * low).substeps, 1u);
+        EXPECT_EQ(resolve(dt, 1.2f * low).substeps, 2u);
+        EXPECT_EQ(resolve(dt, 3.9f * low).substeps, 2u);
+        EXPECT_EQ(resolve(dt, 8.9f * low).substeps, 3u);
+        EXPECT_EQ(resolve(dt, 1e12f * low).substeps, cloth::kDefaultMaxSubsteps);
+        EXPECT_EQ(resolve(dt, low).kind, CLOTH_SOLVER_PCG);
+        EXPECT_EQ(resolve(dt, low).multigrid, multigrid);
+        EXPECT_EQ(resolve(dt, low).iterations,
+                  multigrid ? cloth::kDefaultMultigridIterations : cloth::kDefaultPcgIterations);
+        // However soft the cloth, no substep is longer than kDefaultLongestSubstep.
+        EXPECT_EQ(resolve(1.0f / 30.0f, 0.0f).substeps, 1u);
+        EXPECT_EQ(resolve(0.05f, 0.0f).substeps, 2u);
+        EXPECT_EQ(resolve(0.1f, 0.0f).substeps, 3u);
+    }
+    const float low = float(cloth::kDefaultMultigridSubstepGamma) / (dt * dt);
     requested.substeps = 3;
-    EXPECT_EQ(cloth::resolve_solver(requested, dt, 0.99f * low).substeps, 3u)
+    EXPECT_EQ(cloth::resolve_solver(requested, dt, 0.99f * low, true).substeps, 3u)
         << "the user's substeps are a floor";
     requested.kind = CLOTH_SOLVER_JACOBI;
-    EXPECT_EQ(cloth::resolve_solver(requested, dt, 1e12f * low).substeps, 3u)
+    EXPECT_EQ(cloth::resolve_solver(requested, dt, 1e12f * low, true).substeps, 3u)
         << "explicit kinds are untouched";
 }
 

@@ -1,0 +1,437 @@
+#include "solve/multigrid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "base/lanes.h"
+
+namespace cloth {
+namespace {
+
+constexpr uint32_t kNone = ~0u;
+
+// Pairs (a, b), a < b, as one sortable key.
+uint64_t pair_key(uint32_t a, uint32_t b) {
+    return a < b ? (uint64_t{a} << 32) | b : (uint64_t{b} << 32) | a;
+}
+
+// 2 x 2 blocks of a columns x rows grid; returns the coarse node count.
+uint32_t aggregate_grid(uint32_t columns, uint32_t rows, HostVector<uint32_t>& aggregate) {
+    const uint32_t coarse_columns = (columns + 1) / 2;
+    aggregate.resize(size_t{columns} * rows);
+    for (uint32_t r = 0; r < rows; ++r) {
+        for (uint32_t c = 0; c < columns; ++c) aggregate[r * columns + c] = (r / 2) * coarse_columns + c / 2;
+    }
+    return coarse_columns * ((rows + 1) / 2);
+}
+
+// Greedy aggregation over a graph given as sorted pair keys: in node order,
+// a node whose neighbours are all free starts an aggregate with them; a
+// node left over joins its first aggregated neighbour, or stands alone.
+uint32_t aggregate_graph(uint32_t size, const HostVector<uint64_t>& pairs, const HostMemory* memory,
+                         HostVector<uint32_t>& aggregate) {
+    HostVector<uint32_t> start{HostAllocator<uint32_t>(memory)}, neighbour{HostAllocator<uint32_t>(memory)};
+    start.assign(size + 1, 0);
+    for (uint64_t key : pairs) {
+        ++start[(key >> 32) + 1];
+        ++start[(key & 0xffffffffu) + 1];
+    }
+    for (uint32_t i = 0; i < size; ++i) start[i + 1] += start[i];
+    neighbour.resize(start[size]);
+    HostVector<uint32_t> fill(start.begin(), start.end() - 1, HostAllocator<uint32_t>(memory));
+    for (uint64_t key : pairs) {
+        const uint32_t a = static_cast<uint32_t>(key >> 32), b = static_cast<uint32_t>(key & 0xffffffffu);
+        neighbour[fill[a]++] = b;
+        neighbour[fill[b]++] = a;
+    }
+    aggregate.assign(size, kNone);
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < size; ++i) {
+        bool free = aggregate[i] == kNone;
+        for (uint32_t k = start[i]; free && k < start[i + 1]; ++k) free = aggregate[neighbour[k]] == kNone;
+        if (!free) continue;
+        aggregate[i] = count;
+        for (uint32_t k = start[i]; k < start[i + 1]; ++k) aggregate[neighbour[k]] = count;
+        ++count;
+    }
+    for (uint32_t i = 0; i < size; ++i) {
+        if (aggregate[i] != kNone) continue;
+        for (uint32_t k = start[i]; aggregate[i] == kNone && k < start[i + 1]; ++k) {
+            aggregate[i] = aggregate[neighbour[k]];
+        }
+        if (aggregate[i] == kNone) aggregate[i] = count++;
+    }
+    return count;
+}
+
+// The sorted distinct pairs of `level_size` nodes that the given pairs of
+// the finer level map onto, and per finer pair its target (a pair index,
+// or pair count + node when both ends fall in one aggregate).
+template <class PairOf>
+void coarse_pairs(uint32_t finer_pairs, PairOf pair_of, const HostVector<uint32_t>& aggregate,
+                  HostVector<uint64_t>& keys, HostVector<uint32_t>& target) {
+    keys.clear();
+    for (uint32_t p = 0; p < finer_pairs; ++p) {
+        const auto [a, b] = pair_of(p);
+        const uint32_t A = aggregate[a], B = aggregate[b];
+        if (A != B) keys.push_back(pair_key(A, B));
+    }
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    target.resize(finer_pairs);
+    for (uint32_t p = 0; p < finer_pairs; ++p) {
+        const auto [a, b] = pair_of(p);
+        const uint32_t A = aggregate[a], B = aggregate[b];
+        target[p] = A == B ? static_cast<uint32_t>(keys.size()) + A
+                           : static_cast<uint32_t>(
+                                 std::lower_bound(keys.begin(), keys.end(), pair_key(A, B)) - keys.begin());
+    }
+}
+
+void set_pairs(const HostVector<uint64_t>& keys, HostVector<uint32_t>& first, HostVector<uint32_t>& second) {
+    first.resize(keys.size());
+    second.resize(keys.size());
+    for (size_t p = 0; p < keys.size(); ++p) {
+        first[p] = static_cast<uint32_t>(keys[p] >> 32);
+        second[p] = static_cast<uint32_t>(keys[p] & 0xffffffffu);
+    }
+}
+
+// The grid shape of a grid fabric with structural springs: its vertical
+// structural family joins p to p + columns (a chain has only the offset 1).
+bool grid_shape(const Fabric& fabric, uint32_t& columns, uint32_t& rows) {
+    const uint32_t n = fabric.particle_count();
+    uint32_t widest = 0;
+    bool structural = false;
+    for (const SpringFamily& family : fabric.grid_families) {
+        if (family.kind != kStructural) continue;
+        structural = true;
+        widest = std::max(widest, family.offset);
+    }
+    if (!structural) return false;
+    columns = widest > 1 ? widest : n;
+    rows = n / columns;
+    return columns * rows == n;
+}
+
+}  // namespace
+
+Multigrid::Level::Level(const HostMemory* memory)
+    : pair_first(HostAllocator<uint32_t>(memory)),
+      pair_second(HostAllocator<uint32_t>(memory)),
+      pair_block(HostAllocator<Sym3>(memory)),
+      row_start(HostAllocator<uint32_t>(memory)),
+      row_column(HostAllocator<uint32_t>(memory)),
+      row_pair(HostAllocator<uint32_t>(memory)),
+      diagonal(HostAllocator<Sym3>(memory)),
+      inverse(HostAllocator<Sym3>(memory)),
+      rhs(HostAllocator<Vec3>(memory)),
+      x(HostAllocator<Vec3>(memory)),
+      product(HostAllocator<Vec3>(memory)),
+      aggregate(HostAllocator<uint32_t>(memory)),
+      pair_target(HostAllocator<uint32_t>(memory)) {}
+
+Multigrid::Multigrid(const HostMemory* memory)
+    : memory_(memory),
+      aggregate_(HostAllocator<uint32_t>(memory)),
+      spring_target_(HostAllocator<uint32_t>(memory)),
+      gathered_(HostAllocator<Sym3>(memory)),
+      levels_(HostAllocator<Level>(memory)),
+      coarsest_(HostAllocator<double>(memory)),
+      coarsest_vector_(HostAllocator<double>(memory)) {}
+
+void Multigrid::plan(const Fabric& fabric, const SpringTerms& springs) {
+    levels_.clear();
+    const uint32_t n = fabric.particle_count();
+    if (n <= kCoarsestSize) return;
+
+    // The fine springs, in the order add_blocks visits them.
+    HostVector<uint32_t> first{HostAllocator<uint32_t>(memory_)}, second{HostAllocator<uint32_t>(memory_)};
+    springs.for_each_block([&](uint32_t i, uint32_t j, const Sym3&) {
+        first.push_back(i);
+        second.push_back(j);
+    });
+
+    // The first coarse level.
+    uint32_t columns = 0, rows = 0;
+    uint32_t size = 0;
+    const bool grid = grid_shape(fabric, columns, rows);
+    HostVector<uint64_t> keys{HostAllocator<uint64_t>(memory_)};
+    if (grid) {
+        size = aggregate_grid(columns, rows, aggregate_);
+    } else {
+        // Neighbours along structural springs (all springs if there are none).
+        bool structural = fabric.springs_of_kind[kStructural] > 0;
+        for (uint32_t s = 0; s < fabric.spring_count(); ++s) {
+            if (structural && fabric.spring_kind[s] != kStructural) continue;
+            keys.push_back(pair_key(fabric.spring_first[s], fabric.spring_second[s]));
+        }
+        std::sort(keys.begin(), keys.end());
+        keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+        size = aggregate_graph(n, keys, memory_, aggregate_);
+    }
+    const auto fine_pair = [&](uint32_t s) { return std::pair<uint32_t, uint32_t>{first[s], second[s]}; };
+    coarse_pairs(static_cast<uint32_t>(first.size()), fine_pair, aggregate_, keys, spring_target_);
+    levels_.emplace_back(memory_);
+    levels_.back().size = size;
+    if (grid) {
+        levels_.back().columns = (columns + 1) / 2;
+        levels_.back().rows = (rows + 1) / 2;
+    }
+    set_pairs(keys, levels_.back().pair_first, levels_.back().pair_second);
+
+    // Coarser levels down to kCoarsestSize nodes.
+    while (levels_.back().size > kCoarsestSize) {
+        Level next(memory_);
+        Level& finer = levels_.back();
+        if (finer.columns > 0) {
+            next.size = aggregate_grid(finer.columns, finer.rows, finer.aggregate);
+            next.columns = (finer.columns + 1) / 2;
+            next.rows = (finer.rows + 1) / 2;
+        } else {
+            HostVector<uint64_t> finer_keys{HostAllocator<uint64_t>(memory_)};
+            for (size_t p = 0; p < finer.pair_first.size(); ++p) {
+                finer_keys.push_back(pair_key(finer.pair_first[p], finer.pair_second[p]));
+            }
+            next.size = aggregate_graph(finer.size, finer_keys, memory_, finer.aggregate);
+        }
+        if (next.size >= finer.size) {  // nothing couples the nodes: no hierarchy
+            levels_.clear();
+            return;
+        }
+        const auto pair_of = [&](uint32_t p) {
+            return std::pair<uint32_t, uint32_t>{finer.pair_first[p], finer.pair_second[p]};
+        };
+        coarse_pairs(static_cast<uint32_t>(finer.pair_first.size()), pair_of, finer.aggregate, keys,
+                     finer.pair_target);
+        set_pairs(keys, next.pair_first, next.pair_second);
+        levels_.push_back(std::move(next));
+    }
+    for (Level& level : levels_) {
+        const uint32_t pairs = static_cast<uint32_t>(level.pair_first.size());
+        level.row_start.assign(level.size + 1, 0);
+        for (uint32_t p = 0; p < pairs; ++p) {
+            ++level.row_start[level.pair_first[p] + 1];
+            ++level.row_start[level.pair_second[p] + 1];
+        }
+        for (uint32_t node = 0; node < level.size; ++node) level.row_start[node + 1] += level.row_start[node];
+        level.row_column.resize(2 * size_t{pairs});
+        level.row_pair.resize(2 * size_t{pairs});
+        HostVector<uint32_t> fill(level.row_start.begin(), level.row_start.end() - 1,
+                                  HostAllocator<uint32_t>(memory_));
+        for (uint32_t p = 0; p < pairs; ++p) {
+            const uint32_t a = level.pair_first[p], b = level.pair_second[p];
+            level.row_column[fill[a]] = b;
+            level.row_pair[fill[a]++] = p;
+            level.row_column[fill[b]] = a;
+            level.row_pair[fill[b]++] = p;
+        }
+        level.pair_block.resize(pairs);
+        level.diagonal.resize(level.size);
+        level.inverse.resize(level.size);
+        for (HostVector<Vec3>* v : {&level.rhs, &level.x, &level.product})
+            v->assign(level.size, Vec3::Zero());
+    }
+    gathered_.resize(levels_.front().pair_first.size() + levels_.front().size);
+    const size_t unknowns = 3 * size_t{levels_.back().size};
+    coarsest_.assign(unknowns * unknowns, 0.0);
+    coarsest_vector_.assign(unknowns, 0.0);
+}
+
+void Multigrid::assemble(const LinearSystem& system) {
+    if (levels_.empty()) return;
+    // The first level from the fine system: W_II = sum of the free
+    // children's W_ii minus twice the springs inside the aggregate,
+    // W_IJ = minus the springs between the two aggregates.
+    Level& top = levels_.front();
+    const uint32_t pairs = static_cast<uint32_t>(top.pair_first.size());
+    std::fill(gathered_.begin(), gathered_.end(), Sym3{});
+    std::fill(top.diagonal.begin(), top.diagonal.end(), Sym3{});
+    for (uint32_t i = 0; i < system.particle_count; ++i) {
+        if (system.pinned[i] == 0.0f) top.diagonal[aggregate_[i]] += system.diagonal->get(i);
+    }
+    system.springs->add_blocks(system.pinned, spring_target_.data(), gathered_.data());
+    for (uint32_t p = 0; p < pairs; ++p) top.pair_block[p] = gathered_[p] * -1.0f;
+    for (uint32_t node = 0; node < top.size; ++node) top.diagonal[node] += gathered_[pairs + node] * -2.0f;
+
+    // Each coarser level from the one above it.
+    for (size_t l = 0; l + 1 < levels_.size(); ++l) {
+        const Level& finer = levels_[l];
+        Level& level = levels_[l + 1];
+        const uint32_t level_pairs = static_cast<uint32_t>(level.pair_first.size());
+        std::fill(level.diagonal.begin(), level.diagonal.end(), Sym3{});
+        std::fill(level.pair_block.begin(), level.pair_block.end(), Sym3{});
+        for (uint32_t node = 0; node < finer.size; ++node)
+            level.diagonal[finer.aggregate[node]] += finer.diagonal[node];
+        for (uint32_t p = 0; p < finer.pair_first.size(); ++p) {
+            const uint32_t target = finer.pair_target[p];
+            if (target < level_pairs) {
+                level.pair_block[target] += finer.pair_block[p];
+            } else {
+                level.diagonal[target - level_pairs] += finer.pair_block[p] * 2.0f;
+            }
+        }
+    }
+    // Nodes with no free particle have a zero diagonal: they stay zero.
+    for (Level& level : levels_) {
+        for (uint32_t node = 0; node < level.size; ++node) {
+            const Sym3& d = level.diagonal[node];
+            level.inverse[node] = d.xx + d.yy + d.zz > 0.0f ? d.inverse() : Sym3{};
+        }
+    }
+    factor_coarsest();
+}
+
+// Cholesky of the coarsest level in place (lower triangle), nodes with no
+// free particle kept as identity rows. Symmetric positive definite as a
+// Galerkin product of W; a failed pivot (round-off) falls back to one
+// block-Jacobi solve there.
+void Multigrid::factor_coarsest() {
+    const Level& level = levels_.back();
+    const size_t m = 3 * size_t{level.size};
+    double* a = coarsest_.data();
+    std::fill(coarsest_.begin(), coarsest_.end(), 0.0);
+    const auto put = [&](uint32_t row_node, uint32_t column_node, const Sym3& b) {
+        const double e[3][3] = {{b.xx, b.xy, b.xz}, {b.xy, b.yy, b.yz}, {b.xz, b.yz, b.zz}};
+        for (int r = 0; r < 3; ++r) {
+            for (int c = 0; c < 3; ++c) a[(3 * row_node + r) * m + 3 * column_node + c] += e[r][c];
+        }
+    };
+    for (uint32_t node = 0; node < level.size; ++node) {
+        const Sym3& d = level.diagonal[node];
+        put(node, node, d.xx + d.yy + d.zz > 0.0f ? d : Sym3::identity(1.0f));
+    }
+    for (size_t p = 0; p < level.pair_first.size(); ++p) {
+        put(level.pair_first[p], level.pair_second[p], level.pair_block[p]);
+        put(level.pair_second[p], level.pair_first[p], level.pair_block[p]);
+    }
+    coarsest_factored_ = true;
+    for (size_t j = 0; j < m && coarsest_factored_; ++j) {
+        double pivot = a[j * m + j];
+        for (size_t k = 0; k < j; ++k) pivot -= a[j * m + k] * a[j * m + k];
+        if (!(pivot > 0.0)) {
+            coarsest_factored_ = false;
+            break;
+        }
+        const double root = std::sqrt(pivot);
+        a[j * m + j] = root;
+        for (size_t i = j + 1; i < m; ++i) {
+            double sum = a[i * m + j];
+            for (size_t k = 0; k < j; ++k) sum -= a[i * m + k] * a[j * m + k];
+            a[i * m + j] = sum / root;
+        }
+    }
+}
+
+void Multigrid::multiply(const Level& level, const HostVector<Vec3>& x, HostVector<Vec3>& y) const {
+    const Sym3* block = level.pair_block.data();
+    const Vec3* in = x.data();
+    for (uint32_t node = 0; node < level.size; ++node) {
+        const Sym3& d = level.diagonal[node];
+        const Vec3& v = in[node];
+        float sx = d.xx * v.x() + d.xy * v.y() + d.xz * v.z();
+        float sy = d.xy * v.x() + d.yy * v.y() + d.yz * v.z();
+        float sz = d.xz * v.x() + d.yz * v.y() + d.zz * v.z();
+        for (uint32_t k = level.row_start[node]; k < level.row_start[node + 1]; ++k) {
+            const Sym3& b = block[level.row_pair[k]];
+            const Vec3& o = in[level.row_column[k]];
+            sx += b.xx * o.x() + b.xy * o.y() + b.xz * o.z();
+            sy += b.xy * o.x() + b.yy * o.y() + b.yz * o.z();
+            sz += b.xz * o.x() + b.yz * o.y() + b.zz * o.z();
+        }
+        y[node] = Vec3(sx, sy, sz);
+    }
+}
+
+void Multigrid::cycle(uint32_t index) {
+    Level& level = levels_[index];
+    if (index + 1 == levels_.size()) {
+        if (!coarsest_factored_) {
+            for (uint32_t node = 0; node < level.size; ++node)
+                level.x[node] = level.inverse[node] * level.rhs[node];
+            return;
+        }
+        // L L^T x = rhs by two triangular solves.
+        const size_t m = 3 * size_t{level.size};
+        const double* a = coarsest_.data();
+        double* v = coarsest_vector_.data();
+        for (uint32_t node = 0; node < level.size; ++node) {
+            for (int c = 0; c < 3; ++c) v[3 * node + c] = level.rhs[node][c];
+        }
+        for (size_t i = 0; i < m; ++i) {
+            for (size_t k = 0; k < i; ++k) v[i] -= a[i * m + k] * v[k];
+            v[i] /= a[i * m + i];
+        }
+        for (size_t i = m; i-- > 0;) {
+            for (size_t k = i + 1; k < m; ++k) v[i] -= a[k * m + i] * v[k];
+            v[i] /= a[i * m + i];
+        }
+        for (uint32_t node = 0; node < level.size; ++node) {
+            const bool free =
+                level.diagonal[node].xx + level.diagonal[node].yy + level.diagonal[node].zz > 0.0f;
+            level.x[node] = free ? Vec3(static_cast<float>(v[3 * node]), static_cast<float>(v[3 * node + 1]),
+                                        static_cast<float>(v[3 * node + 2]))
+                                 : Vec3::Zero();
+        }
+        return;
+    }
+    Level& coarser = levels_[index + 1];
+    for (uint32_t node = 0; node < level.size; ++node) {
+        level.x[node] = level.inverse[node] * level.rhs[node] * kSmootherWeight;
+    }
+    multiply(level, level.x, level.product);
+    std::fill(coarser.rhs.begin(), coarser.rhs.end(), Vec3::Zero());
+    for (uint32_t node = 0; node < level.size; ++node) {
+        coarser.rhs[level.aggregate[node]] += level.rhs[node] - level.product[node];
+    }
+    cycle(index + 1);
+    for (uint32_t node = 0; node < level.size; ++node) level.x[node] += coarser.x[level.aggregate[node]];
+    multiply(level, level.x, level.product);
+    for (uint32_t node = 0; node < level.size; ++node) {
+        level.x[node] += level.inverse[node] * (level.rhs[node] - level.product[node]) * kSmootherWeight;
+    }
+}
+
+void Multigrid::correct_coarse(const Vec3Soa& t) {
+    Level& top = levels_.front();
+    std::fill(top.rhs.begin(), top.rhs.end(), Vec3::Zero());
+    for (uint32_t i = 0; i < aggregate_.size(); ++i) top.rhs[aggregate_[i]] += t.get(i);
+    cycle(0);
+}
+
+CLOTH_HOT_LOOP void Multigrid::smooth_from_zero(const LinearSystem& system, const Vec3Soa& r, uint32_t begin,
+                                                uint32_t end, Vec3Soa& z) {
+    const Sym3Soa& w = *system.diagonal_inverse;
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        using T = typename L::type;
+        const T x = L::load(&r.x[i]) * kSmootherWeight, y = L::load(&r.y[i]) * kSmootherWeight,
+                zz = L::load(&r.z[i]) * kSmootherWeight;
+        const T xy = L::load(&w.xy[i]), xz = L::load(&w.xz[i]), yz = L::load(&w.yz[i]);
+        store_vec3<L>(z, i, L::load(&w.xx[i]) * x + xy * y + xz * zz,
+                      xy * x + L::load(&w.yy[i]) * y + yz * zz, xz * x + yz * y + L::load(&w.zz[i]) * zz);
+    });
+}
+
+CLOTH_HOT_LOOP void Multigrid::residual(const LinearSystem& system, const Vec3Soa& r, const Vec3Soa& z,
+                                        uint32_t begin, uint32_t end, Vec3Soa& t) {
+    multiply_system(system, z, begin, end, t);
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        store_vec3<L>(t, i, L::load(&r.x[i]) - L::load(&t.x[i]), L::load(&r.y[i]) - L::load(&t.y[i]),
+                      L::load(&r.z[i]) - L::load(&t.z[i]));
+    });
+}
+
+void Multigrid::prolong(const float* pinned, uint32_t begin, uint32_t end, Vec3Soa& z) const {
+    const HostVector<Vec3>& e = levels_.front().x;
+    for (uint32_t i = begin; i < end; ++i) {
+        if (pinned[i] != 0.0f) continue;
+        const Vec3& c = e[aggregate_[i]];
+        z.x[i] += c.x();
+        z.y[i] += c.y();
+        z.z[i] += c.z();
+    }
+}
+
+}  // namespace cloth
