@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "base/lanes.h"
+#include "forces/grid_products.h"
 #include "forces/spring_terms.h"
 
 namespace cloth {
@@ -66,6 +67,36 @@ CLOTH_HOT_LOOP void product_kernel(uint32_t begin, uint32_t end, int64_t block_s
 
 // Particles per chunk of neighbour_sums: its accumulators stay in L1.
 constexpr uint32_t kChunk = 512;
+
+}  // namespace
+
+void grid_neighbour_sums(const GridBlocks& grid, const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& q) {
+    const uint32_t n = grid.n, pad = grid.pad;
+    for (HostVector<float>* a : {&q.x, &q.y, &q.z}) std::fill(a->begin() + begin, a->begin() + end, 0.0f);
+    for (uint32_t chunk = begin; chunk < end; chunk += kChunk) {
+        const uint32_t chunk_end = std::min(end, chunk + kChunk);
+        for (uint32_t f = 0; f < grid.family_count; ++f) {
+            const uint32_t offset = grid.offsets[f];
+            const Sym3Soa& block = *grid.blocks[f];
+            const float* b[6] = {block.xx.data() + pad, block.xy.data() + pad, block.xz.data() + pad,
+                                 block.yy.data() + pad, block.yz.data() + pad, block.zz.data() + pad};
+            // As first particle: A[p] x[p + offset]; as second: A[p - offset] x[p - offset].
+            const uint32_t first_end = std::min(chunk_end, n > offset ? n - offset : 0u);
+            if (chunk < first_end) {
+                product_kernel(chunk, first_end, 0, offset, b[0], b[1], b[2], b[3], b[4], b[5], x.x.data(),
+                               x.y.data(), x.z.data(), q.x.data(), q.y.data(), q.z.data());
+            }
+            const uint32_t second_begin = std::max(chunk, offset);
+            if (second_begin < chunk_end) {
+                const int64_t back = -static_cast<int64_t>(offset);
+                product_kernel(second_begin, chunk_end, back, back, b[0], b[1], b[2], b[3], b[4], b[5],
+                               x.x.data(), x.y.data(), x.z.data(), q.x.data(), q.y.data(), q.z.data());
+            }
+        }
+    }
+}
+
+namespace {
 
 struct FamilyTerms {
     explicit FamilyTerms(const HostMemory* memory) : force(memory), block(memory) {}
@@ -139,7 +170,8 @@ class GridSprings final : public SpringTerms {
     GridSprings(const HostMemory* memory, std::shared_ptr<const Fabric> fabric, const Material& material)
         : fabric_(std::move(fabric)),
           terms_(HostAllocator<FamilyTerms>(memory)),
-          offsets_(HostAllocator<uint32_t>(memory)) {
+          offsets_(HostAllocator<uint32_t>(memory)),
+          blocks_(HostAllocator<const Sym3Soa*>(memory)) {
         const uint32_t n = fabric_->particle_count();
         terms_.reserve(fabric_->grid_families.size());
         for (const SpringFamily& family : fabric_->grid_families) {
@@ -151,6 +183,7 @@ class GridSprings final : public SpringTerms {
             t.force.resize(max_offset_ + n);
             t.block.resize(max_offset_ + n);
         }
+        for (const FamilyTerms& t : terms_) blocks_.push_back(&t.block);
         set_material(material);
     }
 
@@ -186,29 +219,9 @@ class GridSprings final : public SpringTerms {
     }
 
     void neighbour_sums(const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& q) const override {
-        const uint32_t n = fabric_->particle_count(), pad = max_offset_;
-        for (HostVector<float>* a : {&q.x, &q.y, &q.z}) std::fill(a->begin() + begin, a->begin() + end, 0.0f);
-        for (uint32_t chunk = begin; chunk < end; chunk += kChunk) {
-            const uint32_t chunk_end = std::min(end, chunk + kChunk);
-            for (size_t f = 0; f < terms_.size(); ++f) {
-                const uint32_t offset = offsets_[f];
-                const Sym3Soa& block = terms_[f].block;
-                const float* b[6] = {block.xx.data() + pad, block.xy.data() + pad, block.xz.data() + pad,
-                                     block.yy.data() + pad, block.yz.data() + pad, block.zz.data() + pad};
-                // As first particle: A[p] x[p + offset]; as second: A[p - offset] x[p - offset].
-                const uint32_t first_end = std::min(chunk_end, n - offset);
-                if (chunk < first_end) {
-                    product_kernel(chunk, first_end, 0, offset, b[0], b[1], b[2], b[3], b[4], b[5],
-                                   x.x.data(), x.y.data(), x.z.data(), q.x.data(), q.y.data(), q.z.data());
-                }
-                const uint32_t second_begin = std::max(chunk, offset);
-                if (second_begin < chunk_end) {
-                    const int64_t back = -static_cast<int64_t>(offset);
-                    product_kernel(second_begin, chunk_end, back, back, b[0], b[1], b[2], b[3], b[4], b[5],
-                                   x.x.data(), x.y.data(), x.z.data(), q.x.data(), q.y.data(), q.z.data());
-                }
-            }
-        }
+        const GridBlocks grid{fabric_->particle_count(), max_offset_, static_cast<uint32_t>(terms_.size()),
+                              offsets_.data(), blocks_.data()};
+        grid_neighbour_sums(grid, x, begin, end, q);
     }
 
     void for_each_block(const std::function<void(uint32_t, uint32_t, const Sym3&)>& visit) const override {
@@ -240,7 +253,8 @@ class GridSprings final : public SpringTerms {
   private:
     std::shared_ptr<const Fabric> fabric_;
     std::vector<FamilyTerms, HostAllocator<FamilyTerms>> terms_;
-    HostVector<uint32_t> offsets_;  // per family
+    HostVector<uint32_t> offsets_;       // per family
+    HostVector<const Sym3Soa*> blocks_;  // per family: &terms_[f].block
     uint32_t max_offset_ = 0;
 };
 

@@ -123,11 +123,15 @@ Multigrid::Level::Level(const HostMemory* memory)
       row_start(HostAllocator<uint32_t>(memory)),
       row_column(HostAllocator<uint32_t>(memory)),
       row_pair(HostAllocator<uint32_t>(memory)),
+      pair_family(HostAllocator<uint8_t>(memory)),
+      family_offset(HostAllocator<uint32_t>(memory)),
+      family_block(HostAllocator<Sym3Soa>(memory)),
+      family_block_pointer(HostAllocator<const Sym3Soa*>(memory)),
       diagonal(HostAllocator<Sym3>(memory)),
       inverse(HostAllocator<Sym3>(memory)),
-      rhs(HostAllocator<Vec3>(memory)),
-      x(HostAllocator<Vec3>(memory)),
-      product(HostAllocator<Vec3>(memory)),
+      rhs(memory),
+      x(memory),
+      product(memory),
       aggregate(HostAllocator<uint32_t>(memory)),
       pair_target(HostAllocator<uint32_t>(memory)) {}
 
@@ -229,13 +233,43 @@ void Multigrid::plan(const Fabric& fabric, const SpringTerms& springs) {
         level.pair_block.resize(pairs);
         level.diagonal.resize(level.size);
         level.inverse.resize(level.size);
-        for (HostVector<Vec3>* v : {&level.rhs, &level.x, &level.product})
-            v->assign(level.size, Vec3::Zero());
+        for (Vec3Soa* v : {&level.rhs, &level.x, &level.product}) v->resize(level.size);
+        plan_families(level);
     }
     gathered_.resize(levels_.front().pair_first.size() + levels_.front().size);
     const size_t unknowns = 3 * size_t{levels_.back().size};
     coarsest_.assign(unknowns * unknowns, 0.0);
     coarsest_vector_.assign(unknowns, 0.0);
+}
+
+// A grid level's pairs as the four families of its 3 x 3 stencil, if every
+// pair is one of them (a grid of at least 3 columns, where north-west is
+// not east).
+void Multigrid::plan_families(Level& level) {
+    const uint32_t columns = level.columns;
+    if (columns < 3) return;
+    const uint32_t pairs = static_cast<uint32_t>(level.pair_first.size());
+    level.pair_family.resize(pairs);
+    for (uint32_t p = 0; p < pairs; ++p) {
+        const uint32_t a = level.pair_first[p], b = level.pair_second[p];  // a < b
+        const int dc = static_cast<int>(b % columns) - static_cast<int>(a % columns);
+        const uint32_t dr = b / columns - a / columns;
+        const int family = dr == 0 && dc == 1    ? 0
+                           : dr == 1 && dc == 0  ? 1
+                           : dr == 1 && dc == 1  ? 2
+                           : dr == 1 && dc == -1 ? 3
+                                                 : -1;
+        if (family < 0) {
+            level.pair_family.clear();
+            return;
+        }
+        level.pair_family[p] = static_cast<uint8_t>(family);
+    }
+    level.family_offset = {1, columns, columns + 1, columns - 1};
+    level.family_pad = columns + 1;
+    for (int f = 0; f < 4; ++f)
+        level.family_block.emplace_back(memory_).resize(level.family_pad + level.size);
+    for (const Sym3Soa& block : level.family_block) level.family_block_pointer.push_back(&block);
 }
 
 void Multigrid::assemble(const LinearSystem& system) {
@@ -274,6 +308,18 @@ void Multigrid::assemble(const LinearSystem& system) {
     }
     // Nodes with no free particle have a zero diagonal: they stay zero.
     for (Level& level : levels_) {
+        if (!level.pair_family.empty()) {
+            for (Sym3Soa& block : level.family_block) {
+                for (HostVector<float>* a :
+                     {&block.xx, &block.xy, &block.xz, &block.yy, &block.yz, &block.zz}) {
+                    std::fill(a->begin(), a->end(), 0.0f);
+                }
+            }
+            for (size_t p = 0; p < level.pair_first.size(); ++p) {
+                level.family_block[level.pair_family[p]].set(level.family_pad + level.pair_first[p],
+                                                             level.pair_block[p]);
+            }
+        }
         for (uint32_t node = 0; node < level.size; ++node) {
             const Sym3& d = level.diagonal[node];
             level.inverse[node] = d.xx + d.yy + d.zz > 0.0f ? d.inverse() : Sym3{};
@@ -323,32 +369,31 @@ void Multigrid::factor_coarsest() {
     }
 }
 
-void Multigrid::multiply(const Level& level, const HostVector<Vec3>& x, HostVector<Vec3>& y) const {
-    const Sym3* block = level.pair_block.data();
-    const Vec3* in = x.data();
-    for (uint32_t node = 0; node < level.size; ++node) {
-        const Sym3& d = level.diagonal[node];
-        const Vec3& v = in[node];
-        float sx = d.xx * v.x() + d.xy * v.y() + d.xz * v.z();
-        float sy = d.xy * v.x() + d.yy * v.y() + d.yz * v.z();
-        float sz = d.xz * v.x() + d.yz * v.y() + d.zz * v.z();
-        for (uint32_t k = level.row_start[node]; k < level.row_start[node + 1]; ++k) {
-            const Sym3& b = block[level.row_pair[k]];
-            const Vec3& o = in[level.row_column[k]];
-            sx += b.xx * o.x() + b.xy * o.y() + b.xz * o.z();
-            sy += b.xy * o.x() + b.yy * o.y() + b.yz * o.z();
-            sz += b.xz * o.x() + b.yz * o.y() + b.zz * o.z();
+void Multigrid::multiply(const Level& level, const Vec3Soa& x, Vec3Soa& y) const {
+    if (!level.pair_family.empty()) {
+        const GridBlocks grid{level.size, level.family_pad, 4, level.family_offset.data(),
+                              level.family_block_pointer.data()};
+        grid_neighbour_sums(grid, x, 0, level.size, y);
+    } else {
+        for (uint32_t node = 0; node < level.size; ++node) {
+            Vec3 sum = Vec3::Zero();
+            for (uint32_t k = level.row_start[node]; k < level.row_start[node + 1]; ++k) {
+                sum += level.pair_block[level.row_pair[k]] * x.get(level.row_column[k]);
+            }
+            y.set(node, sum);
         }
-        y[node] = Vec3(sx, sy, sz);
     }
+    for (uint32_t node = 0; node < level.size; ++node)
+        y.set(node, y.get(node) + level.diagonal[node] * x.get(node));
 }
 
 void Multigrid::cycle(uint32_t index) {
     Level& level = levels_[index];
     if (index + 1 == levels_.size()) {
         if (!coarsest_factored_) {
-            for (uint32_t node = 0; node < level.size; ++node)
-                level.x[node] = level.inverse[node] * level.rhs[node];
+            for (uint32_t node = 0; node < level.size; ++node) {
+                level.x.set(node, level.inverse[node] * level.rhs.get(node));
+            }
             return;
         }
         // L L^T x = rhs by two triangular solves.
@@ -356,7 +401,9 @@ void Multigrid::cycle(uint32_t index) {
         const double* a = coarsest_.data();
         double* v = coarsest_vector_.data();
         for (uint32_t node = 0; node < level.size; ++node) {
-            for (int c = 0; c < 3; ++c) v[3 * node + c] = level.rhs[node][c];
+            v[3 * node] = level.rhs.x[node];
+            v[3 * node + 1] = level.rhs.y[node];
+            v[3 * node + 2] = level.rhs.z[node];
         }
         for (size_t i = 0; i < m; ++i) {
             for (size_t k = 0; k < i; ++k) v[i] -= a[i * m + k] * v[k];
@@ -367,35 +414,52 @@ void Multigrid::cycle(uint32_t index) {
             v[i] /= a[i * m + i];
         }
         for (uint32_t node = 0; node < level.size; ++node) {
-            const bool free =
-                level.diagonal[node].xx + level.diagonal[node].yy + level.diagonal[node].zz > 0.0f;
-            level.x[node] = free ? Vec3(static_cast<float>(v[3 * node]), static_cast<float>(v[3 * node + 1]),
-                                        static_cast<float>(v[3 * node + 2]))
-                                 : Vec3::Zero();
+            const Sym3& d = level.diagonal[node];
+            const bool free = d.xx + d.yy + d.zz > 0.0f;
+            level.x.set(node, free
+                                  ? Vec3(static_cast<float>(v[3 * node]), static_cast<float>(v[3 * node + 1]),
+                                         static_cast<float>(v[3 * node + 2]))
+                                  : Vec3::Zero());
         }
         return;
     }
     Level& coarser = levels_[index + 1];
     for (uint32_t node = 0; node < level.size; ++node) {
-        level.x[node] = level.inverse[node] * level.rhs[node] * kSmootherWeight;
+        level.x.set(node, level.inverse[node] * level.rhs.get(node) * kSmootherWeight);
     }
     multiply(level, level.x, level.product);
-    std::fill(coarser.rhs.begin(), coarser.rhs.end(), Vec3::Zero());
+    for (HostVector<float>* a : {&coarser.rhs.x, &coarser.rhs.y, &coarser.rhs.z})
+        std::fill(a->begin(), a->end(), 0.0f);
     for (uint32_t node = 0; node < level.size; ++node) {
-        coarser.rhs[level.aggregate[node]] += level.rhs[node] - level.product[node];
+        const uint32_t to = level.aggregate[node];
+        coarser.rhs.x[to] += level.rhs.x[node] - level.product.x[node];
+        coarser.rhs.y[to] += level.rhs.y[node] - level.product.y[node];
+        coarser.rhs.z[to] += level.rhs.z[node] - level.product.z[node];
     }
     cycle(index + 1);
-    for (uint32_t node = 0; node < level.size; ++node) level.x[node] += coarser.x[level.aggregate[node]];
+    for (uint32_t node = 0; node < level.size; ++node) {
+        const uint32_t from = level.aggregate[node];
+        level.x.x[node] += coarser.x.x[from];
+        level.x.y[node] += coarser.x.y[from];
+        level.x.z[node] += coarser.x.z[from];
+    }
     multiply(level, level.x, level.product);
     for (uint32_t node = 0; node < level.size; ++node) {
-        level.x[node] += level.inverse[node] * (level.rhs[node] - level.product[node]) * kSmootherWeight;
+        level.x.set(node, level.x.get(node) + level.inverse[node] *
+                                                  (level.rhs.get(node) - level.product.get(node)) *
+                                                  kSmootherWeight);
     }
 }
 
 void Multigrid::correct_coarse(const Vec3Soa& t) {
     Level& top = levels_.front();
-    std::fill(top.rhs.begin(), top.rhs.end(), Vec3::Zero());
-    for (uint32_t i = 0; i < aggregate_.size(); ++i) top.rhs[aggregate_[i]] += t.get(i);
+    for (HostVector<float>* a : {&top.rhs.x, &top.rhs.y, &top.rhs.z}) std::fill(a->begin(), a->end(), 0.0f);
+    for (uint32_t i = 0; i < aggregate_.size(); ++i) {
+        const uint32_t to = aggregate_[i];
+        top.rhs.x[to] += t.x[i];
+        top.rhs.y[to] += t.y[i];
+        top.rhs.z[to] += t.z[i];
+    }
     cycle(0);
 }
 
@@ -424,13 +488,13 @@ CLOTH_HOT_LOOP void Multigrid::residual(const LinearSystem& system, const Vec3So
 }
 
 void Multigrid::prolong(const float* pinned, uint32_t begin, uint32_t end, Vec3Soa& z) const {
-    const HostVector<Vec3>& e = levels_.front().x;
+    const Vec3Soa& e = levels_.front().x;
     for (uint32_t i = begin; i < end; ++i) {
-        if (pinned[i] != 0.0f) continue;
-        const Vec3& c = e[aggregate_[i]];
-        z.x[i] += c.x();
-        z.y[i] += c.y();
-        z.z[i] += c.z();
+        const uint32_t from = aggregate_[i];
+        const float free = 1.0f - pinned[i];
+        z.x[i] += e.x[from] * free;
+        z.y[i] += e.y[from] * free;
+        z.z[i] += e.z[from] * free;
     }
 }
 

@@ -30,6 +30,7 @@
 #include "base/math.h"
 #include "base/soa.h"
 #include "fabric/fabric.h"
+#include "forces/grid_products.h"
 #include "forces/spring_terms.h"
 #include "solve/linear_system.h"
 
@@ -80,14 +81,22 @@ class Multigrid {
         // Each node's pairs (both directions), for products by gathering:
         // entries row_start[I] .. row_start[I + 1] of row_column, row_pair.
         HostVector<uint32_t> row_start, row_column, row_pair;
+        // A grid level (at least 3 columns) also holds its pairs the way
+        // the grid springs hold theirs (grid_products.h): four families,
+        // east, north, north-east and north-west, so products vectorize.
+        HostVector<uint8_t> pair_family;
+        HostVector<uint32_t> family_offset;
+        std::vector<Sym3Soa, HostAllocator<Sym3Soa>> family_block;
+        HostVector<const Sym3Soa*> family_block_pointer;
+        uint32_t family_pad = 0;
         HostVector<Sym3> diagonal, inverse;  // W_II, W_II^-1
-        HostVector<Vec3> rhs, x, product;    // the cycle's vectors
+        Vec3Soa rhs, x, product;             // the cycle's vectors
         HostVector<uint32_t> aggregate;      // node -> next level's node (not on the coarsest)
         HostVector<uint32_t> pair_target;    // pair -> next level's pair, or its pair count + node
     };
 
-    void build_level_from(const Level& finer, Level& level);
-    void multiply(const Level& level, const HostVector<Vec3>& x, HostVector<Vec3>& y) const;
+    void plan_families(Level& level);
+    void multiply(const Level& level, const Vec3Soa& x, Vec3Soa& y) const;
     void cycle(uint32_t level_index);
     void factor_coarsest();
 

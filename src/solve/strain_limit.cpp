@@ -1,6 +1,9 @@
 #include "solve/strain_limit.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "base/lanes.h"
 
 namespace cloth {
 
@@ -36,6 +39,109 @@ void strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa& x, uin
     }
 }
 
+GridStrainTerms::GridStrainTerms(const HostMemory* memory)
+    : family(HostAllocator<uint32_t>(memory)),
+      x(HostAllocator<float>(memory)),
+      y(HostAllocator<float>(memory)),
+      z(HostAllocator<float>(memory)),
+      share(HostAllocator<float>(memory)) {}
+
+void GridStrainTerms::resize(const Fabric& fabric) {
+    family.clear();
+    lead = 0;
+    for (uint32_t f = 0; f < fabric.grid_families.size(); ++f) {
+        const SpringFamily& spring_family = fabric.grid_families[f];
+        if (spring_family.kind == kBend) continue;
+        family.push_back(f);
+        lead = std::max(lead, spring_family.offset);
+    }
+    stride = lead + fabric.particle_count();
+    for (HostVector<float>* a : {&x, &y, &z, &share}) a->assign(size_t{stride} * family.size(), 0.0f);
+}
+
+namespace {
+
+// The loops of the grid path, every array a __restrict parameter so that GCC
+// vectorizes them (as in spring_terms_grid.cpp).
+CLOTH_HOT_LOOP void family_terms_kernel(size_t begin, size_t last, size_t offset, float stretch_limit,
+                                        const float* __restrict mask, const float* __restrict rest,
+                                        const float* __restrict mass, const float* __restrict pinned,
+                                        const float* __restrict px, const float* __restrict py,
+                                        const float* __restrict pz, float* __restrict tx,
+                                        float* __restrict ty, float* __restrict tz, float* __restrict share) {
+    for (size_t p = begin; p < last; ++p) {
+        const size_t q = p + offset;
+        const float dx = px[q] - px[p], dy = py[q] - py[p], dz = pz[q] - pz[p];
+        const float length = std::sqrt(dx * dx + dy * dy + dz * dz);
+        const float excess = length - stretch_limit * rest[p];
+        // Zero unless over-stretched (where the family has no spring,
+        // mask and rest length are zero); length > 0 wherever excess > 0.
+        const float c = excess > 0.0f ? mask[p] * kRelaxation * excess / std::max(length, 1e-30f) : 0.0f;
+        const float wp = (1.0f - pinned[p]) / mass[p], wq = (1.0f - pinned[q]) / mass[q];
+        const float sum = wp + wq;
+        tx[p] = c * dx;
+        ty[p] = c * dy;
+        tz[p] = c * dz;
+        share[p] = sum > 0.0f ? wp / std::max(sum, 1e-30f) : 0.0f;
+    }
+}
+
+// c_i += own share of t at i - (1 - their share) of t at i - offset
+// (the back arrays are the same arrays, offset entries earlier).
+CLOTH_HOT_LOOP void family_corrections_kernel(size_t begin, size_t end, const float* __restrict tx,
+                                              const float* __restrict ty, const float* __restrict tz,
+                                              const float* __restrict share, const float* __restrict bx,
+                                              const float* __restrict by, const float* __restrict bz,
+                                              const float* __restrict back_share, float* __restrict cx,
+                                              float* __restrict cy, float* __restrict cz) {
+    for (size_t i = begin; i < end; ++i) {
+        const float mine = share[i], theirs = 1.0f - back_share[i];
+        cx[i] += mine * tx[i] - theirs * bx[i];
+        cy[i] += mine * ty[i] - theirs * by[i];
+        cz[i] += mine * tz[i] - theirs * bz[i];
+    }
+}
+
+}  // namespace
+
+void strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin, uint32_t end,
+                             GridStrainTerms& terms) {
+    const Fabric& f = *pass.fabric;
+    const uint32_t n = f.particle_count();
+    for (size_t k = 0; k < terms.family.size(); ++k) {
+        const SpringFamily& family = f.grid_families[terms.family[k]];
+        const uint32_t last = std::min(end, n > family.offset ? n - family.offset : 0u);
+        if (begin >= last) continue;
+        const size_t base = k * terms.stride + terms.lead;
+        family_terms_kernel(begin, last, family.offset, 1.0f + pass.max_strain, family.mask.data(),
+                            family.rest_length.data(), pass.mass, pass.pinned, x.x.data(), x.y.data(),
+                            x.z.data(), terms.x.data() + base, terms.y.data() + base, terms.z.data() + base,
+                            terms.share.data() + base);
+    }
+}
+
+void strain_limit_grid_corrections(const StrainLimitPass& pass, const GridStrainTerms& terms, uint32_t begin,
+                                   uint32_t end, Vec3Soa& correction) {
+    const Fabric& f = *pass.fabric;
+    std::fill(correction.x.begin() + begin, correction.x.begin() + end, 0.0f);
+    std::fill(correction.y.begin() + begin, correction.y.begin() + end, 0.0f);
+    std::fill(correction.z.begin() + begin, correction.z.begin() + end, 0.0f);
+    for (size_t k = 0; k < terms.family.size(); ++k) {
+        const size_t base = k * terms.stride + terms.lead;
+        const size_t back = base - f.grid_families[terms.family[k]].offset;  // >= k * stride: the lead
+        family_corrections_kernel(begin, end, terms.x.data() + base, terms.y.data() + base,
+                                  terms.z.data() + base, terms.share.data() + base, terms.x.data() + back,
+                                  terms.y.data() + back, terms.z.data() + back, terms.share.data() + back,
+                                  correction.x.data(), correction.y.data(), correction.z.data());
+    }
+    for (uint32_t i = begin; i < end; ++i) {
+        const float free = 1.0f - pass.pinned[i];
+        correction.x[i] *= free;
+        correction.y[i] *= free;
+        correction.z[i] *= free;
+    }
+}
+
 void strain_limit_apply(const Vec3Soa& correction, float h, uint32_t begin, uint32_t end, Vec3Soa& x,
                         Vec3Soa& v) {
     const float inverse_h = 1.0f / h;
@@ -50,7 +156,8 @@ void strain_limit_apply(const Vec3Soa& correction, float h, uint32_t begin, uint
 }
 
 void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, float h, Vec3Soa& x, Vec3Soa& v,
-                          Vec3Soa& correction) {
+                          Vec3Soa& correction, GridStrainTerms* grid) {
+    grid_ = grid != nullptr && !grid->empty() ? grid : nullptr;
     pass_ = pass;
     iterations_ = iterations;
     round_ = 0;
@@ -61,7 +168,16 @@ void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, floa
 }
 
 void StrainLimiter::run(const GroupTask& task) {
-    if (applying()) {
+    // Grid: the terms round, then the corrections and their application in
+    // one round (they read only the terms). General: corrections, apply.
+    if (grid_ != nullptr) {
+        if (applying()) {
+            strain_limit_grid_corrections(pass_, *grid_, task.begin, task.end, *correction_);
+            strain_limit_apply(*correction_, h_, task.begin, task.end, *x_, *v_);
+        } else {
+            strain_limit_grid_terms(pass_, *x_, task.begin, task.end, *grid_);
+        }
+    } else if (applying()) {
         strain_limit_apply(*correction_, h_, task.begin, task.end, *x_, *v_);
     } else {
         strain_limit_corrections(pass_, *x_, task.begin, task.end, *correction_);

@@ -5,6 +5,12 @@
 // over-stretched structural and shear springs from the positions of the
 // previous pass (Jacobi), so the passes split across workers and give the
 // same bits for any split.
+//
+// Grid fabrics take the same corrections family by family (GridStrainTerms):
+// one pass over the springs of each structural and shear family, stored by
+// first particle, then one pass per particle summing the families in a
+// fixed order. Every loop is contiguous and vectorizes; the general path
+// walks each particle's incidence list with a square root per spring end.
 #pragma once
 
 #include "base/soa.h"
@@ -29,6 +35,28 @@ struct StrainLimitPass {
 void strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin, uint32_t end,
                               Vec3Soa& correction);
 
+// The grid layout's per-spring terms: for each structural and shear family
+// (fabric.grid_families), by first particle p after `lead` zero entries,
+// the spring's correction t = 1/2 (L - (1 + max_strain) l0) (x_q - x_p) / L
+// (zero unless over-stretched) and the first end's share w_p / (w_p + w_q).
+// Sized once per cloth (resize); entries past n - offset stay zero.
+struct GridStrainTerms {
+    explicit GridStrainTerms(const HostMemory* memory);
+    void resize(const Fabric& fabric);
+    bool empty() const { return family.empty(); }
+    HostVector<uint32_t> family;  // indices into fabric.grid_families
+    uint32_t lead = 0, stride = 0;
+    HostVector<float> x, y, z, share;  // family k's entry for p at k * stride + lead + p
+};
+
+// Grid fabrics: the terms of springs whose first particle is in [begin, end)...
+void strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin, uint32_t end,
+                             GridStrainTerms& terms);
+// ... then correction_i = sum over families of share * t at i minus
+// (1 - share) * t at i - offset, zero for pinned particles, [begin, end).
+void strain_limit_grid_corrections(const StrainLimitPass& pass, const GridStrainTerms& terms, uint32_t begin,
+                                   uint32_t end, Vec3Soa& correction);
+
 // x += correction, v += correction / h (the velocity follows the position
 // change, as in Provot), particles [begin, end).
 void strain_limit_apply(const Vec3Soa& correction, float h, uint32_t begin, uint32_t end, Vec3Soa& x,
@@ -39,9 +67,11 @@ void strain_limit_apply(const Vec3Soa& correction, float h, uint32_t begin, uint
 // colliders after each applying round (step/frame_plan.cpp).
 class StrainLimiter final : public StagedAlgorithm {
   public:
-    // x, v and the scratch `correction` (one entry per particle) outlive it.
+    // x, v, the scratch `correction` (one entry per particle) and, for a
+    // grid fabric, its `grid` terms (sized for it) outlive it; a null or
+    // empty `grid` takes the general path.
     void begin(const StrainLimitPass& pass, uint32_t iterations, float h, Vec3Soa& x, Vec3Soa& v,
-               Vec3Soa& correction);
+               Vec3Soa& correction, GridStrainTerms* grid = nullptr);
     // The current round moves particles (it applies corrections).
     bool applying() const { return round_ % 2 == 1; }
 
@@ -57,6 +87,7 @@ class StrainLimiter final : public StagedAlgorithm {
     Vec3Soa* x_ = nullptr;
     Vec3Soa* v_ = nullptr;
     Vec3Soa* correction_ = nullptr;
+    GridStrainTerms* grid_ = nullptr;
 };
 
 // The same rounds on this thread, over all particles.

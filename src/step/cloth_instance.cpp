@@ -38,6 +38,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       backup_v_(memory),
       pin_velocity_start_(memory),
       multigrid_(memory),
+      grid_strain_terms_(memory),
       group_finite_(HostAllocator<uint8_t>(memory)),
       group_speed_squared_(HostAllocator<float>(memory)),
       contact_(memory) {
@@ -61,6 +62,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     group_speed_squared_.assign(group_count_, 0.0f);
     set_material(material);
     multigrid_.plan(f, *springs_);
+    if (!f.grid_families.empty()) grid_strain_terms_.resize(f);
 }
 
 void ClothInstance::set_material(const Material& material) {

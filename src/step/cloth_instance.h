@@ -290,6 +290,7 @@ class ClothInstance {
     IterativeSolve iterative_;  // JACOBI, PCG, CHEBYSHEV
     Multigrid multigrid_;       // PCG's preconditioner when the settings ask for it
     StrainLimiter strain_limiter_;
+    GridStrainTerms grid_strain_terms_;  // the strain limiter's per-family terms (grid fabrics)
     uint32_t group_count_ = 0;
     Cursor cursor_;
     bool frame_done_ = true;
