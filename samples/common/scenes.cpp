@@ -40,9 +40,34 @@ Scene::Scene(const SceneConfig& config) : kind_(config.kind) {
         grid.v[1] = 0.0f;
         grid.v[2] = 1.0f;
     }
-    r = cloth_fabric_create_grid(world_, &grid, &fabric_);
+    if (config.mesh) {
+        // The grid's vertices, row by row, and two triangles per cell.
+        std::vector<float> vertices;
+        std::vector<uint32_t> triangles;
+        for (uint32_t row = 0; row < n; ++row) {
+            for (uint32_t column = 0; column < n; ++column) {
+                const float s = static_cast<float>(column) / static_cast<float>(n - 1);
+                const float t = static_cast<float>(row) / static_cast<float>(n - 1);
+                for (int k = 0; k < 3; ++k)
+                    vertices.push_back(grid.origin[k] + s * grid.u[k] + t * grid.v[k]);
+                if (row + 1 < n && column + 1 < n) {
+                    const uint32_t a = row * n + column, b = a + 1, c = a + n, d = c + 1;
+                    triangles.insert(triangles.end(), {a, b, d, a, d, c});
+                }
+            }
+        }
+        cloth_mesh_desc mesh = cloth_default_mesh_desc();
+        mesh.positions = vertices.data();
+        mesh.vertex_count = n * n;
+        mesh.indices = triangles.data();
+        mesh.triangle_count = static_cast<uint32_t>(triangles.size() / 3);
+        mesh.spring_kinds = config.spring_kinds;
+        r = cloth_fabric_create_mesh(world_, &mesh, &fabric_);
+    } else {
+        r = cloth_fabric_create_grid(world_, &grid, &fabric_);
+    }
     if (r != CLOTH_OK) {
-        fail("cloth_fabric_create_grid", r);
+        fail(config.mesh ? "cloth_fabric_create_mesh" : "cloth_fabric_create_grid", r);
         return;
     }
 

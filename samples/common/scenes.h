@@ -38,6 +38,9 @@ struct SceneConfig {
     // Cloths of the same fabric in the world, 1.5 m apart along z.
     uint32_t copies = 1;
     float strain_limit = 0;  // > 0: cloth_set_strain_limit with this max strain
+    // The same particles and triangles as a mesh fabric (cloth_fabric_create_mesh:
+    // index-pair springs, structural and bend, no shear) instead of a grid.
+    bool mesh = false;
 };
 
 // Owns a world with one fabric and its cloths; destroys them on scope exit.

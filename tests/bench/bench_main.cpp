@@ -13,6 +13,9 @@
 // 1e3 N/m, awake throughout); counter x_jacobi_k1 is its frame time over
 // the median JACOBI k=1 step of the same scene, timed in the same run just
 // before: the cost of holding cloth as a multiple of the paper's step.
+// Frame/DEFAULT_MESH/64: the same cloth built as a mesh fabric
+// (cloth_fabric_create_mesh, index-pair springs), the same counter (over
+// the grid's JACOBI k=1 step).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -94,10 +97,12 @@ double jacobi_step_seconds(uint32_t resolution) {
     return times[times.size() / 2];
 }
 
-void BM_Frame(benchmark::State& state, cloth_solver_kind kind) {
+void BM_Frame(benchmark::State& state, cloth_solver_kind kind, bool mesh) {
     const uint32_t resolution = static_cast<uint32_t>(state.range(0));
     const double jacobi = jacobi_step_seconds(resolution);
-    Scene scene(falling_flat(resolution, kind));
+    SceneConfig config = falling_flat(resolution, kind);
+    config.mesh = mesh;
+    Scene scene(config);
     if (!scene.ok()) {
         state.SkipWithError(scene.error().c_str());
         return;
@@ -133,9 +138,12 @@ void register_step_benchmarks() {
                                                v.iterations);
         b->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond);
     }
-    benchmark::RegisterBenchmark("Frame/DEFAULT", BM_Frame, CLOTH_SOLVER_DEFAULT)
+    benchmark::RegisterBenchmark("Frame/DEFAULT", BM_Frame, CLOTH_SOLVER_DEFAULT, false)
         ->Arg(64)
         ->Arg(128)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("Frame/DEFAULT_MESH", BM_Frame, CLOTH_SOLVER_DEFAULT, true)
+        ->Arg(64)
         ->Unit(benchmark::kMillisecond);
 }
 
