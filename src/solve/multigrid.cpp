@@ -73,18 +73,20 @@ void coarse_pairs(uint32_t finer_pairs, PairOf pair_of, const HostVector<uint32_
     keys.clear();
     for (uint32_t p = 0; p < finer_pairs; ++p) {
         const auto [a, b] = pair_of(p);
-        const uint32_t A = aggregate[a], B = aggregate[b];
-        if (A != B) keys.push_back(pair_key(A, B));
+        const uint32_t to_a = aggregate[a], to_b = aggregate[b];
+        if (to_a != to_b) keys.push_back(pair_key(to_a, to_b));
     }
     std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
     target.resize(finer_pairs);
     for (uint32_t p = 0; p < finer_pairs; ++p) {
         const auto [a, b] = pair_of(p);
-        const uint32_t A = aggregate[a], B = aggregate[b];
-        target[p] = A == B ? static_cast<uint32_t>(keys.size()) + A
-                           : static_cast<uint32_t>(
-                                 std::lower_bound(keys.begin(), keys.end(), pair_key(A, B)) - keys.begin());
+        const uint32_t to_a = aggregate[a], to_b = aggregate[b];
+        target[p] =
+            to_a == to_b
+                ? static_cast<uint32_t>(keys.size()) + to_a
+                : static_cast<uint32_t>(std::lower_bound(keys.begin(), keys.end(), pair_key(to_a, to_b)) -
+                                        keys.begin());
     }
 }
 
