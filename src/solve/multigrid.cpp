@@ -99,6 +99,59 @@ void set_pairs(const HostVector<uint64_t>& keys, HostVector<uint32_t>& first, Ho
     }
 }
 
+// The block-diagonal passes of a smoothing sweep, lanes at a time (the
+// fine level's and the coarse levels' alike).
+
+// (ox, oy, oz) = M_i (x, y, z) for the symmetric blocks M.
+template <class L>
+CLOTH_LANES_INLINE void block_times(const Sym3Soa& m, uint32_t i, typename L::type x, typename L::type y,
+                                    typename L::type z, typename L::type& ox, typename L::type& oy,
+                                    typename L::type& oz) {
+    using T = typename L::type;
+    const T xy = L::load(&m.xy[i]), xz = L::load(&m.xz[i]), yz = L::load(&m.yz[i]);
+    ox = L::load(&m.xx[i]) * x + xy * y + xz * z;
+    oy = xy * x + L::load(&m.yy[i]) * y + yz * z;
+    oz = xz * x + yz * y + L::load(&m.zz[i]) * z;
+}
+
+// x = w D^-1 b over [begin, end) (`inverse` holds D^-1).
+CLOTH_HOT_LOOP void smooth_from_zero_pass(const Sym3Soa& inverse, const Vec3Soa& b, uint32_t begin,
+                                          uint32_t end, Vec3Soa& x) {
+    const float w = Multigrid::kSmootherWeight;
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        typename L::type ox, oy, oz;
+        block_times<L>(inverse, i, L::load(&b.x[i]) * w, L::load(&b.y[i]) * w, L::load(&b.z[i]) * w, ox, oy,
+                       oz);
+        store_vec3<L>(x, i, ox, oy, oz);
+    });
+}
+
+// x += w D^-1 (b - y) over [begin, end).
+CLOTH_HOT_LOOP void smooth_pass(const Sym3Soa& inverse, const Vec3Soa& b, const Vec3Soa& y, uint32_t begin,
+                                uint32_t end, Vec3Soa& x) {
+    const float w = Multigrid::kSmootherWeight;
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        typename L::type ox, oy, oz;
+        block_times<L>(inverse, i, (L::load(&b.x[i]) - L::load(&y.x[i])) * w,
+                       (L::load(&b.y[i]) - L::load(&y.y[i])) * w, (L::load(&b.z[i]) - L::load(&y.z[i])) * w,
+                       ox, oy, oz);
+        store_vec3<L>(x, i, L::load(&x.x[i]) + ox, L::load(&x.y[i]) + oy, L::load(&x.z[i]) + oz);
+    });
+}
+
+// y += D x over [begin, end).
+CLOTH_HOT_LOOP void add_block_product(const Sym3Soa& d, const Vec3Soa& x, uint32_t begin, uint32_t end,
+                                      Vec3Soa& y) {
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
+        using L = decltype(lanes);
+        typename L::type ox, oy, oz;
+        block_times<L>(d, i, L::load(&x.x[i]), L::load(&x.y[i]), L::load(&x.z[i]), ox, oy, oz);
+        store_vec3<L>(y, i, L::load(&y.x[i]) + ox, L::load(&y.y[i]) + oy, L::load(&y.z[i]) + oz);
+    });
+}
+
 // The grid shape of a grid fabric with structural springs: its vertical
 // structural family joins p to p + columns (a chain has only the offset 1).
 bool grid_shape(const Fabric& fabric, uint32_t& columns, uint32_t& rows) {
@@ -130,7 +183,8 @@ Multigrid::Level::Level(const HostMemory* memory)
       family_block(HostAllocator<Sym3Soa>(memory)),
       family_block_pointer(HostAllocator<const Sym3Soa*>(memory)),
       diagonal(HostAllocator<Sym3>(memory)),
-      inverse(HostAllocator<Sym3>(memory)),
+      diagonal_blocks(memory),
+      inverse(memory),
       rhs(memory),
       x(memory),
       product(memory),
@@ -234,6 +288,7 @@ void Multigrid::plan(const Fabric& fabric, const SpringTerms& springs) {
         }
         level.pair_block.resize(pairs);
         level.diagonal.resize(level.size);
+        level.diagonal_blocks.resize(level.size);
         level.inverse.resize(level.size);
         for (Vec3Soa* v : {&level.rhs, &level.x, &level.product}) v->resize(level.size);
         plan_families(level);
@@ -324,7 +379,8 @@ void Multigrid::assemble(const LinearSystem& system) {
         }
         for (uint32_t node = 0; node < level.size; ++node) {
             const Sym3& d = level.diagonal[node];
-            level.inverse[node] = d.xx + d.yy + d.zz > 0.0f ? d.inverse() : Sym3{};
+            level.diagonal_blocks.set(node, d);
+            level.inverse.set(node, d.xx + d.yy + d.zz > 0.0f ? d.inverse() : Sym3{});
         }
     }
     factor_coarsest();
@@ -385,8 +441,7 @@ void Multigrid::multiply(const Level& level, const Vec3Soa& x, Vec3Soa& y) const
             y.set(node, sum);
         }
     }
-    for (uint32_t node = 0; node < level.size; ++node)
-        y.set(node, y.get(node) + level.diagonal[node] * x.get(node));
+    add_block_product(level.diagonal_blocks, x, 0, level.size, y);
 }
 
 void Multigrid::cycle(uint32_t index) {
@@ -394,7 +449,7 @@ void Multigrid::cycle(uint32_t index) {
     if (index + 1 == levels_.size()) {
         if (!coarsest_factored_) {
             for (uint32_t node = 0; node < level.size; ++node) {
-                level.x.set(node, level.inverse[node] * level.rhs.get(node));
+                level.x.set(node, level.inverse.get(node) * level.rhs.get(node));
             }
             return;
         }
@@ -426,36 +481,30 @@ void Multigrid::cycle(uint32_t index) {
         return;
     }
     Level& coarser = levels_[index + 1];
-    for (uint32_t node = 0; node < level.size; ++node) {
-        level.x.set(node, level.inverse[node] * level.rhs.get(node) * kSmootherWeight);
-    }
+    const uint32_t n = level.size;
+    smooth_from_zero_pass(level.inverse, level.rhs, 0, n, level.x);
     multiply(level, level.x, level.product);
-    for (HostVector<float>* a : {&coarser.rhs.x, &coarser.rhs.y, &coarser.rhs.z})
-        std::fill(a->begin(), a->end(), 0.0f);
-    for (uint32_t node = 0; node < level.size; ++node) {
-        const uint32_t to = level.aggregate[node];
-        coarser.rhs.x[to] += level.rhs.x[node] - level.product.x[node];
-        coarser.rhs.y[to] += level.rhs.y[node] - level.product.y[node];
-        coarser.rhs.z[to] += level.rhs.z[node] - level.product.z[node];
+    // Restrict the residual: each coarse node sums its aggregate's.
+    coarser.rhs.fill(Vec3::Zero());
+    const uint32_t* to = level.aggregate.data();
+    for (uint32_t node = 0; node < n; ++node) {
+        coarser.rhs.x[to[node]] += level.rhs.x[node] - level.product.x[node];
+        coarser.rhs.y[to[node]] += level.rhs.y[node] - level.product.y[node];
+        coarser.rhs.z[to[node]] += level.rhs.z[node] - level.product.z[node];
     }
     cycle(index + 1);
-    for (uint32_t node = 0; node < level.size; ++node) {
-        const uint32_t from = level.aggregate[node];
-        level.x.x[node] += coarser.x.x[from];
-        level.x.y[node] += coarser.x.y[from];
-        level.x.z[node] += coarser.x.z[from];
+    for (uint32_t node = 0; node < n; ++node) {
+        level.x.x[node] += coarser.x.x[to[node]];
+        level.x.y[node] += coarser.x.y[to[node]];
+        level.x.z[node] += coarser.x.z[to[node]];
     }
     multiply(level, level.x, level.product);
-    for (uint32_t node = 0; node < level.size; ++node) {
-        level.x.set(node, level.x.get(node) + level.inverse[node] *
-                                                  (level.rhs.get(node) - level.product.get(node)) *
-                                                  kSmootherWeight);
-    }
+    smooth_pass(level.inverse, level.rhs, level.product, 0, n, level.x);
 }
 
 void Multigrid::correct_coarse(const Vec3Soa& t) {
     Level& top = levels_.front();
-    for (HostVector<float>* a : {&top.rhs.x, &top.rhs.y, &top.rhs.z}) std::fill(a->begin(), a->end(), 0.0f);
+    top.rhs.fill(Vec3::Zero());
     for (uint32_t i = 0; i < aggregate_.size(); ++i) {
         const uint32_t to = aggregate_[i];
         top.rhs.x[to] += t.x[i];
@@ -465,18 +514,9 @@ void Multigrid::correct_coarse(const Vec3Soa& t) {
     cycle(0);
 }
 
-CLOTH_HOT_LOOP void Multigrid::smooth_from_zero(const LinearSystem& system, const Vec3Soa& r, uint32_t begin,
-                                                uint32_t end, Vec3Soa& z) {
-    const Sym3Soa& w = *system.diagonal_inverse;
-    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
-        using L = decltype(lanes);
-        using T = typename L::type;
-        const T x = L::load(&r.x[i]) * kSmootherWeight, y = L::load(&r.y[i]) * kSmootherWeight,
-                zz = L::load(&r.z[i]) * kSmootherWeight;
-        const T xy = L::load(&w.xy[i]), xz = L::load(&w.xz[i]), yz = L::load(&w.yz[i]);
-        store_vec3<L>(z, i, L::load(&w.xx[i]) * x + xy * y + xz * zz,
-                      xy * x + L::load(&w.yy[i]) * y + yz * zz, xz * x + yz * y + L::load(&w.zz[i]) * zz);
-    });
+void Multigrid::smooth_from_zero(const LinearSystem& system, const Vec3Soa& r, uint32_t begin, uint32_t end,
+                                 Vec3Soa& z) {
+    smooth_from_zero_pass(*system.diagonal_inverse, r, begin, end, z);
 }
 
 CLOTH_HOT_LOOP void Multigrid::residual(const LinearSystem& system, const Vec3Soa& r, const Vec3Soa& z,

@@ -15,7 +15,10 @@
 // before: the cost of holding cloth as a multiple of the paper's step.
 // Frame/DEFAULT_MESH/64: the same cloth built as a mesh fabric
 // (cloth_fabric_create_mesh, index-pair springs), the same counter (over
-// the grid's JACOBI k=1 step).
+// the grid's JACOBI k=1 step). Frame/DEFAULT_2_WORKERS/N: the default on a
+// world of two workers; counter x_faster_than_1_worker is the median
+// one-worker frame of the same scene, timed in the same run just before,
+// over its frame time.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -97,6 +100,47 @@ double jacobi_step_seconds(uint32_t resolution) {
     return times[times.size() / 2];
 }
 
+// Median frame of the default holding the falling-flat scene on a world of
+// `workers` workers, after 30 warm-up frames.
+double default_frame_seconds(uint32_t resolution, uint32_t workers) {
+    SceneConfig config = falling_flat(resolution, CLOTH_SOLVER_DEFAULT);
+    config.world.worker_count = workers;
+    Scene scene(config);
+    keep_awake(scene);
+    for (int i = 0; i < 30; ++i) scene.step(kDt);
+    std::vector<double> times;
+    for (int i = 0; i < 31; ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        scene.step(kDt);
+        times.push_back(seconds_since(start));
+    }
+    std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
+    return times[times.size() / 2];
+}
+
+void BM_FrameTwoWorkers(benchmark::State& state) {
+    const uint32_t resolution = static_cast<uint32_t>(state.range(0));
+    const double one_worker = default_frame_seconds(resolution, 1);
+    SceneConfig config = falling_flat(resolution, CLOTH_SOLVER_DEFAULT);
+    config.world.worker_count = 2;
+    Scene scene(config);
+    if (!scene.ok()) {
+        state.SkipWithError(scene.error().c_str());
+        return;
+    }
+    keep_awake(scene);
+    for (int i = 0; i < 30; ++i) scene.step(kDt);
+    std::vector<double> times;
+    for (auto _ : state) {
+        const auto start = std::chrono::steady_clock::now();
+        scene.step(kDt);
+        times.push_back(seconds_since(start));
+    }
+    std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
+    state.counters["x_faster_than_1_worker"] = one_worker / times[times.size() / 2];
+    state.counters["one_worker_ms"] = one_worker * 1e3;
+}
+
 void BM_Frame(benchmark::State& state, cloth_solver_kind kind, bool mesh) {
     const uint32_t resolution = static_cast<uint32_t>(state.range(0));
     const double jacobi = jacobi_step_seconds(resolution);
@@ -144,6 +188,10 @@ void register_step_benchmarks() {
         ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("Frame/DEFAULT_MESH", BM_Frame, CLOTH_SOLVER_DEFAULT, true)
         ->Arg(64)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("Frame/DEFAULT_2_WORKERS", BM_FrameTwoWorkers)
+        ->Arg(64)
+        ->Arg(128)
         ->Unit(benchmark::kMillisecond);
 }
 
