@@ -1,5 +1,9 @@
 #include "collide/cloth_contact.h"
 
+#include <algorithm>
+
+#include "base/staged.h"
+
 namespace cloth {
 
 void ClothContact::reserve_attachments(uint32_t particle_count) {
@@ -41,9 +45,20 @@ void ClothContact::begin_step(float dt, const float* pinned, Vec3Soa& x, Vec3Soa
 
 uint32_t ClothContact::collide(float h, float from, float to, const float* kinematic, uint32_t begin,
                                uint32_t end, Vec3Soa& x, Vec3Soa& v) const {
+    // Culled by bounds before any per-particle work: the range's first (a
+    // flag high above a terrain or beside a box needs nothing for it), then
+    // each chunk's (a flag beside its pole touches it only near the pole).
+    // A chunk's bounds are taken once per collision pass and shared by the
+    // colliders, and taken again after a collider moved its particles.
+    constexpr uint32_t kMaxChunks = (kGroupSize + kCollisionChunk - 1) / kCollisionChunk;
+    RangeBounds chunks[kMaxChunks];
+    const uint32_t chunk_count = std::min((end - begin + kCollisionChunk - 1) / kCollisionChunk, kMaxChunks);
+    const auto chunk_end = [&](uint32_t k) {
+        return k + 1 == chunk_count ? end : begin + (k + 1) * kCollisionChunk;
+    };
+    RangeBounds range;
+    bool bounded = false;  // bounds taken (at the first collider)
     uint32_t contacts = 0;
-    RangeBounds bounds;
-    bool bounded = false;  // bounds taken (once, at the first collider)
     for (const auto& slot : world_->colliders()) {
         const Collider& c = slot.object;
         if (!slot.live || !(c.group_bits & collision_.collider_mask)) continue;
@@ -56,14 +71,22 @@ uint32_t ClothContact::collide(float h, float from, float to, const float* kinem
             moving.end = body_pose(c.body, to) * c.local;
             moving.body = &world_->body(c.body).body;
         }
-        // Culled by the range's bounds first: a flag high above a terrain
-        // or beside a box needs no per-particle work for it.
         if (!bounded) {
-            bounds = range_bounds(h, kinematic, begin, end, x, v);
+            range = RangeBounds{};
+            for (uint32_t k = 0; k < chunk_count; ++k) {
+                chunks[k] = range_bounds(h, kinematic, begin + k * kCollisionChunk, chunk_end(k), x, v);
+                range.merge(chunks[k]);
+            }
             bounded = true;
         }
-        if (range_is_clear(moving, collision_, bounds)) continue;
-        contacts += collide_particles(moving, collision_, h, kinematic, begin, end, x, v);
+        if (range_is_clear(moving, collision_, range)) continue;
+        for (uint32_t k = 0; k < chunk_count; ++k) {
+            if (range_is_clear(moving, collision_, chunks[k])) continue;
+            const uint32_t chunk_contacts = collide_particles(
+                moving, collision_, h, kinematic, begin + k * kCollisionChunk, chunk_end(k), x, v);
+            if (chunk_contacts > 0) bounded = false;  // particles moved: the next collider takes bounds anew
+            contacts += chunk_contacts;
+        }
     }
     return contacts;
 }

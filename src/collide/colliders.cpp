@@ -175,6 +175,35 @@ bool heightfield_clear(const MovingCollider& c, const RangeBounds& b, float thic
     return lo.y() - highest_sample(f, cells) > radius + kCullMargin;
 }
 
+// Whether a sphere, capsule or box (shapes whose query is the exact
+// distance) is clear of the whole range, from two queries at the centre c of
+// the range's box (radius r): in the collider's frame at the substep's
+// start and end, c sits at c_s and c_e, and every particle's own start
+// and end points lie within r of them (the frames are rigid). The distance
+// is 1-Lipschitz, so each particle's start and end queries are at least
+// d_s - r and d_e - r, and its path in the moving frame is at most
+// 2 r + |c_e - c_s| long. collide_particles leaves a particle alone when
+// both queries are at least the thickness and the path is no longer than
+// the two clearances together (neither the slide nor the sphere trace
+// starts): that holds for every particle when it holds for these bounds.
+// A long thin shape (the flag's pole) has a bounding sphere that covers
+// most of what is near it; this test culls by the shape itself.
+bool exact_distance_clear(const MovingCollider& collider, float thickness, const RangeBounds& b) {
+    const Shape& shape = *collider.shape;
+    if (shape.kind != ShapeKind::kSphere && shape.kind != ShapeKind::kCapsule &&
+        shape.kind != ShapeKind::kBox)
+        return false;
+    const Vec3 center = 0.5f * (b.lo + b.hi);
+    const float r = 0.5f * (b.hi - b.lo).norm();
+    if (!std::isfinite(r)) return false;
+    const Vec3 at_start = collider.start.apply_inverse(center);
+    const Vec3 at_end = collider.end.apply_inverse(center);
+    const float clear_start = query_shape(shape, at_start, 0.0f).distance - r - thickness - kCullMargin;
+    const float clear_end = query_shape(shape, at_end, 0.0f).distance - r - thickness - kCullMargin;
+    return clear_start > 0 && clear_end > 0 &&
+           2.0f * r + (at_end - at_start).norm() < clear_start + clear_end;
+}
+
 }  // namespace
 
 RangeBounds range_bounds(float h, const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x,
@@ -213,7 +242,8 @@ bool range_is_clear(const MovingCollider& collider, const CollisionParams& param
     const float reach = shape.bound_radius + params.thickness + 0.5f * (center_end - center_start).norm();
     const Vec3 chord_lo = center_start.cwiseMin(center_end), chord_hi = center_start.cwiseMax(center_end);
     const Vec3 gap = (chord_lo - b.hi).cwiseMax(b.lo - chord_hi).cwiseMax(0.0f);
-    return gap.norm() - b.travel > reach + kCullMargin;
+    if (gap.norm() - b.travel > reach + kCullMargin) return true;
+    return exact_distance_clear(collider, params.thickness, b);
 }
 
 uint32_t collide_particles(const MovingCollider& collider, const CollisionParams& params, float h,

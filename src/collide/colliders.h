@@ -14,6 +14,7 @@
 // same bits.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -160,14 +161,29 @@ struct RangeBounds {
     Vec3 hi = Vec3::Constant(-std::numeric_limits<float>::infinity());
     float travel = 0;
     bool any = false;  // a free particle in the range
+
+    // The bounds of this range and `other` together (the same bits as
+    // range_bounds over both: minima, maxima and the longest path).
+    void merge(const RangeBounds& other) {
+        lo = lo.cwiseMin(other.lo);
+        hi = hi.cwiseMax(other.hi);
+        travel = std::max(travel, other.travel);
+        any = any || other.any;
+    }
 };
+
+// The collision stage culls by the bounds of chunks of this many particles
+// inside a particle group (ClothContact::collide).
+constexpr uint32_t kCollisionChunk = 8;
 RangeBounds range_bounds(float h, const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x,
                          const Vec3Soa& v);
 
 // Whether no particle of the range can touch the collider over the
-// substep, decided from the range's bounds alone (no shape query): a
-// static height field whose highest sample under the range is far enough
-// below it, or a bounded shape whose swept bound is far enough away. Exact:
+// substep, decided from the range's bounds alone: a static height field
+// whose highest sample under the range is far enough below it, a bounded
+// shape whose swept bound is far enough away, or a sphere, capsule or box
+// whose distance from the range's box (two shape queries) leaves every
+// particle's path clear of it. Exact:
 // where it says yes, collide_particles would change nothing (tests check
 // the two paths give the same bits).
 bool range_is_clear(const MovingCollider& collider, const CollisionParams& params, const RangeBounds& bounds);

@@ -85,45 +85,41 @@ void keep_awake(const Scene& scene) {
     for (cloth_id cloth : scene.cloths()) cloth_set_sleep(cloth, &awake);
 }
 
-// Median JACOBI k=1 step of the falling-flat scene, after 30 warm-up frames.
-double jacobi_step_seconds(uint32_t resolution) {
-    Scene scene(falling_flat(resolution, CLOTH_SOLVER_JACOBI));
-    keep_awake(scene);
-    for (int i = 0; i < 30; ++i) scene.step(kDt);
-    std::vector<double> times;
-    for (int i = 0; i < 61; ++i) {
-        const auto start = std::chrono::steady_clock::now();
-        scene.step(kDt);
-        times.push_back(seconds_since(start));
-    }
+double median(std::vector<double> times) {
     std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
     return times[times.size() / 2];
 }
 
-// Median frame of the default holding the falling-flat scene on a world of
-// `workers` workers, after 30 warm-up frames.
-double default_frame_seconds(uint32_t resolution, uint32_t workers) {
-    SceneConfig config = falling_flat(resolution, CLOTH_SOLVER_DEFAULT);
-    config.world.worker_count = workers;
+// Median frame of the falling-flat scene over `frames` frames after 30
+// warm-up frames, awake throughout.
+double median_frame_seconds(const SceneConfig& config, int frames) {
     Scene scene(config);
     keep_awake(scene);
     for (int i = 0; i < 30; ++i) scene.step(kDt);
     std::vector<double> times;
-    for (int i = 0; i < 31; ++i) {
+    for (int i = 0; i < frames; ++i) {
         const auto start = std::chrono::steady_clock::now();
         scene.step(kDt);
         times.push_back(seconds_since(start));
     }
-    std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
-    return times[times.size() / 2];
+    return median(times);
+}
+
+// Median JACOBI k=1 step of the falling-flat scene.
+double jacobi_step_seconds(uint32_t resolution) {
+    return median_frame_seconds(falling_flat(resolution, CLOTH_SOLVER_JACOBI), 61);
+}
+
+SceneConfig default_on_workers(uint32_t resolution, uint32_t workers) {
+    SceneConfig config = falling_flat(resolution, CLOTH_SOLVER_DEFAULT);
+    config.world.worker_count = workers;
+    return config;
 }
 
 void BM_FrameTwoWorkers(benchmark::State& state) {
     const uint32_t resolution = static_cast<uint32_t>(state.range(0));
-    const double one_worker = default_frame_seconds(resolution, 1);
-    SceneConfig config = falling_flat(resolution, CLOTH_SOLVER_DEFAULT);
-    config.world.worker_count = 2;
-    Scene scene(config);
+    const double one_worker = median_frame_seconds(default_on_workers(resolution, 1), 31);
+    Scene scene(default_on_workers(resolution, 2));
     if (!scene.ok()) {
         state.SkipWithError(scene.error().c_str());
         return;
@@ -136,8 +132,7 @@ void BM_FrameTwoWorkers(benchmark::State& state) {
         scene.step(kDt);
         times.push_back(seconds_since(start));
     }
-    std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
-    state.counters["x_faster_than_1_worker"] = one_worker / times[times.size() / 2];
+    state.counters["x_faster_than_1_worker"] = one_worker / median(times);
     state.counters["one_worker_ms"] = one_worker * 1e3;
 }
 

@@ -4,7 +4,8 @@
 // changes no bit of that range and finds no contact. Checked on random
 // ranges of a small cloth patch at heights from touching to well clear of
 // a bumpy height field, a box, a capsule and a moving sphere, so that both
-// answers occur.
+// answers occur; and on small ranges beside a long capsule and a box, where
+// only the shapes' own distance culls.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -106,6 +107,59 @@ TEST(CollisionCulling, WhereARangeIsCulledTheFullStageChangesNoBitOfIt) {
         // Both answers occur, so the check above is not vacuous.
         EXPECT_GT(culled, 20);
         EXPECT_GT(run, 20);
+    }
+}
+
+// Small ranges (a chunk of the stage) beside a long capsule and a turned,
+// moving box, all inside the shapes' bounding spheres, where only the
+// shapes' own distance can cull: where it does, the full stage changes no
+// bit and finds no contact, and it culls most ranges that pass clear.
+TEST(CollisionCulling, BesideALongShapeARangeIsCulledByTheShapesDistance) {
+    Shape capsule(heap()), box(heap());
+    ASSERT_TRUE(build_capsule(0.04f, 1.2f, capsule).ok());
+    ASSERT_TRUE(build_box(Vec3(1.0f, 0.3f, 0.6f), box).ok());
+    const Quat turned(Eigen::AngleAxisf(0.3f, Vec3(0.2f, 1.0f, 0.1f).normalized()));
+    const Quat turned_on(Eigen::AngleAxisf(0.35f, Vec3(0.2f, 1.0f, 0.1f).normalized()));
+    struct Case {
+        MovingCollider collider;
+        Vec3 spread;  // ranges are centred within this of the shape's centre
+    };
+    const Case cases[] = {
+        {{&capsule, {Vec3(0, 0, 0), Quat::Identity()}, {Vec3(0, 0, 0), Quat::Identity()}},
+         Vec3(0.2f, 1.0f, 0.2f)},
+        {{&box, {Vec3(0, 0, 0), turned}, {Vec3(0.05f, 0.01f, 0.02f), turned_on}}, Vec3(1.2f, 0.6f, 0.9f)},
+    };
+    CollisionParams params;
+    const float h = 1.0f / 120.0f;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> where(-1.0f, 1.0f), size(0.01f, 0.15f);
+    for (const Case& c : cases) {
+        const MovingCollider& collider = c.collider;
+        SCOPED_TRACE(collider.shape == &capsule ? "capsule" : "box");
+        int culled = 0, touched = 0, clear_but_run = 0;
+        for (int trial = 0; trial < 400; ++trial) {
+            const Vec3 centre = Vec3(where(rng), where(rng), where(rng)).cwiseProduct(c.spread);
+            Patch patch = random_patch(rng, centre, size(rng), 0.5f);
+            const uint32_t begin = 8 * (trial % 8), end = begin + 8;
+            const bool clear = range_is_clear(
+                collider, params, range_bounds(h, patch.kinematic.data(), begin, end, patch.x, patch.v));
+            Patch full = patch;
+            const uint32_t contacts =
+                collide_particles(collider, params, h, full.kinematic.data(), begin, end, full.x, full.v);
+            const bool unchanged = same_bits(full.x, patch.x) && same_bits(full.v, patch.v);
+            if (clear) {
+                ++culled;
+                ASSERT_EQ(contacts, 0u) << "trial " << trial;
+                ASSERT_TRUE(unchanged) << "trial " << trial;
+            } else if (contacts > 0) {
+                ++touched;
+            } else {
+                ++clear_but_run;
+            }
+        }
+        EXPECT_GT(culled, 100);
+        EXPECT_GT(touched, 5);
+        EXPECT_LT(clear_but_run, culled);
     }
 }
 
