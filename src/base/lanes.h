@@ -108,6 +108,18 @@ CLOTH_LANES_INLINE void store_sym3(Sym3Soa& a, uint32_t i, const Sym3Lanes<L>& m
     L::store(&a.zz[i], m.zz);
 }
 
+// (ox, oy, oz) = M_i (x, y, z) for the symmetric 3x3 blocks M.
+template <class L>
+CLOTH_LANES_INLINE void sym3_times(const Sym3Soa& m, uint32_t i, typename L::type x, typename L::type y,
+                                   typename L::type z, typename L::type& ox, typename L::type& oy,
+                                   typename L::type& oz) {
+    using T = typename L::type;
+    const T xy = L::load(&m.xy[i]), xz = L::load(&m.xz[i]), yz = L::load(&m.yz[i]);
+    ox = L::load(&m.xx[i]) * x + xy * y + xz * z;
+    oy = xy * x + L::load(&m.yy[i]) * y + yz * z;
+    oz = xz * x + yz * y + L::load(&m.zz[i]) * z;
+}
+
 template <class L>
 CLOTH_LANES_INLINE void store_vec3(Vec3Soa& a, uint32_t i, typename L::type x, typename L::type y,
                                    typename L::type z) {

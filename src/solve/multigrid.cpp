@@ -102,18 +102,6 @@ void set_pairs(const HostVector<uint64_t>& keys, HostVector<uint32_t>& first, Ho
 // The block-diagonal passes of a smoothing sweep, lanes at a time (the
 // fine level's and the coarse levels' alike).
 
-// (ox, oy, oz) = M_i (x, y, z) for the symmetric blocks M.
-template <class L>
-CLOTH_LANES_INLINE void block_times(const Sym3Soa& m, uint32_t i, typename L::type x, typename L::type y,
-                                    typename L::type z, typename L::type& ox, typename L::type& oy,
-                                    typename L::type& oz) {
-    using T = typename L::type;
-    const T xy = L::load(&m.xy[i]), xz = L::load(&m.xz[i]), yz = L::load(&m.yz[i]);
-    ox = L::load(&m.xx[i]) * x + xy * y + xz * z;
-    oy = xy * x + L::load(&m.yy[i]) * y + yz * z;
-    oz = xz * x + yz * y + L::load(&m.zz[i]) * z;
-}
-
 // x = w D^-1 b over [begin, end) (`inverse` holds D^-1).
 CLOTH_HOT_LOOP void smooth_from_zero_pass(const Sym3Soa& inverse, const Vec3Soa& b, uint32_t begin,
                                           uint32_t end, Vec3Soa& x) {
@@ -121,8 +109,8 @@ CLOTH_HOT_LOOP void smooth_from_zero_pass(const Sym3Soa& inverse, const Vec3Soa&
     for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
         using L = decltype(lanes);
         typename L::type ox, oy, oz;
-        block_times<L>(inverse, i, L::load(&b.x[i]) * w, L::load(&b.y[i]) * w, L::load(&b.z[i]) * w, ox, oy,
-                       oz);
+        sym3_times<L>(inverse, i, L::load(&b.x[i]) * w, L::load(&b.y[i]) * w, L::load(&b.z[i]) * w, ox, oy,
+                      oz);
         store_vec3<L>(x, i, ox, oy, oz);
     });
 }
@@ -134,9 +122,9 @@ CLOTH_HOT_LOOP void smooth_pass(const Sym3Soa& inverse, const Vec3Soa& b, const 
     for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
         using L = decltype(lanes);
         typename L::type ox, oy, oz;
-        block_times<L>(inverse, i, (L::load(&b.x[i]) - L::load(&y.x[i])) * w,
-                       (L::load(&b.y[i]) - L::load(&y.y[i])) * w, (L::load(&b.z[i]) - L::load(&y.z[i])) * w,
-                       ox, oy, oz);
+        sym3_times<L>(inverse, i, (L::load(&b.x[i]) - L::load(&y.x[i])) * w,
+                      (L::load(&b.y[i]) - L::load(&y.y[i])) * w, (L::load(&b.z[i]) - L::load(&y.z[i])) * w,
+                      ox, oy, oz);
         store_vec3<L>(x, i, L::load(&x.x[i]) + ox, L::load(&x.y[i]) + oy, L::load(&x.z[i]) + oz);
     });
 }
@@ -147,7 +135,7 @@ CLOTH_HOT_LOOP void add_block_product(const Sym3Soa& d, const Vec3Soa& x, uint32
     for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
         using L = decltype(lanes);
         typename L::type ox, oy, oz;
-        block_times<L>(d, i, L::load(&x.x[i]), L::load(&x.y[i]), L::load(&x.z[i]), ox, oy, oz);
+        sym3_times<L>(d, i, L::load(&x.x[i]), L::load(&x.y[i]), L::load(&x.z[i]), ox, oy, oz);
         store_vec3<L>(y, i, L::load(&y.x[i]) + ox, L::load(&y.y[i]) + oy, L::load(&y.z[i]) + oz);
     });
 }

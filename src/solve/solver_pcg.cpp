@@ -38,11 +38,9 @@ struct BlockSum {
 // z_i = W_ii^-1 r_i (zero for pinned particles), lanes at a time.
 template <class L>
 CLOTH_LANES_INLINE void precondition(const Sym3Soa& w, const Vec3Soa& r, uint32_t i, Vec3Soa& z) {
-    using T = typename L::type;
-    const T x = L::load(&r.x[i]), y = L::load(&r.y[i]), zz = L::load(&r.z[i]);
-    const T xy = L::load(&w.xy[i]), xz = L::load(&w.xz[i]), yz = L::load(&w.yz[i]);
-    store_vec3<L>(z, i, L::load(&w.xx[i]) * x + xy * y + xz * zz, xy * x + L::load(&w.yy[i]) * y + yz * zz,
-                  xz * x + yz * y + L::load(&w.zz[i]) * zz);
+    typename L::type ox, oy, oz;
+    sym3_times<L>(w, i, L::load(&r.x[i]), L::load(&r.y[i]), L::load(&r.z[i]), ox, oy, oz);
+    store_vec3<L>(z, i, ox, oy, oz);
 }
 
 template <class L>
