@@ -156,8 +156,10 @@ void strain_limit_apply(const Vec3Soa& correction, float h, uint32_t begin, uint
 }
 
 void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, float h, Vec3Soa& x, Vec3Soa& v,
-                          Vec3Soa& correction, GridStrainTerms* grid) {
+                          Vec3Soa& correction, GridStrainTerms* grid, const Tethers* tethers) {
     grid_ = grid != nullptr && !grid->empty() ? grid : nullptr;
+    tethers_ = tethers != nullptr && !tethers->empty() ? tethers : nullptr;
+    first_pass_round_ = tethers_ != nullptr ? 1 : 0;
     pass_ = pass;
     iterations_ = iterations;
     round_ = 0;
@@ -168,6 +170,10 @@ void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, floa
 }
 
 void StrainLimiter::run(const GroupTask& task) {
+    if (tether_round()) {
+        tethers_->clamp(pass_.max_strain, h_, task.begin, task.end, *x_, *v_);
+        return;
+    }
     // Grid: the terms round, then the corrections and their application in
     // one round (they read only the terms). General: corrections, apply.
     if (grid_ != nullptr) {

@@ -18,6 +18,7 @@
 #include "fabric/fabric.h"
 #include "forces/material.h"
 #include "solve/solver_settings.h"
+#include "solve/tethers.h"
 
 namespace cloth {
 
@@ -62,27 +63,36 @@ void strain_limit_grid_corrections(const StrainLimitPass& pass, const GridStrain
 void strain_limit_apply(const Vec3Soa& correction, float h, uint32_t begin, uint32_t end, Vec3Soa& x,
                         Vec3Soa& v);
 
-// The passes as a staged algorithm (base/staged.h): `iterations` times a
-// round of corrections, then a round applying them. A frame runs the
-// colliders after each applying round (step/frame_plan.cpp).
+// The passes as a staged algorithm (base/staged.h): with tethers, first a
+// round clamping every particle to its tether (tethers.h); then
+// `iterations` times a round of corrections, then a round applying them.
+// A frame runs the colliders after each applying round
+// (step/cloth_stages.cpp).
 class StrainLimiter final : public StagedAlgorithm {
   public:
     // x, v, the scratch `correction` (one entry per particle) and, for a
     // grid fabric, its `grid` terms (sized for it) outlive it; a null or
-    // empty `grid` takes the general path.
+    // empty `grid` takes the general path. Null or empty `tethers`: no
+    // tether round.
     void begin(const StrainLimitPass& pass, uint32_t iterations, float h, Vec3Soa& x, Vec3Soa& v,
-               Vec3Soa& correction, GridStrainTerms* grid = nullptr);
-    // The current round moves particles (it applies corrections).
-    bool applying() const { return round_ % 2 == 1; }
+               Vec3Soa& correction, GridStrainTerms* grid = nullptr, const Tethers* tethers = nullptr);
+    // The current round applies corrections (the colliders run after it).
+    // Not the tether round: what it moves into a collider the first
+    // applying round's colliders take back out.
+    bool applying() const { return !tether_round() && (round_ - first_pass_round_) % 2 == 1; }
 
-    bool done() const override { return round_ >= 2 * iterations_; }
-    bool last_round() const override { return round_ + 1 == 2 * iterations_; }
+    bool done() const override { return round_ >= round_count(); }
+    bool last_round() const override { return round_ + 1 == round_count(); }
     void run(const GroupTask& task) override;
     void finish_round() override { ++round_; }
 
   private:
+    bool tether_round() const { return round_ < first_pass_round_; }
+    uint32_t round_count() const { return first_pass_round_ + 2 * iterations_; }
+
     StrainLimitPass pass_{};
-    uint32_t iterations_ = 0, round_ = 0;
+    const Tethers* tethers_ = nullptr;
+    uint32_t iterations_ = 0, round_ = 0, first_pass_round_ = 0;
     float h_ = 0;
     Vec3Soa* x_ = nullptr;
     Vec3Soa* v_ = nullptr;

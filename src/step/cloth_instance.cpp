@@ -39,6 +39,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       pin_velocity_start_(memory),
       multigrid_(memory),
       grid_strain_terms_(memory),
+      tethers_(memory),
       group_finite_(HostAllocator<uint8_t>(memory)),
       group_speed_squared_(HostAllocator<float>(memory)),
       contact_(memory) {
@@ -63,6 +64,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     set_material(material);
     multigrid_.plan(f, *springs_);
     if (!f.grid_families.empty()) grid_strain_terms_.resize(f);
+    tethers_.resize(f);
 }
 
 void ClothInstance::set_material(const Material& material) {
@@ -84,6 +86,7 @@ void ClothInstance::set_pinned(const uint32_t* indices, uint32_t count, bool pin
         pinned_[i] = pinned ? 1.0f : 0.0f;
         if (!pinned) contact_.detach(i);
     }
+    tethers_follow_pins_ = false;
     pinned_list_.clear();  // keeps its capacity of one entry per particle
     for (uint32_t i = 0; i < particle_count(); ++i) {
         if (pinned_[i] != 0.0f) pinned_list_.push_back(i);

@@ -175,6 +175,7 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
         std::memcpy(a->data(), values, row);
         values += row;
     }
+    tethers_follow_pins_ = false;
     pinned_list_.clear();
     for (uint32_t i = 0; i < n; ++i) {
         if (pinned_[i] != 0.0f) pinned_list_.push_back(i);

@@ -61,7 +61,8 @@ void ClothInstance::plan_substep() {
     const StrainLimit& limit = frame_solver_.strain_limit;
     if (limit.max_strain > 0 && limit.iterations > 0) {
         const StrainLimitPass pass{fabric_.get(), mass_.data(), pinned_.data(), limit.max_strain};
-        strain_limiter_.begin(pass, limit.iterations, h_, x_, v_, solver_work_.r, &grid_strain_terms_);
+        strain_limiter_.begin(pass, limit.iterations, h_, x_, v_, solver_work_.r, &grid_strain_terms_,
+                              &tethers_);
         plan(Stage::kStrainLimit, &C::limit_strain, nullptr, &strain_limiter_);
     }
     if (self_collision_) {
@@ -110,6 +111,10 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     contact_.begin_step(dt, pinned_.data(), x_, v_);  // carrier (no pass without one)
     collides_ = contact_.collides();
     for (uint32_t i : pinned_list_) pin_start_.set(i, x_.get(i));
+    if (frame_solver_.strain_limit.max_strain > 0 && !tethers_follow_pins_) {
+        tethers_.plan(*fabric_, pinned_.data());
+        tethers_follow_pins_ = true;
+    }
     substeps_ = frame_solver_.substeps;
     h_ = dt / static_cast<float>(substeps_);
     gravity_ = gravity;

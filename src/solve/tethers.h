@@ -1,0 +1,76 @@
+// Long-range attachments (Kim, Chentanez and Mueller 2012, "Long range
+// attachments"; NvCloth's and Jolt's tethers): every free particle that the
+// fabric connects to a pinned one may be no farther from its nearest pinned
+// particle than its rest distance to it times (1 + max_strain). One clamp
+// per particle and one pass: it holds the whole cloth's stretch at once,
+// where the local strain-limit passes move tension one spring per pass
+// (frontier.md).
+//
+// The anchors follow the pin set: plan() runs when it changes, not per
+// frame. Each free particle gets its kAnchors nearest pinned particles
+// along the structural and shear springs (one Dijkstra search from every
+// pinned particle at once that settles each particle up to kAnchors times,
+// once per source) and for each a length: the straight rest distance to
+// that anchor, or the spring path's length over kPathOverGeodesic if that
+// is longer. One anchor alone would tear a cloth dragged far in one step
+// along the seams between the anchors' regions (two pins moved 10 m: the
+// springs across the seam reached 31x their rest length); with several,
+// a particle must lie within reach of each, so the regions move together. On a flat grid the straight
+// distance is the geodesic one and the path (octile steps) is at most kPathOverGeodesic times it; on a curved
+// mesh the path divided by it stays close to the geodesic, so the tether never holds a cloth at rest.
+//
+// Written by hand: one clamp per particle over the library's SoA buffers,
+// and a search that must allocate only when the pin set changes.
+#pragma once
+
+#include "base/host_allocator.h"
+#include "base/soa.h"
+#include "fabric/fabric.h"
+
+namespace cloth {
+
+class Tethers {
+  public:
+    // The longest detour a path of structural and shear steps on a grid
+    // takes over the straight line: 1 / cos(22.5 degrees).
+    static constexpr float kPathOverGeodesic = 1.0823922f;
+    static constexpr uint32_t kNoAnchor = UINT32_MAX;
+    static constexpr uint32_t kAnchors = 4;
+
+    explicit Tethers(const HostMemory* memory);
+
+    // Storage for `fabric` (once per cloth), so that plan allocates nothing.
+    void resize(const Fabric& fabric);
+    // Anchors and lengths for the pins of `pinned` (1 pinned, 0 free).
+    void plan(const Fabric& fabric, const float* pinned);
+    // Whether any free particle has an anchor.
+    bool empty() const { return !any_; }
+    // Particle i's k-th anchor (nearest first), kNoAnchor past its last.
+    uint32_t anchor(uint32_t particle, uint32_t k) const { return anchor_[particle * kAnchors + k]; }
+    float length(uint32_t particle, uint32_t k) const { return length_[particle * kAnchors + k]; }
+
+    // Particles [begin, end) farther than (1 + max_strain) * length from
+    // an anchor move onto that sphere (the farthest anchor first, the
+    // nearest last), their velocity by the same move over h. Writes only free particles and reads only pinned
+    // ones besides its own, so groups run in parallel.
+    void clamp(float max_strain, float h, uint32_t begin, uint32_t end, Vec3Soa& x, Vec3Soa& v) const;
+
+  private:
+    HostVector<uint32_t> anchor_;
+    HostVector<float> length_;
+    struct Reach {
+        float path;
+        uint32_t particle, anchor;
+        bool operator>(const Reach& other) const {
+            if (path != other.path) return path > other.path;
+            if (particle != other.particle) return particle > other.particle;
+            return anchor > other.anchor;
+        }
+    };
+    HostVector<float> path_;       // the search's path lengths, kAnchors per particle
+    HostVector<uint8_t> settled_;  // anchors settled per particle
+    HostVector<Reach> frontier_;   // the search's heap
+    bool any_ = false;
+};
+
+}  // namespace cloth

@@ -1,0 +1,140 @@
+// Long-range attachments (solve/tethers.h): where the anchors and lengths
+// come from, and what they hold through the C API: a cloth dragged 10 m
+// in one step by its pins, a cloth far too heavy for its springs, and one
+// re-pinned by other particles.
+#include "solve/tethers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "test_support.h"
+
+namespace {
+
+using cloth::Tethers;
+
+TEST(Tethers, OnAFlatGridAParticlesAnchorsArePinsNearestFirstAtTheirStraightRestDistance) {
+    auto fabric = cloth::testing::make_grid(16, 16);
+    std::vector<float> pinned(fabric->particle_count(), 0.0f);
+    const uint32_t pins[] = {0, 15, 255};
+    for (uint32_t p : pins) pinned[p] = 1.0f;
+    Tethers tethers(cloth::testing::heap());
+    tethers.resize(*fabric);
+    tethers.plan(*fabric, pinned.data());
+    ASSERT_FALSE(tethers.empty());
+    for (uint32_t i = 0; i < fabric->particle_count(); ++i) {
+        if (pinned[i] != 0.0f) {
+            EXPECT_EQ(tethers.anchor(i, 0), Tethers::kNoAnchor) << "a pinned particle has no tether";
+            continue;
+        }
+        // Three pins, so three anchors, each a pin, each once.
+        float nearest = INFINITY;
+        for (uint32_t p : pins)
+            nearest = std::min(nearest, (fabric->rest_positions[i] - fabric->rest_positions[p]).norm());
+        for (uint32_t k = 0; k < 3; ++k) {
+            const uint32_t a = tethers.anchor(i, k);
+            ASSERT_NE(a, Tethers::kNoAnchor) << "particle " << i << " anchor " << k;
+            EXPECT_EQ(pinned[a], 1.0f);
+            for (uint32_t other = 0; other < k; ++other) EXPECT_NE(tethers.anchor(i, other), a);
+            // On a flat grid the straight rest distance is the geodesic one.
+            const float straight = (fabric->rest_positions[i] - fabric->rest_positions[a]).norm();
+            EXPECT_NEAR(tethers.length(i, k), straight, 1e-5f) << "particle " << i << " anchor " << a;
+        }
+        EXPECT_EQ(tethers.anchor(i, 3), Tethers::kNoAnchor);
+        EXPECT_NEAR(tethers.length(i, 0), nearest, 1e-5f) << "the first anchor is the nearest pin";
+    }
+}
+
+// A 32 x 32 cloth of the C API's defaults, pinned at its two top corners.
+struct PinnedCloth {
+    cloth_world_id world{};
+    cloth_id cloth{};
+    explicit PinnedCloth(float particle_mass = 0.0f) {
+        cloth_world_desc world_desc = cloth_default_world_desc();
+        EXPECT_EQ(cloth_world_create(&world_desc, &world), CLOTH_OK);
+        cloth_grid_desc grid = cloth_default_grid_desc();
+        cloth_fabric_id fabric{};
+        EXPECT_EQ(cloth_fabric_create_grid(world, &grid, &fabric), CLOTH_OK);
+        cloth_desc desc = cloth_default_desc();
+        desc.fabric = fabric;
+        desc.particle_mass = particle_mass;
+        EXPECT_EQ(cloth_create(world, &desc, &cloth), CLOTH_OK);
+        const uint32_t pins[] = {0, 31};
+        EXPECT_EQ(cloth_pin(cloth, pins, 2), CLOTH_OK);
+    }
+    ~PinnedCloth() { cloth_world_destroy(world); }
+    cloth_stats stats() const {
+        cloth_stats s;
+        std::memset(&s, 0, sizeof s);
+        s.struct_size = sizeof s;
+        EXPECT_EQ(cloth_get_stats(cloth, &s), CLOTH_OK);
+        return s;
+    }
+    cloth::Vec3 centroid() const {
+        std::vector<float> x(3 * 32 * 32);
+        EXPECT_EQ(cloth_read_positions(cloth, x.data(), static_cast<uint32_t>(x.size())), CLOTH_OK);
+        cloth::Vec3 sum = cloth::Vec3::Zero();
+        for (size_t i = 0; i < x.size(); i += 3) sum += cloth::Vec3(x[i], x[i + 1], x[i + 2]);
+        return sum / (32.0f * 32.0f);
+    }
+};
+
+// Without tethers the strain limit's local passes left springs at 13x
+// their rest length on this drag (and 31x with one anchor per particle,
+// torn along the seam between the two pins' regions).
+TEST(Tethers, TwoPinsDraggedTenMetresInOneStepTakeTheWholeClothWithoutTearingIt) {
+    PinnedCloth c;
+    for (int f = 0; f < 60; ++f) ASSERT_EQ(cloth_step(c.world, 1.0f / 60.0f), CLOTH_OK);
+    const uint32_t pins[] = {0, 31};
+    const float moved[] = {10, 0, 0, 11, 0, 0};
+    ASSERT_EQ(cloth_set_pin_targets(c.cloth, pins, moved, 2), CLOTH_OK);
+    ASSERT_EQ(cloth_step(c.world, 1.0f / 60.0f), CLOTH_OK);
+    // The cloth came along: its centre hangs below the pins' midpoint.
+    const cloth::Vec3 centre = c.centroid();
+    EXPECT_NEAR(centre.x(), 10.5f, 0.5f);
+    float worst = c.stats().max_strain;
+    const float back[] = {0, 0, 0, 1, 0, 0};
+    ASSERT_EQ(cloth_set_pin_targets(c.cloth, pins, back, 2), CLOTH_OK);
+    for (int f = 0; f < 30; ++f) {
+        ASSERT_EQ(cloth_step(c.world, 1.0f / 60.0f), CLOTH_OK);
+        worst = std::max(worst, c.stats().max_strain);
+    }
+    EXPECT_LT(worst, 1.5f) << "max strain over the drag and the way back";
+}
+
+// 1 kg per particle on 1e3 N/m springs: solved exactly its springs would
+// stretch about tenfold near the pins. Without tethers the default's local
+// passes held it at 1.47.
+TEST(Tethers, AClothFarTooHeavyForItsSpringsHangsWithinAThirdOfItsLength) {
+    PinnedCloth c(1.0f);
+    float worst = 0;
+    for (int f = 0; f < 120; ++f) {
+        ASSERT_EQ(cloth_step(c.world, 1.0f / 60.0f), CLOTH_OK);
+        worst = std::max(worst, c.stats().max_strain);
+    }
+    EXPECT_LT(worst, 0.4f);
+}
+
+// The tethers follow the pin set: the same heavy cloth, re-pinned by its
+// bottom corners, hangs from those as it hung from the top ones (tethers
+// kept from the old pins would anchor it to free particles and hold
+// nothing: 1.5 strain, as without tethers).
+TEST(Tethers, AClothRePinnedByOtherParticlesIsHeldFromTheNewPins) {
+    PinnedCloth c(1.0f);
+    for (int f = 0; f < 30; ++f) ASSERT_EQ(cloth_step(c.world, 1.0f / 60.0f), CLOTH_OK);
+    const uint32_t bottom[] = {32 * 31, 32 * 32 - 1}, top[] = {0, 31};
+    ASSERT_EQ(cloth_pin(c.cloth, bottom, 2), CLOTH_OK);
+    ASSERT_EQ(cloth_unpin(c.cloth, top, 2), CLOTH_OK);
+    float worst = 0;
+    for (int f = 0; f < 120; ++f) {
+        ASSERT_EQ(cloth_step(c.world, 1.0f / 60.0f), CLOTH_OK);
+        worst = std::max(worst, c.stats().max_strain);
+    }
+    EXPECT_LT(worst, 0.4f);
+}
+
+}  // namespace
