@@ -725,9 +725,14 @@ CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
 /// CLOTH_SOLVER_EXPLICIT): a spring longer than (1 + max_strain) times its
 /// rest length is held by a cable 100 times as stiff as the spring, which
 /// the implicit solve spreads over the whole cloth at once (stats count its
-/// energy). After every substep (Provot 1995): structural and shear springs
-/// still longer than that are pulled back, `iterations` parallel passes,
-/// moving positions and velocities together. Off by default, but the
+/// energy). After every substep: first each free particle that the fabric
+/// links to pinned or attached particles is pulled back within
+/// (1 + max_strain) times its rest distance of each of its four nearest
+/// ones (tethers, or long-range attachments: one pass that holds the whole
+/// cloth's stretch, however far the pins moved); then (Provot 1995)
+/// structural and shear springs still longer than the limit are pulled
+/// back, `iterations` parallel passes, moving positions and velocities
+/// together. Off by default, but the
 /// default solver sets max_strain 0.08 for itself; applies to every solver
 /// kind once set. Set with cloth_set_strain_limit; cloth_set_solver keeps it.
 typedef struct cloth_strain_limit {
