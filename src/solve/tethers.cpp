@@ -4,20 +4,25 @@
 #include <cmath>
 #include <functional>
 
+#include "base/lanes.h"
+
 namespace cloth {
 
 Tethers::Tethers(const HostMemory* memory)
     : anchor_(HostAllocator<uint32_t>(memory)),
       length_(HostAllocator<float>(memory)),
+      found_(HostAllocator<uint32_t>(memory)),
       path_(HostAllocator<float>(memory)),
       settled_(HostAllocator<uint8_t>(memory)),
       frontier_(HostAllocator<Reach>(memory)) {}
 
 void Tethers::resize(const Fabric& fabric) {
     const size_t n = fabric.particle_count();
-    anchor_.assign(n * kAnchors, kNoAnchor);
+    count_ = static_cast<uint32_t>(n);
+    anchor_.assign(n * kAnchors, 0);
     length_.assign(n * kAnchors, 0.0f);
     path_.assign(n * kAnchors, 0.0f);
+    found_.assign(n * kAnchors, kNoAnchor);
     settled_.assign(n, 0);
     // Each particle is settled at most kAnchors times, and each settling
     // pushes at most one entry per incident spring: the heap never holds
@@ -31,7 +36,7 @@ void Tethers::plan(const Fabric& f, const float* pinned) {
     // Min-heap on (path, particle, anchor): ties resolve by index, so the
     // anchors depend on nothing but the fabric and the pins.
     const auto later = std::greater<Reach>();
-    std::fill(anchor_.begin(), anchor_.end(), kNoAnchor);
+    std::fill(found_.begin(), found_.end(), kNoAnchor);
     std::fill(settled_.begin(), settled_.end(), uint8_t{0});
     frontier_.clear();
     for (uint32_t i = 0; i < n; ++i) {
@@ -40,7 +45,7 @@ void Tethers::plan(const Fabric& f, const float* pinned) {
     std::make_heap(frontier_.begin(), frontier_.end(), later);
     auto has_anchor = [&](uint32_t i, uint32_t a) {
         for (uint32_t k = 0; k < settled_[i]; ++k) {
-            if (anchor_[i * kAnchors + k] == a) return true;
+            if (found_[i * kAnchors + k] == a) return true;
         }
         return false;
     };
@@ -51,7 +56,7 @@ void Tethers::plan(const Fabric& f, const float* pinned) {
         const uint32_t i = reach.particle;
         if (settled_[i] == kAnchors || has_anchor(i, reach.anchor)) continue;  // stale or full
         const uint32_t slot = i * kAnchors + settled_[i]++;
-        anchor_[slot] = reach.anchor;
+        found_[slot] = reach.anchor;
         path_[slot] = reach.path;
         if (pinned[i] != 0.0f && i != reach.anchor) continue;  // paths do not run through other pins
         for (uint32_t e = f.incidence_offset[i]; e < f.incidence_offset[i + 1]; ++e) {
@@ -64,36 +69,60 @@ void Tethers::plan(const Fabric& f, const float* pinned) {
         }
     }
     any_ = false;
+    used_ = 0;
     for (uint32_t i = 0; i < n; ++i) {
+        if (pinned[i] == 0.0f) used_ = std::max<uint32_t>(used_, settled_[i]);
         for (uint32_t k = 0; k < kAnchors; ++k) {
-            const uint32_t slot = i * kAnchors + k;
+            const size_t out = size_t{k} * n + i;
             if (pinned[i] != 0.0f || k >= settled_[i]) {
-                anchor_[slot] = kNoAnchor;
-                length_[slot] = 0.0f;
+                anchor_[out] = i;  // none: itself, at length 0
+                length_[out] = 0.0f;
                 continue;
             }
-            const float straight = (f.rest_positions[i] - f.rest_positions[anchor_[slot]]).norm();
-            length_[slot] = std::max(straight, path_[slot] / kPathOverGeodesic);
+            const uint32_t a = found_[i * kAnchors + k];
+            const float straight = (f.rest_positions[i] - f.rest_positions[a]).norm();
+            anchor_[out] = a;
+            length_[out] = std::max(straight, path_[i * kAnchors + k] / kPathOverGeodesic);
             any_ = true;
         }
     }
 }
 
-void Tethers::clamp(float max_strain, float h, uint32_t begin, uint32_t end, Vec3Soa& x, Vec3Soa& v) const {
-    const float stretch = 1.0f + max_strain;
-    const float inverse_h = 1.0f / h;
+namespace {
+
+// One anchor of every particle in [begin, end). An anchor is pinned (this
+// pass never writes it) or the particle itself, so no iteration reads what
+// another writes: the gathers vectorize.
+CLOTH_HOT_LOOP void clamp_kernel(uint32_t begin, uint32_t end, float stretch, float inverse_h,
+                                 const uint32_t* __restrict anchor, const float* __restrict length,
+                                 float* __restrict px, float* __restrict py, float* __restrict pz,
+                                 float* __restrict vx, float* __restrict vy, float* __restrict vz) {
+#pragma GCC ivdep
     for (uint32_t i = begin; i < end; ++i) {
-        for (uint32_t k = kAnchors; k-- > 0;) {
-            const uint32_t a = anchor(i, k);
-            if (a == kNoAnchor) continue;
-            const Vec3 d = x.get(i) - x.get(a);
-            const float distance = d.norm();
-            const float allowed = stretch * length(i, k);
-            if (!(distance > allowed)) continue;
-            const Vec3 move = d * ((allowed - distance) / distance);
-            x.set(i, x.get(i) + move);
-            v.set(i, v.get(i) + move * inverse_h);
-        }
+        const uint32_t a = anchor[i];
+        const float dx = px[i] - px[a], dy = py[i] - py[a], dz = pz[i] - pz[a];
+        const float distance = std::sqrt(dx * dx + dy * dy + dz * dz);
+        const float allowed = stretch * length[i];
+        // -(distance - allowed) / distance where too far, else 0 (and 0 for
+        // the particle itself: distance and allowed are both 0).
+        const float s = distance > allowed ? (allowed - distance) / std::max(distance, 1e-30f) : 0.0f;
+        px[i] += dx * s;
+        py[i] += dy * s;
+        pz[i] += dz * s;
+        vx[i] += dx * s * inverse_h;
+        vy[i] += dy * s * inverse_h;
+        vz[i] += dz * s * inverse_h;
+    }
+}
+
+}  // namespace
+
+void Tethers::clamp(float max_strain, float h, uint32_t begin, uint32_t end, Vec3Soa& x, Vec3Soa& v) const {
+    // The farthest anchor first, the nearest last.
+    for (uint32_t k = used_; k-- > 0;) {
+        const size_t base = size_t{k} * count_;
+        clamp_kernel(begin, end, 1.0f + max_strain, 1.0f / h, anchor_.data() + base, length_.data() + base,
+                     x.x.data(), x.y.data(), x.z.data(), v.x.data(), v.y.data(), v.z.data());
     }
 }
 

@@ -46,8 +46,11 @@ class Tethers {
     // Whether any free particle has an anchor.
     bool empty() const { return !any_; }
     // Particle i's k-th anchor (nearest first), kNoAnchor past its last.
-    uint32_t anchor(uint32_t particle, uint32_t k) const { return anchor_[particle * kAnchors + k]; }
-    float length(uint32_t particle, uint32_t k) const { return length_[particle * kAnchors + k]; }
+    uint32_t anchor(uint32_t particle, uint32_t k) const {
+        const uint32_t a = anchor_[size_t{k} * count_ + particle];
+        return a == particle ? kNoAnchor : a;
+    }
+    float length(uint32_t particle, uint32_t k) const { return length_[size_t{k} * count_ + particle]; }
 
     // Particles [begin, end) farther than (1 + max_strain) * length from
     // an anchor move onto that sphere (the farthest anchor first, the
@@ -56,8 +59,13 @@ class Tethers {
     void clamp(float max_strain, float h, uint32_t begin, uint32_t end, Vec3Soa& x, Vec3Soa& v) const;
 
   private:
+    // Anchor k of every particle, then anchor k + 1 (so the clamp is a
+    // contiguous loop per k); a missing anchor is the particle itself at
+    // length 0, which never moves it.
     HostVector<uint32_t> anchor_;
     HostVector<float> length_;
+    uint32_t count_ = 0;
+    uint32_t used_ = 0;  // anchors any particle has (fewer pins than kAnchors: fewer passes)
     struct Reach {
         float path;
         uint32_t particle, anchor;
@@ -67,7 +75,8 @@ class Tethers {
             return anchor > other.anchor;
         }
     };
-    HostVector<float> path_;       // the search's path lengths, kAnchors per particle
+    HostVector<uint32_t> found_;   // the search's anchors, kAnchors per particle (particle-major)
+    HostVector<float> path_;       // and their path lengths
     HostVector<uint8_t> settled_;  // anchors settled per particle
     HostVector<Reach> frontier_;   // the search's heap
     bool any_ = false;
