@@ -4,6 +4,7 @@
 // vehicle and the terrain, independently of the colliders the cloth uses.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "terrain.h"
@@ -25,5 +26,12 @@ struct Penetrations {
 Penetrations count_penetrations(const std::vector<float>& positions, const std::vector<bool>& skip,
                                 const btTransform& chassis_pose, const VehicleLayout& vehicle,
                                 const Terrain& terrain, float tolerance);
+
+// Structural springs of the flag (a columns x rows grid, particle r *
+// columns + c) whose segment passes within half the pole's radius of its
+// axis: the flag pulled through its pole. A spring wrapped round the pole
+// cuts a chord inside the capsule but never comes that close to the axis.
+int count_springs_through_pole(const std::vector<float>& positions, uint32_t columns, uint32_t rows,
+                               const btTransform& chassis_pose, const VehicleLayout& vehicle);
 
 }  // namespace vehicle_flag

@@ -287,6 +287,7 @@ int main(int argc, char** argv) {
     std::vector<int> worker_tracks;
     std::vector<cloth_task_record> tasks(kProfileTasks);
     Penetrations penetrations;
+    int springs_through_pole = 0;  // summed over frames
     std::vector<Moment> moments;
     size_t next_moment = 0;
     float worst_attach = 0.0f, worst_strain = 0.0f, worst_speed = 0.0f;
@@ -346,6 +347,9 @@ int main(int argc, char** argv) {
         const float attach = static_cast<float>(flag.attachment_error(vehicle.chassis_pose()));
         const Penetrations p = count_penetrations(flag.positions(), skip, vehicle.chassis_pose(),
                                                   vehicle.layout(), terrain, o.tolerance);
+        const int through_pole = count_springs_through_pole(flag.positions(), o.columns, o.rows,
+                                                            vehicle.chassis_pose(), vehicle.layout());
+        springs_through_pole += through_pole;
         cloth_stats stats{};
         stats.struct_size = sizeof stats;
         cloth_get_stats(flag.cloth(), &stats);
@@ -355,7 +359,7 @@ int main(int argc, char** argv) {
         carrier_teleports += teleported;
         const bool teleport_wrong = teleported != controls.teleport;
         missed_teleports += teleport_wrong;
-        const bool bad = !finite || attach > o.max_attach_error || p.total() > 0 ||
+        const bool bad = !finite || attach > o.max_attach_error || p.total() > 0 || through_pole > 0 ||
                          stats.max_strain > o.max_strain || stats.max_speed > o.max_speed || teleport_wrong;
         bad_frames += bad;
         penetrations.add(p);
@@ -430,6 +434,8 @@ int main(int argc, char** argv) {
     std::printf("  particles inside (deeper than %.3g m): chassis %d, pole %d, terrain %d (deepest %.3g m)\n",
                 o.tolerance, penetrations.chassis, penetrations.pole, penetrations.terrain,
                 penetrations.deepest);
+    std::printf("  springs through the pole (within half its radius of its axis), summed over frames: %d\n",
+                springs_through_pole);
     std::printf("  max strain %.3f (limit %.3g), max speed %.2f m/s (limit %.3g)\n", worst_strain,
                 o.max_strain, worst_speed, o.max_speed);
     std::printf("  carrier teleports: %d for %d course teleport(s); frames where they disagree: %d\n",

@@ -66,8 +66,7 @@ void strain_limit_apply(const Vec3Soa& correction, float h, uint32_t begin, uint
 // The passes as a staged algorithm (base/staged.h): with tethers, first a
 // round clamping every particle to its tether (tethers.h); then
 // `iterations` times a round of corrections, then a round applying them.
-// A frame runs the colliders after each applying round
-// (step/cloth_stages.cpp).
+// A frame runs the colliders after the last round (step/cloth_stages.cpp).
 class StrainLimiter final : public StagedAlgorithm {
   public:
     // x, v, the scratch `correction` (one entry per particle) and, for a
@@ -76,9 +75,7 @@ class StrainLimiter final : public StagedAlgorithm {
     // tether round.
     void begin(const StrainLimitPass& pass, uint32_t iterations, float h, Vec3Soa& x, Vec3Soa& v,
                Vec3Soa& correction, GridStrainTerms* grid = nullptr, const Tethers* tethers = nullptr);
-    // The current round applies corrections (the colliders run after it).
-    // Not the tether round: what it moves into a collider the first
-    // applying round's colliders take back out.
+    // The current round applies corrections.
     bool applying() const { return !tether_round() && (round_ - first_pass_round_) % 2 == 1; }
 
     bool done() const override { return round_ >= round_count(); }

@@ -42,7 +42,8 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       tethers_(memory),
       group_finite_(HostAllocator<uint8_t>(memory)),
       group_speed_squared_(HostAllocator<float>(memory)),
-      contact_(memory) {
+      contact_(memory),
+      group_contacts_(HostAllocator<uint32_t>(memory)) {
     const Fabric& f = *fabric_;
     const uint32_t n = f.particle_count();
     for (Vec3Soa* a : {&x_, &v_, &pin_target_, &pin_start_, &external_force_, &rhs_, &dv_, &dv_scratch_,
@@ -61,6 +62,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     group_count_ = (n + kGroupSize - 1) / kGroupSize;
     group_finite_.assign(group_count_, 1);
     group_speed_squared_.assign(group_count_, 0.0f);
+    group_contacts_.assign(group_count_, 0);
     set_material(material);
     multigrid_.plan(f, *springs_);
     if (!f.grid_families.empty()) grid_strain_terms_.resize(f);

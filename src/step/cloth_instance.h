@@ -206,9 +206,13 @@ class ClothInstance {
     /// v += dv, x += h v; pins land (the frame's first integration writes the spare buffers).
     void integrate_implicitly(const GroupTask& task);
     void adopt_first_integration();
-    /// Particles against the world's colliders over this substep.
-    void collide(const GroupTask& task);
-    /// One round of strain limiting; after each applying round, the colliders again.
+    /// The collision stage: particles against the world's colliders over
+    /// this substep, and whether any touched one (group_contacts_).
+    void collide_stage(const GroupTask& task);
+    void note_contacts();
+    void collide(const GroupTask& task, uint32_t* contacts = nullptr);
+    /// One round of strain limiting, then the colliders again after the last
+    /// round, and after every applying round of a substep with contacts.
     void limit_strain(const GroupTask& task);
     /// One round of self-collision (hash, sort, contacts, project, respond).
     void resolve_self_contacts(const GroupTask& task);
@@ -311,8 +315,10 @@ class ClothInstance {
     bool sleeping_ = false;
     uint32_t rest_frames_ = 0;  // consecutive frames below sleep_.max_speed
 
-    ClothContact contact_;   // colliders, attachments, carrier
-    bool collides_ = false;  // this frame runs the collision stage
+    ClothContact contact_;                 // colliders, attachments, carrier
+    bool collides_ = false;                // this frame runs the collision stage
+    HostVector<uint32_t> group_contacts_;  // per group: contacts of this substep's collision stage
+    bool touching_ = false;                // this substep's collision stage found a contact
 };
 
 }  // namespace cloth

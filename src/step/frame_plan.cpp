@@ -57,7 +57,8 @@ void ClothInstance::plan_substep() {
         plan(Stage::kIntegrate, &C::integrate_implicitly, &C::adopt_first_integration);
     }
     // After integration, where contact plugs in.
-    if (collides_) plan(Stage::kCollisions, &C::collide);
+    touching_ = false;
+    if (collides_) plan(Stage::kCollisions, &C::collide_stage, &C::note_contacts);
     const StrainLimit& limit = frame_solver_.strain_limit;
     if (limit.max_strain > 0 && limit.iterations > 0) {
         const StrainLimitPass pass{fabric_.get(), mass_.data(), pinned_.data(), limit.max_strain};

@@ -70,6 +70,31 @@ TEST(CourseChecks, CountsPointsInsideEachShapeAndNothingOutside) {
     EXPECT_EQ(count_penetrations(positions, skip, pose, v, terrain, tolerance).total(), 0);
 }
 
+// One spring (a 2 x 1 flag) near the pole: it counts when it crosses the
+// pole from one side to the other, not when it wraps it as a chord just
+// outside its surface, nor when it runs up beside it.
+TEST(CourseChecks, CountsSpringsThroughThePoleAndNotThoseWrappedRoundIt) {
+    const VehicleLayout v;
+    btTransform pose = btTransform::getIdentity();
+    pose.setOrigin(btVector3(3.0f, 0.2f, -7.0f));
+    pose.setRotation(btQuaternion(btVector3(0, 1, 0), -1.1f));
+    const btVector3 base(v.pole_base[0], v.pole_base[1], v.pole_base[2]);
+    const float r = v.pole_radius + 0.002f, y = 1.0f;
+    const float a = 0.6981317f;  // 40 degrees
+    auto count = [&](const btVector3& p, const btVector3& q, uint32_t columns, uint32_t rows) {
+        std::vector<float> positions;
+        for (const btVector3& local : {p, q}) {
+            const btVector3 w = pose * (base + local);
+            positions.insert(positions.end(), {w.x(), w.y(), w.z()});
+        }
+        return count_springs_through_pole(positions, columns, rows, pose, v);
+    };
+    EXPECT_EQ(count(btVector3(r, y, 0), btVector3(-r, y + 0.01f, 0), 2, 1), 1) << "across the pole";
+    EXPECT_EQ(count(btVector3(r, y, 0), btVector3(r * std::cos(a), y, r * std::sin(a)), 2, 1), 0)
+        << "a chord round the pole";
+    EXPECT_EQ(count(btVector3(r, y, 0), btVector3(r, y + 0.02f, 0), 1, 2), 0) << "up beside the pole";
+}
+
 // The course of issue 6: 30 m/s, a slalom, a hard brake, a jump, one teleport.
 TEST(CourseDriver, DrivesTheWholeCourse) {
     const Terrain terrain;
