@@ -731,8 +731,10 @@ CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
 /// ones (tethers, or long-range attachments: one pass that holds the whole
 /// cloth's stretch, however far the pins moved); then (Provot 1995)
 /// structural and shear springs still longer than the limit are pulled
-/// back, `iterations` parallel passes, moving positions and velocities
-/// together. Off by default, but the
+/// back in parallel passes, moving positions and velocities together:
+/// `iterations` passes, fewer once a pass finds no spring past the limit,
+/// and up to 4 times as many while a spring is past it by more than 0.01
+/// (so the cost of a frame follows how hard it pulls). Off by default, but the
 /// default solver sets max_strain 0.08 for itself; applies to every solver
 /// kind once set. Set with cloth_set_strain_limit; cloth_set_solver keeps it.
 typedef struct cloth_strain_limit {
@@ -740,7 +742,9 @@ typedef struct cloth_strain_limit {
     uint32_t struct_size;
     /// >= 0, finite; 0 turns limiting off; default 0
     float max_strain;
-    /// 1..CLOTH_MAX_STRAIN_LIMIT_ITERATIONS; default 4
+    /// passes per substep, 1..CLOTH_MAX_STRAIN_LIMIT_ITERATIONS; default 4
+    /// (see above: fewer when nothing is past the limit, up to 4 times as
+    /// many while a spring is past it by more than 0.01)
     uint32_t iterations;
 } cloth_strain_limit;
 

@@ -13,10 +13,12 @@ namespace cloth {
 // 128x128 cloth falling flat: 0.33 against 0.85 after 200 frames).
 constexpr float kRelaxation = 0.5f;
 
-void strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin, uint32_t end,
-                              Vec3Soa& correction) {
+StretchCount strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin,
+                                      uint32_t end, Vec3Soa& correction) {
     const Fabric& f = *pass.fabric;
     const float stretch_limit = 1.0f + pass.max_strain;
+    const float promise = stretch_limit + kStrainPromiseSlack;
+    StretchCount count;
     for (uint32_t i = begin; i < end; ++i) {
         Vec3 sum = Vec3::Zero();
         if (pass.pinned[i] == 0.0f) {
@@ -30,6 +32,8 @@ void strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa& x, uin
                 const float length = d.norm();
                 const float allowed = stretch_limit * f.spring_rest_length[s];
                 if (!(length > allowed)) continue;
+                ++count.over_limit;
+                count.over_promise += length > promise * f.spring_rest_length[s];
                 const float other = pass.pinned[j] != 0.0f ? 0.0f : 1.0f / pass.mass[j];
                 const float share = own / (own + other);
                 sum += d * (kRelaxation * share * (length - allowed) / length);
@@ -37,6 +41,7 @@ void strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa& x, uin
         }
         correction.set(i, sum);
     }
+    return count;
 }
 
 GridStrainTerms::GridStrainTerms(const HostMemory* memory)
@@ -63,12 +68,15 @@ namespace {
 
 // The loops of the grid path, every array a __restrict parameter so that GCC
 // vectorizes them (as in spring_terms_grid.cpp).
-CLOTH_HOT_LOOP void family_terms_kernel(size_t begin, size_t last, size_t offset, float stretch_limit,
-                                        const float* __restrict mask, const float* __restrict rest,
-                                        const float* __restrict mass, const float* __restrict pinned,
-                                        const float* __restrict px, const float* __restrict py,
-                                        const float* __restrict pz, float* __restrict tx,
-                                        float* __restrict ty, float* __restrict tz, float* __restrict share) {
+// Returns the springs over the limit and over `promise` (a stretch).
+CLOTH_HOT_LOOP StretchCount family_terms_kernel(size_t begin, size_t last, size_t offset, float stretch_limit,
+                                                float promise, const float* __restrict mask,
+                                                const float* __restrict rest, const float* __restrict mass,
+                                                const float* __restrict pinned, const float* __restrict px,
+                                                const float* __restrict py, const float* __restrict pz,
+                                                float* __restrict tx, float* __restrict ty,
+                                                float* __restrict tz, float* __restrict share) {
+    uint32_t over_limit = 0, over_promise = 0;
     for (size_t p = begin; p < last; ++p) {
         const size_t q = p + offset;
         const float dx = px[q] - px[p], dy = py[q] - py[p], dz = pz[q] - pz[p];
@@ -83,7 +91,10 @@ CLOTH_HOT_LOOP void family_terms_kernel(size_t begin, size_t last, size_t offset
         ty[p] = c * dy;
         tz[p] = c * dz;
         share[p] = sum > 0.0f ? wp / std::max(sum, 1e-30f) : 0.0f;
+        over_limit += c != 0.0f;
+        over_promise += mask[p] > 0.0f && length > promise * rest[p];
     }
+    return {over_limit, over_promise};
 }
 
 // c_i += own share of t at i - (1 - their share) of t at i - offset
@@ -104,20 +115,25 @@ CLOTH_HOT_LOOP void family_corrections_kernel(size_t begin, size_t end, const fl
 
 }  // namespace
 
-void strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin, uint32_t end,
-                             GridStrainTerms& terms) {
+StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin,
+                                     uint32_t end, GridStrainTerms& terms) {
     const Fabric& f = *pass.fabric;
     const uint32_t n = f.particle_count();
+    StretchCount count;
     for (size_t k = 0; k < terms.family.size(); ++k) {
         const SpringFamily& family = f.grid_families[terms.family[k]];
         const uint32_t last = std::min(end, n > family.offset ? n - family.offset : 0u);
         if (begin >= last) continue;
         const size_t base = k * terms.stride + terms.lead;
-        family_terms_kernel(begin, last, family.offset, 1.0f + pass.max_strain, family.mask.data(),
-                            family.rest_length.data(), pass.mass, pass.pinned, x.x.data(), x.y.data(),
-                            x.z.data(), terms.x.data() + base, terms.y.data() + base, terms.z.data() + base,
-                            terms.share.data() + base);
+        const StretchCount found = family_terms_kernel(
+            begin, last, family.offset, 1.0f + pass.max_strain, 1.0f + pass.max_strain + kStrainPromiseSlack,
+            family.mask.data(), family.rest_length.data(), pass.mass, pass.pinned, x.x.data(), x.y.data(),
+            x.z.data(), terms.x.data() + base, terms.y.data() + base, terms.z.data() + base,
+            terms.share.data() + base);
+        count.over_limit += found.over_limit;
+        count.over_promise += found.over_promise;
     }
+    return count;
 }
 
 void strain_limit_grid_corrections(const StrainLimitPass& pass, const GridStrainTerms& terms, uint32_t begin,
@@ -156,7 +172,10 @@ void strain_limit_apply(const Vec3Soa& correction, float h, uint32_t begin, uint
 }
 
 void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, float h, Vec3Soa& x, Vec3Soa& v,
-                          Vec3Soa& correction, GridStrainTerms* grid, const Tethers* tethers) {
+                          Vec3Soa& correction, GridStrainTerms* grid, const Tethers* tethers,
+                          StretchCount* counts, uint32_t max_iterations) {
+    counts_ = counts;
+    max_iterations_ = std::max(iterations, max_iterations);
     grid_ = grid != nullptr && !grid->empty() ? grid : nullptr;
     tethers_ = tethers != nullptr && !tethers->empty() ? tethers : nullptr;
     first_pass_round_ = tethers_ != nullptr ? 1 : 0;
@@ -180,14 +199,35 @@ void StrainLimiter::run(const GroupTask& task) {
         if (applying()) {
             strain_limit_grid_corrections(pass_, *grid_, task.begin, task.end, *correction_);
             strain_limit_apply(*correction_, h_, task.begin, task.end, *x_, *v_);
-        } else {
-            strain_limit_grid_terms(pass_, *x_, task.begin, task.end, *grid_);
+            return;
         }
+        const StretchCount count = strain_limit_grid_terms(pass_, *x_, task.begin, task.end, *grid_);
+        if (counts_) counts_[task.group] = count;
     } else if (applying()) {
         strain_limit_apply(*correction_, h_, task.begin, task.end, *x_, *v_);
     } else {
-        strain_limit_corrections(pass_, *x_, task.begin, task.end, *correction_);
+        const StretchCount count = strain_limit_corrections(pass_, *x_, task.begin, task.end, *correction_);
+        if (counts_) counts_[task.group] = count;
     }
+}
+
+void StrainLimiter::finish_round() {
+    if (counts_ && !tether_round() && !applying()) {
+        // A corrections round: decide how many passes there are.
+        uint64_t over_limit = 0, over_promise = 0;
+        const uint32_t groups = (pass_.fabric->particle_count() + kGroupSize - 1) / kGroupSize;
+        for (uint32_t g = 0; g < groups; ++g) {
+            over_limit += counts_[g].over_limit;
+            over_promise += counts_[g].over_promise;
+        }
+        const uint32_t pass = (round_ - first_pass_round_) / 2;
+        if (over_limit == 0) {
+            iterations_ = pass + 1;  // this pass applies nothing, nor would any after it
+        } else if (over_promise > 0 && pass + 1 == iterations_ && iterations_ < max_iterations_) {
+            ++iterations_;
+        }
+    }
+    ++round_;
 }
 
 void limit_strain(const StrainLimitPass& pass, const StrainLimit& limit, float h, Vec3Soa& x, Vec3Soa& v,

@@ -29,12 +29,24 @@ struct StrainLimitPass {
     float max_strain;     // allowed (L - l0) / l0
 };
 
+// What a corrections or terms pass found over its springs: how many are
+// longer than the limit (what the pass corrects) and how many longer than
+// the limit plus kStrainPromiseSlack (what more passes are for).
+struct StretchCount {
+    uint32_t over_limit = 0, over_promise = 0;
+};
+constexpr float kStrainPromiseSlack = 0.01f;
+// A frame's strain limiter runs at most this many times the passes asked
+// for (cloth_strain_limit.iterations), and only while springs are past
+// the promise.
+constexpr uint32_t kStrainLimitMorePasses = 4;
+
 // correction_i = 1/2 sum over over-stretched springs s = (i, j) of
 // w_i (L - (1 + max_strain) l0) (x_j - x_i) / L, with w_i = m_i^-1 /
 // (m_i^-1 + m_j^-1) (pinned: m^-1 = 0). Particles [begin, end); reads x.
 // Returns nothing; `correction` holds the result.
-void strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin, uint32_t end,
-                              Vec3Soa& correction);
+StretchCount strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin,
+                                      uint32_t end, Vec3Soa& correction);
 
 // The grid layout's per-spring terms: for each structural and shear family
 // (fabric.grid_families), by first particle p after `lead` zero entries,
@@ -51,8 +63,8 @@ struct GridStrainTerms {
 };
 
 // Grid fabrics: the terms of springs whose first particle is in [begin, end)...
-void strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin, uint32_t end,
-                             GridStrainTerms& terms);
+StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin,
+                                     uint32_t end, GridStrainTerms& terms);
 // ... then correction_i = sum over families of share * t at i minus
 // (1 - share) * t at i - offset, zero for pinned particles, [begin, end).
 void strain_limit_grid_corrections(const StrainLimitPass& pass, const GridStrainTerms& terms, uint32_t begin,
@@ -64,9 +76,14 @@ void strain_limit_apply(const Vec3Soa& correction, float h, uint32_t begin, uint
                         Vec3Soa& v);
 
 // The passes as a staged algorithm (base/staged.h): with tethers, first a
-// round clamping every particle to its tether (tethers.h); then
-// `iterations` times a round of corrections, then a round applying them.
-// A frame runs the colliders after the last round (step/cloth_stages.cpp).
+// round clamping every particle to its tether (tethers.h); then passes of
+// a round of corrections and a round applying them. With `counts` (two
+// per particle group) the number of passes follows what they find: at
+// least `iterations`, more while a spring is longer than the limit plus
+// kStrainPromiseSlack, up to `max_iterations`, and none after a pass that
+// finds nothing to correct (the rest would move nothing). Without, exactly
+// `iterations`. A frame runs the colliders after the last round
+// (step/cloth_stages.cpp).
 class StrainLimiter final : public StagedAlgorithm {
   public:
     // x, v, the scratch `correction` (one entry per particle) and, for a
@@ -74,14 +91,17 @@ class StrainLimiter final : public StagedAlgorithm {
     // empty `grid` takes the general path. Null or empty `tethers`: no
     // tether round.
     void begin(const StrainLimitPass& pass, uint32_t iterations, float h, Vec3Soa& x, Vec3Soa& v,
-               Vec3Soa& correction, GridStrainTerms* grid = nullptr, const Tethers* tethers = nullptr);
+               Vec3Soa& correction, GridStrainTerms* grid = nullptr, const Tethers* tethers = nullptr,
+               StretchCount* counts = nullptr, uint32_t max_iterations = 0);
+    // Passes run so far (the last frame's, after it).
+    uint32_t passes() const { return iterations_; }
     // The current round applies corrections.
     bool applying() const { return !tether_round() && (round_ - first_pass_round_) % 2 == 1; }
 
     bool done() const override { return round_ >= round_count(); }
     bool last_round() const override { return round_ + 1 == round_count(); }
     void run(const GroupTask& task) override;
-    void finish_round() override { ++round_; }
+    void finish_round() override;
 
   private:
     bool tether_round() const { return round_ < first_pass_round_; }
@@ -89,7 +109,8 @@ class StrainLimiter final : public StagedAlgorithm {
 
     StrainLimitPass pass_{};
     const Tethers* tethers_ = nullptr;
-    uint32_t iterations_ = 0, round_ = 0, first_pass_round_ = 0;
+    uint32_t iterations_ = 0, max_iterations_ = 0, round_ = 0, first_pass_round_ = 0;
+    StretchCount* counts_ = nullptr;  // per group, written by the corrections or terms round
     float h_ = 0;
     Vec3Soa* x_ = nullptr;
     Vec3Soa* v_ = nullptr;

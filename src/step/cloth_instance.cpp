@@ -40,6 +40,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       multigrid_(memory),
       grid_strain_terms_(memory),
       tethers_(memory),
+      stretch_counts_(HostAllocator<StretchCount>(memory)),
       group_finite_(HostAllocator<uint8_t>(memory)),
       group_speed_squared_(HostAllocator<float>(memory)),
       contact_(memory),
@@ -63,6 +64,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     group_finite_.assign(group_count_, 1);
     group_speed_squared_.assign(group_count_, 0.0f);
     group_contacts_.assign(group_count_, 0);
+    stretch_counts_.assign(group_count_, StretchCount{});
     set_material(material);
     multigrid_.plan(f, *springs_);
     if (!f.grid_families.empty()) grid_strain_terms_.resize(f);

@@ -294,9 +294,10 @@ class ClothInstance {
     IterativeSolve iterative_;  // JACOBI, PCG, CHEBYSHEV
     Multigrid multigrid_;       // PCG's preconditioner when the settings ask for it
     StrainLimiter strain_limiter_;
-    GridStrainTerms grid_strain_terms_;  // the strain limiter's per-family terms (grid fabrics)
-    Tethers tethers_;                    // the strain limiter's long-range attachments
-    bool tethers_follow_pins_ = false;   // planned for the current pin set
+    GridStrainTerms grid_strain_terms_;        // the strain limiter's per-family terms (grid fabrics)
+    Tethers tethers_;                          // the strain limiter's long-range attachments
+    HostVector<StretchCount> stretch_counts_;  // the strain limiter's counts, one per group
+    bool tethers_follow_pins_ = false;         // planned for the current pin set
     uint32_t group_count_ = 0;
     Cursor cursor_;
     bool frame_done_ = true;

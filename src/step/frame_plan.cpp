@@ -63,7 +63,7 @@ void ClothInstance::plan_substep() {
     if (limit.max_strain > 0 && limit.iterations > 0) {
         const StrainLimitPass pass{fabric_.get(), mass_.data(), pinned_.data(), limit.max_strain};
         strain_limiter_.begin(pass, limit.iterations, h_, x_, v_, solver_work_.r, &grid_strain_terms_,
-                              &tethers_);
+                              &tethers_, stretch_counts_.data(), kStrainLimitMorePasses * limit.iterations);
         plan(Stage::kStrainLimit, &C::limit_strain, nullptr, &strain_limiter_);
     }
     if (self_collision_) {
