@@ -64,7 +64,7 @@ CLOTH_API cloth_result cloth_set_strain_limit(cloth_id id, const cloth_strain_li
         if (!limit) return null_error("limit");
         Status s = check_strain_limit(*limit);
         if (!s.ok()) return s;
-        cloth.solver().strain_limit = StrainLimit{limit->max_strain, limit->iterations};
+        cloth.solver().strain_limit = StrainLimit{limit->max_strain, limit->iterations, true};
         return {};
     });
 }

@@ -734,9 +734,11 @@ CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
 /// back in parallel passes, moving positions and velocities together:
 /// `iterations` passes, fewer once a pass finds no spring past the limit,
 /// and up to 4 times as many while a spring is past it by more than 0.01
-/// (so the cost of a frame follows how hard it pulls). Off by default, but the
-/// default solver sets max_strain 0.08 for itself; applies to every solver
-/// kind once set. Set with cloth_set_strain_limit; cloth_set_solver keeps it.
+/// (so the cost of a frame follows how hard it pulls). Off by default, but
+/// CLOTH_SOLVER_DEFAULT limits strain to 0.08 for itself until
+/// cloth_set_strain_limit is called; from then on the limit set applies to
+/// every solver kind, and a max_strain of 0 turns limiting off for
+/// CLOTH_SOLVER_DEFAULT too. cloth_set_solver keeps it.
 typedef struct cloth_strain_limit {
     /// sizeof(cloth_strain_limit)
     uint32_t struct_size;

@@ -115,11 +115,9 @@ bool FlagRig::create_cloth(const FlagSettings& s, const btTransform& chassis_pos
     collision.thickness = s.thickness;
     collision.friction = s.friction;
     if (!check(cloth_set_collision(cloth_, &collision), "cloth_set_collision")) return false;
-    if (s.max_strain > 0.0f) {
-        cloth_strain_limit limit = cloth_default_strain_limit();
-        limit.max_strain = s.max_strain;
-        if (!check(cloth_set_strain_limit(cloth_, &limit), "cloth_set_strain_limit")) return false;
-    }
+    cloth_strain_limit limit = cloth_default_strain_limit();
+    limit.max_strain = s.max_strain;  // 0: off, for the default solver too
+    if (!check(cloth_set_strain_limit(cloth_, &limit), "cloth_set_strain_limit")) return false;
 
     uint32_t triangle_count = 0;
     cloth_fabric_get_triangle_count(fabric_, &triangle_count);

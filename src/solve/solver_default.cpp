@@ -37,7 +37,7 @@ SolverSettings resolve_solver(const SolverSettings& requested, float dt, float s
     const uint32_t substeps = static_cast<uint32_t>(
         std::min<double>(std::max(wanted, 1.0), static_cast<double>(kDefaultMaxSubsteps)));
     out.substeps = std::max(requested.substeps, substeps);
-    if (out.strain_limit.max_strain == 0)
+    if (!out.strain_limit.chosen)
         out.strain_limit = StrainLimit{kDefaultStrainLimit, kDefaultStrainLimitPasses};
     return out;
 }

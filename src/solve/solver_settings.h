@@ -16,6 +16,9 @@ struct StrainLimit {
     // structural and shear springs.
     float max_strain = 0;
     uint32_t iterations = 4;  // Jacobi-style projection passes per substep
+    // Set by the host (cloth_set_strain_limit): the default solver then
+    // keeps it, a max_strain of 0 (off) included, instead of its own.
+    bool chosen = false;
 };
 
 struct SolverSettings {
