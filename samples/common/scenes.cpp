@@ -82,6 +82,11 @@ Scene::Scene(const SceneConfig& config) : kind_(config.kind) {
         desc.aero.wind[0] = config.wind_speed;
         desc.aero.wind[2] = 0.1f * config.wind_speed;
     }
+    if (config.still_air) {
+        desc.aero = cloth_default_desc().aero;
+        desc.aero.air_density = 0;
+        desc.aero.linear_drag = 0;
+    }
     particle_count_ = n * n;
     std::vector<float> start(3 * static_cast<size_t>(particle_count_));
     for (uint32_t copy = 0; copy < config.copies; ++copy) {

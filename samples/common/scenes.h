@@ -31,6 +31,9 @@ struct SceneConfig {
     float stiffness = 1000.0f;  // N/m, every spring kind
     float damping = 0.0f;       // N s/m, every spring kind
     float wind_speed = 10.0f;   // m/s, flag only
+    // No air at all (no wind, drag, lift or linear drag): springs and
+    // gravity only, as an outside reference implementation runs them.
+    bool still_air = false;
     cloth_solver_settings solver = cloth_default_solver_settings();
     uint32_t spring_kinds = CLOTH_SPRING_ALL;
     // The world (workers, host job system, ...).

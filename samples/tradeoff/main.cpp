@@ -37,6 +37,9 @@ int main(int argc, char** argv) {
     default_cmd->add_option("--frames", matrix.frames);
     default_cmd->add_option("--resolutions", matrix.resolutions)->delimiter(',');
     default_cmd->add_option("--csv", matrix.csv);
+    default_cmd->add_flag(
+        "--still-air", matrix.still_air,
+        "no air, drag or lift (springs and gravity only; the scenes' springs are undamped)");
 
     ParetoOptions pareto;
     CLI::App* pareto_cmd = app.add_subcommand("pareto", "every setting against a converged reference");

@@ -23,6 +23,7 @@ struct ProbeOptions {
 
 struct MatrixOptions {
     uint32_t frames = 600;
+    bool still_air = false;  // air, drag and (the scenes' default) spring damping off
     std::vector<uint32_t> resolutions = {32, 64, 128};
     std::string csv;
 };

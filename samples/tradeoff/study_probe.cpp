@@ -83,6 +83,7 @@ int run_default_matrix(const MatrixOptions& o) {
                 config.kind = kind;
                 config.resolution = resolution;
                 config.stiffness = k;
+                config.still_air = o.still_air;
                 const RunResult r = run_scene(config, 1.0f / 60.0f, o.frames);
                 const double ratio = r.ms_per_frame / jacobi_k1_ms(config, 1.0f / 60.0f);
                 const bool wind = kind == SceneKind::kFlagInWind;
