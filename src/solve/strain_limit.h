@@ -80,9 +80,9 @@ void strain_limit_apply(const Vec3Soa& correction, float h, uint32_t begin, uint
 // a round of corrections and a round applying them. With `counts` (two
 // per particle group) the number of passes follows what they find: at
 // least `iterations`, more while a spring is longer than the limit plus
-// kStrainPromiseSlack, up to `max_iterations`, and none after a pass that
-// finds nothing to correct (the rest would move nothing). Without, exactly
-// `iterations`. A frame runs the colliders after the last round
+// kStrainPromiseSlack, up to `max_iterations` (with tethers only), and
+// none after a pass that finds nothing to correct (the rest would move
+// nothing). Without, exactly `iterations`. A frame runs the colliders after the last round
 // (step/cloth_stages.cpp).
 class StrainLimiter final : public StagedAlgorithm {
   public:

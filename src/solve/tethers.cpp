@@ -93,7 +93,7 @@ namespace {
 // One anchor of every particle in [begin, end). An anchor is pinned (this
 // pass never writes it) or the particle itself, so no iteration reads what
 // another writes: the gathers vectorize.
-CLOTH_HOT_LOOP void clamp_kernel(uint32_t begin, uint32_t end, float stretch, float inverse_h,
+CLOTH_HOT_LOOP void clamp_kernel(uint32_t begin, uint32_t end, float stretch,
                                  const uint32_t* __restrict anchor, const float* __restrict length,
                                  float* __restrict px, float* __restrict py, float* __restrict pz,
                                  float* __restrict vx, float* __restrict vy, float* __restrict vz) {
@@ -105,24 +105,31 @@ CLOTH_HOT_LOOP void clamp_kernel(uint32_t begin, uint32_t end, float stretch, fl
         const float allowed = stretch * length[i];
         // -(distance - allowed) / distance where too far, else 0 (and 0 for
         // the particle itself: distance and allowed are both 0).
-        const float s = distance > allowed ? (allowed - distance) / std::max(distance, 1e-30f) : 0.0f;
+        const bool taut = distance > allowed;
+        const float s = taut ? (allowed - distance) / std::max(distance, 1e-30f) : 0.0f;
         px[i] += dx * s;
         py[i] += dy * s;
         pz[i] += dz * s;
-        vx[i] += dx * s * inverse_h;
-        vy[i] += dy * s * inverse_h;
-        vz[i] += dz * s * inverse_h;
+        // An inextensible rope: a taut tether takes away the particle's
+        // speed away from its anchor (relative to the anchor's), and adds none.
+        const float inverse_distance = taut ? 1.0f / std::max(distance, 1e-30f) : 0.0f;
+        const float nx = dx * inverse_distance, ny = dy * inverse_distance, nz = dz * inverse_distance;
+        const float away = (vx[i] - vx[a]) * nx + (vy[i] - vy[a]) * ny + (vz[i] - vz[a]) * nz;
+        const float take = std::max(away, 0.0f);
+        vx[i] -= take * nx;
+        vy[i] -= take * ny;
+        vz[i] -= take * nz;
     }
 }
 
 }  // namespace
 
-void Tethers::clamp(float max_strain, float h, uint32_t begin, uint32_t end, Vec3Soa& x, Vec3Soa& v) const {
+void Tethers::clamp(float max_strain, uint32_t begin, uint32_t end, Vec3Soa& x, Vec3Soa& v) const {
     // The farthest anchor first, the nearest last.
     for (uint32_t k = used_; k-- > 0;) {
         const size_t base = size_t{k} * count_;
-        clamp_kernel(begin, end, 1.0f + max_strain, 1.0f / h, anchor_.data() + base, length_.data() + base,
-                     x.x.data(), x.y.data(), x.z.data(), v.x.data(), v.y.data(), v.z.data());
+        clamp_kernel(begin, end, 1.0f + max_strain, anchor_.data() + base, length_.data() + base, x.x.data(),
+                     x.y.data(), x.z.data(), v.x.data(), v.y.data(), v.z.data());
     }
 }
 
