@@ -97,7 +97,11 @@ CLOTH_HOT_LOOP void clamp_kernel(uint32_t begin, uint32_t end, float stretch,
                                  const uint32_t* __restrict anchor, const float* __restrict length,
                                  float* __restrict px, float* __restrict py, float* __restrict pz,
                                  float* __restrict vx, float* __restrict vy, float* __restrict vz) {
+#if defined(__clang__)
+#pragma clang loop vectorize(assume_safety)
+#else
 #pragma GCC ivdep
+#endif
     for (uint32_t i = begin; i < end; ++i) {
         const uint32_t a = anchor[i];
         const float dx = px[i] - px[a], dy = py[i] - py[a], dz = pz[i] - pz[a];
