@@ -92,7 +92,7 @@ namespace {
 
 // One anchor of every particle in [begin, end). An anchor is pinned (this
 // pass never writes it) or the particle itself, so no iteration reads what
-// another writes: the gathers vectorize.
+// another writes.
 CLOTH_HOT_LOOP void clamp_kernel(uint32_t begin, uint32_t end, float stretch,
                                  const uint32_t* __restrict anchor, const float* __restrict length,
                                  float* __restrict px, float* __restrict py, float* __restrict pz,
@@ -107,16 +107,16 @@ CLOTH_HOT_LOOP void clamp_kernel(uint32_t begin, uint32_t end, float stretch,
         const float dx = px[i] - px[a], dy = py[i] - py[a], dz = pz[i] - pz[a];
         const float distance = std::sqrt(dx * dx + dy * dy + dz * dz);
         const float allowed = stretch * length[i];
-        // -(distance - allowed) / distance where too far, else 0 (and 0 for
-        // the particle itself: distance and allowed are both 0).
-        const bool taut = distance > allowed;
-        const float s = taut ? (allowed - distance) / std::max(distance, 1e-30f) : 0.0f;
+        // Only a taut tether writes (never a pinned particle, whose slots
+        // are itself at length 0: other groups read it as their anchor).
+        if (!(distance > allowed)) continue;
+        const float s = (allowed - distance) / std::max(distance, 1e-30f);
         px[i] += dx * s;
         py[i] += dy * s;
         pz[i] += dz * s;
         // An inextensible rope: a taut tether takes away the particle's
         // speed away from its anchor (relative to the anchor's), and adds none.
-        const float inverse_distance = taut ? 1.0f / std::max(distance, 1e-30f) : 0.0f;
+        const float inverse_distance = 1.0f / std::max(distance, 1e-30f);
         const float nx = dx * inverse_distance, ny = dy * inverse_distance, nz = dz * inverse_distance;
         const float away = (vx[i] - vx[a]) * nx + (vy[i] - vy[a]) * ny + (vz[i] - vz[a]) * nz;
         const float take = std::max(away, 0.0f);
