@@ -175,13 +175,12 @@ void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, floa
                           Vec3Soa& correction, GridStrainTerms* grid, const Tethers* tethers,
                           StretchCount* counts, uint32_t max_iterations) {
     counts_ = counts;
+    grid_ = grid != nullptr && !grid->empty() ? grid : nullptr;
+    tethers_ = tethers != nullptr && !tethers->empty() ? tethers : nullptr;
     // Passes past those asked for only where tethers hold the cloth's
     // stretch as a whole: on a cloth without them, dragged 10 m, sixteen
     // Jacobi passes overshot and diverged (strain 4e4 in the same frame).
-    max_iterations_ =
-        tethers != nullptr && !tethers->empty() ? std::max(iterations, max_iterations) : iterations;
-    grid_ = grid != nullptr && !grid->empty() ? grid : nullptr;
-    tethers_ = tethers != nullptr && !tethers->empty() ? tethers : nullptr;
+    max_iterations_ = tethers_ != nullptr ? std::max(iterations, max_iterations) : iterations;
     first_pass_round_ = tethers_ != nullptr ? 1 : 0;
     pass_ = pass;
     iterations_ = iterations;

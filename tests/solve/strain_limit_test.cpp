@@ -1,8 +1,8 @@
 // The strain limiter's promise: tethers (solve/tethers.h), where their
 // anchors and lengths come from and what they hold through the C API (a
 // cloth dragged 10 m in one step by its pins, one far too heavy for its
-// springs, one re-pinned by other particles), and the number of passes
-// following what the passes find.
+// springs, one re-pinned by other particles), the number of passes
+// following what the passes find, and a limit of 0 turning it off.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -118,6 +118,29 @@ TEST(Tethers, AClothFarTooHeavyForItsSpringsHangsWithinAThirdOfItsLength) {
         worst = std::max(worst, c.stats().max_strain);
     }
     EXPECT_LT(worst, 0.4f);
+}
+
+// Until the host sets a limit the default solver keeps its own (0.08);
+// once set, the set limit is the one, and 0 turns limiting off. This cloth
+// of 1 kg per particle stretches about tenfold solved exactly: unlimited
+// it shows that, limited it does not.
+TEST(StrainLimitApi, ALimitOfZeroTurnsTheDefaultSolversOwnLimitOff) {
+    auto worst_strain = [](bool set_zero) {
+        PinnedCloth c(1.0f);
+        if (set_zero) {
+            cloth_strain_limit off = cloth_default_strain_limit();
+            off.max_strain = 0.0f;
+            EXPECT_EQ(cloth_set_strain_limit(c.cloth, &off), CLOTH_OK);
+        }
+        float worst = 0;
+        for (int f = 0; f < 60; ++f) {
+            EXPECT_EQ(cloth_step(c.world, 1.0f / 60.0f), CLOTH_OK);
+            worst = std::max(worst, c.stats().max_strain);
+        }
+        return worst;
+    };
+    EXPECT_LT(worst_strain(false), 0.4f) << "the default solver's own limit";
+    EXPECT_GT(worst_strain(true), 2.0f) << "a limit of 0 set by the host: no limit";
 }
 
 // The tethers follow the pin set: the same heavy cloth, re-pinned by its
