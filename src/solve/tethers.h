@@ -1,23 +1,25 @@
 // Long-range attachments (Kim, Chentanez and Mueller 2012, "Long range
 // attachments"; NvCloth's and Jolt's tethers): every free particle that the
-// fabric connects to a pinned one may be no farther from its nearest pinned
-// particle than its rest distance to it times (1 + max_strain). One clamp
-// per particle and one pass: it holds the whole cloth's stretch at once,
-// where the local strain-limit passes move tension one spring per pass
-// (frontier.md).
+// fabric connects to pinned ones may be no farther from each of its
+// kAnchors nearest pinned particles than its rest distance to it times
+// (1 + max_strain). One clamp per particle and anchor in one pass: it holds
+// the whole cloth's stretch at once, where the local strain-limit passes
+// move tension one spring per pass (frontier.md).
 //
 // The anchors follow the pin set: plan() runs when it changes, not per
-// frame. Each free particle gets its kAnchors nearest pinned particles
-// along the structural and shear springs (one Dijkstra search from every
-// pinned particle at once that settles each particle up to kAnchors times,
-// once per source) and for each a length: the straight rest distance to
-// that anchor, or the spring path's length over kPathOverGeodesic if that
-// is longer. One anchor alone would tear a cloth dragged far in one step
-// along the seams between the anchors' regions (two pins moved 10 m: the
-// springs across the seam reached 31x their rest length); with several,
-// a particle must lie within reach of each, so the regions move together. On a flat grid the straight
-// distance is the geodesic one and the path (octile steps) is at most kPathOverGeodesic times it; on a curved
-// mesh the path divided by it stays close to the geodesic, so the tether never holds a cloth at rest.
+// frame. The nearest pinned particles are found along the structural and
+// shear springs (one Dijkstra search from every pinned particle at once
+// that settles each particle up to kAnchors times, once per source), and
+// each tether's length is the straight rest distance to its anchor, or
+// the spring path's length over kPathOverGeodesic if that is longer. On a
+// flat grid the straight distance is the geodesic one and the path
+// (octile steps) is at most kPathOverGeodesic times it; on a curved mesh
+// the path divided by it stays close to the geodesic, so a tether never
+// holds a cloth at rest. One anchor alone would tear a cloth dragged far
+// in one step along the seams between the anchors' regions (two pins moved
+// 10 m: the springs across the seam reached 31x their rest length); with
+// several, a particle must lie within reach of each, so the regions move
+// together.
 //
 // Written by hand: one clamp per particle over the library's SoA buffers,
 // and a search that must allocate only when the pin set changes.
