@@ -730,9 +730,12 @@ CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
 /// (1 + max_strain) times its rest distance of each of its four nearest
 /// ones (tethers, or long-range attachments: one pass that holds the whole
 /// cloth's stretch, however far the pins moved; changing which particles
-/// are pinned or attached plans them anew at the next step, a search over
-/// the fabric measured at about 3 ms for a 64x64 cloth and 20 ms for
-/// 128x128, once per change); then (Provot 1995)
+/// are pinned or attached plans them anew at the next step, once per
+/// change: on a grid one pass over particles and pins, measured at about
+/// 0.1 ms for a 64x64 cloth pinned at two corners, 0.4 ms for 128x128 and
+/// 3.5 ms for 128x128 with its top row pinned; on a mesh a search along
+/// the springs, about 2 ms for 4,096 particles and 10 ms for 16,384);
+/// then (Provot 1995)
 /// structural and shear springs still longer than the limit are pulled
 /// back in parallel passes, moving positions and velocities together:
 /// `iterations` passes, fewer once a pass finds no spring past the limit,

@@ -14,7 +14,12 @@ Tethers::Tethers(const HostMemory* memory)
       found_(HostAllocator<uint32_t>(memory)),
       path_(HostAllocator<float>(memory)),
       settled_(HostAllocator<uint8_t>(memory)),
-      frontier_(HostAllocator<Reach>(memory)) {}
+      frontier_(HostAllocator<Reach>(memory)),
+      pins_(HostAllocator<uint32_t>(memory)),
+      pin_x_(HostAllocator<float>(memory)),
+      pin_y_(HostAllocator<float>(memory)),
+      pin_z_(HostAllocator<float>(memory)),
+      pin_distance_(HostAllocator<float>(memory)) {}
 
 void Tethers::resize(const Fabric& fabric) {
     const size_t n = fabric.particle_count();
@@ -28,20 +33,91 @@ void Tethers::resize(const Fabric& fabric) {
     // pushes at most one entry per incident spring: the heap never holds
     // more than kAnchors * (n + 2 * springs) entries.
     frontier_.reserve(kAnchors * (n + 2 * size_t{fabric.spring_count()}));
+    pins_.reserve(n);
+    for (HostVector<float>* a : {&pin_x_, &pin_y_, &pin_z_, &pin_distance_}) a->assign(n, 0.0f);
     any_ = false;
 }
 
 void Tethers::plan(const Fabric& f, const float* pinned) {
     const uint32_t n = f.particle_count();
+    pins_.clear();
+    for (uint32_t i = 0; i < n; ++i) {
+        if (pinned[i] != 0.0f) pins_.push_back(i);
+    }
+    if (by_straight_distance(f, static_cast<uint32_t>(pins_.size()))) {
+        plan_by_straight_distance(f, pinned);
+    } else {
+        plan_by_paths(f, pinned);
+    }
+    choose_lengths(f, pinned);
+}
+
+bool Tethers::by_straight_distance(const Fabric& f, uint32_t pins) {
+    // Only where straight is geodesic: a grid with structural springs is
+    // one connected, flat rectangle at rest. And only while one pass over
+    // the pins per particle costs less than the search, which takes about
+    // kAnchors * (n + 2 springs) heap steps.
+    const bool connected_grid =
+        std::any_of(f.grid_families.begin(), f.grid_families.end(),
+                    [](const SpringFamily& family) { return family.kind == kStructural; });
+    if (!connected_grid) return false;
+    const uint64_t straight = uint64_t{f.particle_count()} * pins;
+    const uint64_t search = uint64_t{kAnchors} * (f.particle_count() + 2 * uint64_t{f.spring_count()});
+    return straight <= kSearchStepOverDistance * search;
+}
+
+void Tethers::plan_by_straight_distance(const Fabric& f, const float* pinned) {
+    const uint32_t n = f.particle_count();
+    const uint32_t pins = static_cast<uint32_t>(pins_.size());
+    for (uint32_t k = 0; k < pins; ++k) {
+        const Vec3& p = f.rest_positions[pins_[k]];
+        pin_x_[k] = p.x();
+        pin_y_[k] = p.y();
+        pin_z_[k] = p.z();
+    }
+    for (uint32_t i = 0; i < n; ++i) {
+        settled_[i] = 0;
+        if (pinned[i] != 0.0f) continue;
+        const Vec3& r = f.rest_positions[i];
+        // Squared distances to every pin (a loop that vectorizes), then the
+        // kAnchors smallest, nearest first; ties go to the lower index
+        // because pins are visited in index order and only a strictly
+        // nearer pin displaces one.
+        const float rx = r.x(), ry = r.y(), rz = r.z();
+        float* d = pin_distance_.data();
+        for (uint32_t k = 0; k < pins; ++k) {
+            const float dx = pin_x_[k] - rx, dy = pin_y_[k] - ry, dz = pin_z_[k] - rz;
+            d[k] = dx * dx + dy * dy + dz * dz;
+        }
+        float best[kAnchors];
+        uint32_t best_pin[kAnchors];
+        uint32_t count = 0;
+        for (uint32_t k = 0; k < pins; ++k) {
+            if (count == kAnchors && !(d[k] < best[kAnchors - 1])) continue;
+            uint32_t at = count < kAnchors ? count++ : kAnchors - 1;
+            while (at > 0 && d[k] < best[at - 1]) {
+                best[at] = best[at - 1];
+                best_pin[at] = best_pin[at - 1];
+                --at;
+            }
+            best[at] = d[k];
+            best_pin[at] = k;
+        }
+        for (uint32_t a = 0; a < count; ++a) {
+            found_[i * kAnchors + a] = pins_[best_pin[a]];
+            path_[i * kAnchors + a] = std::sqrt(best[a]);
+        }
+        settled_[i] = static_cast<uint8_t>(count);
+    }
+}
+
+void Tethers::plan_by_paths(const Fabric& f, const float* pinned) {
     // Min-heap on (path, particle, anchor): ties resolve by index, so the
     // anchors depend on nothing but the fabric and the pins.
     const auto later = std::greater<Reach>();
-    std::fill(found_.begin(), found_.end(), kNoAnchor);
     std::fill(settled_.begin(), settled_.end(), uint8_t{0});
     frontier_.clear();
-    for (uint32_t i = 0; i < n; ++i) {
-        if (pinned[i] != 0.0f) frontier_.push_back(Reach{0.0f, i, i});
-    }
+    for (uint32_t i : pins_) frontier_.push_back(Reach{0.0f, i, i});
     std::make_heap(frontier_.begin(), frontier_.end(), later);
     auto has_anchor = [&](uint32_t i, uint32_t a) {
         for (uint32_t k = 0; k < settled_[i]; ++k) {
@@ -68,6 +144,10 @@ void Tethers::plan(const Fabric& f, const float* pinned) {
             std::push_heap(frontier_.begin(), frontier_.end(), later);
         }
     }
+}
+
+void Tethers::choose_lengths(const Fabric& f, const float* pinned) {
+    const uint32_t n = f.particle_count();
     any_ = false;
     used_ = 0;
     for (uint32_t i = 0; i < n; ++i) {

@@ -7,15 +7,18 @@
 // move tension one spring per pass (frontier.md).
 //
 // The anchors follow the pin set: plan() runs when it changes, not per
-// frame. The nearest pinned particles are found along the structural and
-// shear springs (one Dijkstra search from every pinned particle at once
-// that settles each particle up to kAnchors times, once per source), and
-// each tether's length is the straight rest distance to its anchor, or
-// the spring path's length over kPathOverGeodesic if that is longer. On a
-// flat grid the straight distance is the geodesic one and the path
-// (octile steps) is at most kPathOverGeodesic times it; on a curved mesh
-// the path divided by it stays close to the geodesic, so a tether never
-// holds a cloth at rest. One anchor alone would tear a cloth dragged far
+// frame. A grid is flat at rest, so the straight rest distance is the
+// geodesic one: its anchors are the nearest pins by that distance, one
+// pass over the pins per particle (up to some 800 pins, past which the
+// search below is cheaper). On a mesh the nearest pinned particles are
+// found along the structural and shear springs (one Dijkstra search from
+// every pinned particle at once that settles each particle up to kAnchors
+// times, once per source), and each tether's length is the straight rest
+// distance to its anchor, or the spring path's length over
+// kPathOverGeodesic if that is longer: on a flat sheet the path (octile
+// steps) is at most kPathOverGeodesic times the straight distance, and on
+// a curved mesh the path divided by it stays close to the geodesic, so a
+// tether never holds a cloth at rest. One anchor alone would tear a cloth dragged far
 // in one step along the seams between the anchors' regions (two pins moved
 // 10 m: the springs across the seam reached 31x their rest length); with
 // several, a particle must lie within reach of each, so the regions move
@@ -64,7 +67,18 @@ class Tethers {
     // run in parallel.
     void clamp(float max_strain, uint32_t begin, uint32_t end, Vec3Soa& x, Vec3Soa& v) const;
 
+    // How many distance-and-compare steps of a grid's plan cost as much as
+    // one heap step of the search: 1.7 against 11-25 ns (cloth_bench
+    // Tethers/Plan).
+    static constexpr uint64_t kSearchStepOverDistance = 16;
+
   private:
+    static bool by_straight_distance(const Fabric& fabric, uint32_t pins);
+    void plan_by_straight_distance(const Fabric& fabric, const float* pinned);
+    void plan_by_paths(const Fabric& fabric, const float* pinned);
+    // From found_, path_ and settled_: anchor_, length_, used_, any_.
+    void choose_lengths(const Fabric& fabric, const float* pinned);
+
     // Anchor k of every particle, then anchor k + 1 (so the clamp is a
     // contiguous loop per k); a missing anchor is the particle itself at
     // length 0, which never moves it.
@@ -85,6 +99,9 @@ class Tethers {
     HostVector<float> path_;       // and their path lengths
     HostVector<uint8_t> settled_;  // anchors settled per particle
     HostVector<Reach> frontier_;   // the search's heap
+    HostVector<uint32_t> pins_;    // the pinned particles, in index order
+    HostVector<float> pin_x_, pin_y_, pin_z_,
+        pin_distance_;  // the straight plan's: pins' rest positions, squared distances
     bool any_ = false;
 };
 

@@ -1,7 +1,9 @@
 // Per-stage cost of one JACOBI k=1 substep on the 64x64 flag, from the
-// core's own stage functions: where the step's time goes, for tuning.
+// core's own stage functions: where the step's time goes, for tuning. And
+// what the tethers' plan costs after a change of the pin set.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -11,6 +13,7 @@
 #include "solve/linear_system.h"
 #include "solve/solver_settings.h"
 #include "solve/solvers.h"
+#include "solve/tethers.h"
 
 namespace cloth {
 namespace {
@@ -83,6 +86,69 @@ void BM_Stage_Assembly(benchmark::State& s) {
 void BM_Stage_JacobiSweep(benchmark::State& s) {
     run_stage(s, [](StageFixture& f) { jacobi_sweep(f.system(), f.dv, 0, f.n, f.next); });
 }
+
+// The tethers' plan after a change of the pin set: a grid's by straight
+// distance against a search along the springs (the same cloth built as a
+// mesh), with 2 pinned corners or a pinned top row. Sets
+// Tethers::kSearchStepOverDistance: the counter `per_step` is the time per
+// distance step (grid) or per search step (mesh, kAnchors * (n + 2 springs)).
+void BM_Tethers_Plan(benchmark::State& state) {
+    const uint32_t resolution = static_cast<uint32_t>(state.range(0));
+    const bool mesh = state.range(1) != 0, row = state.range(2) != 0;
+    HostMemory memory{};
+    Fabric fabric(&memory);
+    cloth_grid_desc grid = cloth_default_grid_desc();
+    grid.columns = grid.rows = resolution;
+    if (mesh) {
+        Fabric flat(&memory);
+        build_grid_fabric(grid, flat);
+        std::vector<float> positions;
+        for (const Vec3& p : flat.rest_positions) positions.insert(positions.end(), {p.x(), p.y(), p.z()});
+        std::vector<uint32_t> triangles;
+        for (uint32_t r = 0; r + 1 < resolution; ++r) {
+            for (uint32_t c = 0; c + 1 < resolution; ++c) {
+                const uint32_t a = r * resolution + c, b = a + 1, d = a + resolution, e = d + 1;
+                triangles.insert(triangles.end(), {a, b, e, a, e, d});
+            }
+        }
+        build_mesh_fabric(positions.data(), resolution * resolution, triangles.data(),
+                          static_cast<uint32_t>(triangles.size() / 3), CLOTH_SPRING_ALL, fabric);
+    } else {
+        build_grid_fabric(grid, fabric);
+    }
+    const uint32_t n = fabric.particle_count();
+    // Pins by rest position, so the grid and the mesh (stored in another
+    // order) pin the same places: the top row, or its two ends.
+    float top = -1e30f, left = 1e30f, right = -1e30f;
+    for (const Vec3& p : fabric.rest_positions) {
+        top = std::max(top, p.y());
+        left = std::min(left, p.x());
+        right = std::max(right, p.x());
+    }
+    std::vector<float> pinned(n, 0.0f);
+    uint32_t pins = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        const Vec3& p = fabric.rest_positions[i];
+        const bool on_top = p.y() == top, at_end = p.x() == left || p.x() == right;
+        if (on_top && (row || at_end)) {
+            pinned[i] = 1.0f;
+            ++pins;
+        }
+    }
+    Tethers tethers(&memory);
+    tethers.resize(fabric);
+    for (auto _ : state) tethers.plan(fabric, pinned.data());
+    const double steps =
+        mesh ? double{Tethers::kAnchors} * (n + 2.0 * fabric.spring_count()) : static_cast<double>(n) * pins;
+    state.counters["per_step"] = benchmark::Counter(
+        steps, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["pins"] = pins;
+}
+
+BENCHMARK(BM_Tethers_Plan)
+    ->ArgNames({"res", "mesh", "row"})
+    ->ArgsProduct({{64, 128}, {0, 1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_Stage_Air)->Arg(64)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Stage_AirGather)->Arg(64)->Unit(benchmark::kMicrosecond);

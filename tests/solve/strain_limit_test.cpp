@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "test_support.h"
@@ -15,6 +16,7 @@
 namespace {
 
 using cloth::Tethers;
+using cloth::Vec3;
 
 TEST(Tethers, OnAFlatGridAParticlesAnchorsArePinsNearestFirstAtTheirStraightRestDistance) {
     auto fabric = cloth::testing::make_grid(16, 16);
@@ -45,6 +47,61 @@ TEST(Tethers, OnAFlatGridAParticlesAnchorsArePinsNearestFirstAtTheirStraightRest
         }
         EXPECT_EQ(tethers.anchor(i, 3), Tethers::kNoAnchor);
         EXPECT_NEAR(tethers.length(i, 0), nearest, 1e-5f) << "the first anchor is the nearest pin";
+    }
+}
+
+// A grid's plan takes every free particle's kAnchors nearest pins by
+// straight rest distance (the geodesic on a flat rectangle), nearest first,
+// the lower index first between pins at the same distance.
+TEST(Tethers, OnAGridTheAnchorsAreTheFourNearestPinsByStraightRestDistance) {
+    auto fabric = cloth::testing::make_grid(24, 20);
+    const uint32_t n = fabric->particle_count();
+    std::vector<float> pinned(n, 0.0f);
+    std::vector<uint32_t> pins;
+    for (uint32_t i = 0; i < n; i += 37) {  // 13 pins scattered over the cloth
+        pinned[i] = 1.0f;
+        pins.push_back(i);
+    }
+    Tethers tethers(cloth::testing::heap());
+    tethers.resize(*fabric);
+    tethers.plan(*fabric, pinned.data());
+    for (uint32_t i = 0; i < n; ++i) {
+        if (pinned[i] != 0.0f) continue;
+        std::vector<std::pair<float, uint32_t>> by_distance;
+        for (uint32_t p : pins) {
+            const Vec3 d = fabric->rest_positions[i] - fabric->rest_positions[p];
+            by_distance.push_back({d.squaredNorm(), p});
+        }
+        std::sort(by_distance.begin(), by_distance.end());
+        for (uint32_t k = 0; k < Tethers::kAnchors; ++k) {
+            EXPECT_EQ(tethers.anchor(i, k), by_distance[k].second) << "particle " << i << " anchor " << k;
+            EXPECT_NEAR(tethers.length(i, k), std::sqrt(by_distance[k].first), 1e-5f);
+        }
+    }
+}
+
+// A mesh's plan searches along the springs: every anchor a distinct pin,
+// reached by a path, so never shorter than the straight rest distance.
+TEST(Tethers, OnAMeshTheAnchorsArePinsReachedAlongTheSpringsNoCloserThanStraight) {
+    auto fabric = cloth::testing::make_mesh_from_grid(16, 16);
+    ASSERT_TRUE(fabric->grid_families.empty());
+    const uint32_t n = fabric->particle_count();
+    std::vector<float> pinned(n, 0.0f);
+    for (uint32_t i = 0; i < n; i += 41) pinned[i] = 1.0f;
+    Tethers tethers(cloth::testing::heap());
+    tethers.resize(*fabric);
+    tethers.plan(*fabric, pinned.data());
+    ASSERT_FALSE(tethers.empty());
+    for (uint32_t i = 0; i < n; ++i) {
+        if (pinned[i] != 0.0f) continue;
+        for (uint32_t k = 0; k < Tethers::kAnchors; ++k) {
+            const uint32_t a = tethers.anchor(i, k);
+            ASSERT_NE(a, Tethers::kNoAnchor) << "particle " << i << " anchor " << k;
+            EXPECT_EQ(pinned[a], 1.0f);
+            for (uint32_t other = 0; other < k; ++other) EXPECT_NE(tethers.anchor(i, other), a);
+            const float straight = (fabric->rest_positions[i] - fabric->rest_positions[a]).norm();
+            EXPECT_GE(tethers.length(i, k), straight - 1e-6f);
+        }
     }
 }
 
