@@ -47,9 +47,13 @@ class SpringTerms {
     virtual void neighbour_sums(const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& q) const = 0;
     // Every spring's (i, j, A_s) once, in a fixed order.
     virtual void for_each_block(const std::function<void(uint32_t, uint32_t, const Sym3&)>& visit) const = 0;
-    // out[target[s]] += A_s for the s-th spring of for_each_block's order
-    // whose two particles are free (multigrid's coarse operators).
-    virtual void add_blocks(const float* pinned, const uint32_t* target, Sym3* out) const = 0;
+    // For targets t in [begin, end): out[t] = the sum, in list order, of
+    // A_s over springs spring[start[t]] .. spring[start[t + 1] - 1] (s: the
+    // spring's place in for_each_block's order) whose two particles are
+    // free. A gather, so targets split across workers (multigrid's coarse
+    // operators).
+    virtual void sum_blocks(const float* pinned, const uint32_t* start, const uint32_t* spring,
+                            uint32_t begin, uint32_t end, Sym3* out) const = 0;
 };
 
 // The layout that suits the fabric (grid families when it has them).

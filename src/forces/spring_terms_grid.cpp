@@ -171,7 +171,9 @@ class GridSprings final : public SpringTerms {
         : fabric_(std::move(fabric)),
           terms_(HostAllocator<FamilyTerms>(memory)),
           offsets_(HostAllocator<uint32_t>(memory)),
-          blocks_(HostAllocator<const Sym3Soa*>(memory)) {
+          blocks_(HostAllocator<const Sym3Soa*>(memory)),
+          spring_family_(HostAllocator<uint8_t>(memory)),
+          spring_particle_(HostAllocator<uint32_t>(memory)) {
         const uint32_t n = fabric_->particle_count();
         terms_.reserve(fabric_->grid_families.size());
         for (const SpringFamily& family : fabric_->grid_families) {
@@ -184,6 +186,14 @@ class GridSprings final : public SpringTerms {
             t.block.resize(max_offset_ + n);
         }
         for (const FamilyTerms& t : terms_) blocks_.push_back(&t.block);
+        for (size_t f = 0; f < fabric_->grid_families.size(); ++f) {  // for_each_block's order
+            const SpringFamily& family = fabric_->grid_families[f];
+            for (uint32_t p = 0; p + family.offset < n; ++p) {
+                if (family.mask[p] == 0.0f) continue;
+                spring_family_.push_back(static_cast<uint8_t>(f));
+                spring_particle_.push_back(p);
+            }
+        }
         set_material(material);
     }
 
@@ -234,19 +244,16 @@ class GridSprings final : public SpringTerms {
         }
     }
 
-    void add_blocks(const float* pinned, const uint32_t* target, Sym3* out) const override {
-        const uint32_t n = fabric_->particle_count();
-        size_t s = 0;
-        for (size_t f = 0; f < terms_.size(); ++f) {
-            const SpringFamily& family = fabric_->grid_families[f];
-            const Sym3Soa& block = terms_[f].block;
-            for (uint32_t p = 0; p + family.offset < n; ++p) {
-                if (family.mask[p] == 0.0f) continue;
-                if (pinned[p] == 0.0f && pinned[p + family.offset] == 0.0f) {
-                    out[target[s]] += block.get(max_offset_ + p);
-                }
-                ++s;
+    void sum_blocks(const float* pinned, const uint32_t* start, const uint32_t* spring, uint32_t begin,
+                    uint32_t end, Sym3* out) const override {
+        for (uint32_t t = begin; t < end; ++t) {
+            Sym3 sum{};
+            for (uint32_t k = start[t]; k < start[t + 1]; ++k) {
+                const uint32_t f = spring_family_[spring[k]], p = spring_particle_[spring[k]];
+                if (pinned[p] == 0.0f && pinned[p + offsets_[f]] == 0.0f)
+                    sum += terms_[f].block.get(max_offset_ + p);
             }
+            out[t] = sum;
         }
     }
 
@@ -255,6 +262,9 @@ class GridSprings final : public SpringTerms {
     std::vector<FamilyTerms, HostAllocator<FamilyTerms>> terms_;
     HostVector<uint32_t> offsets_;       // per family
     HostVector<const Sym3Soa*> blocks_;  // per family: &terms_[f].block
+    // Per spring, in for_each_block's order: its family and first particle.
+    HostVector<uint8_t> spring_family_;
+    HostVector<uint32_t> spring_particle_;
     uint32_t max_offset_ = 0;
 };
 

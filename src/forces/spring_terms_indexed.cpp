@@ -201,11 +201,17 @@ class IndexedSprings final : public SpringTerms {
         }
     }
 
-    void add_blocks(const float* pinned, const uint32_t* target, Sym3* out) const override {
-        for (uint32_t s = 0; s < fabric_->spring_count(); ++s) {
-            if (pinned[fabric_->spring_first[s]] == 0.0f && pinned[fabric_->spring_second[s]] == 0.0f) {
-                out[target[s]] += block_.get(s);
+    void sum_blocks(const float* pinned, const uint32_t* start, const uint32_t* spring, uint32_t begin,
+                    uint32_t end, Sym3* out) const override {
+        for (uint32_t t = begin; t < end; ++t) {
+            Sym3 sum{};
+            for (uint32_t k = start[t]; k < start[t + 1]; ++k) {
+                const uint32_t s = spring[k];
+                if (pinned[fabric_->spring_first[s]] == 0.0f && pinned[fabric_->spring_second[s]] == 0.0f) {
+                    sum += block_.get(s);
+                }
             }
+            out[t] = sum;
         }
     }
 

@@ -35,6 +35,7 @@ void IterativeSolve::run(const GroupTask& task) {
         case Round::kPcgStart:
             if (problem_.multigrid) {
                 pcg_start_multigrid(sys, dv, begin, end, work);
+                problem_.multigrid->assemble_top(sys, task);
             } else {
                 pcg_start(sys, dv, begin, end, work);
             }
@@ -51,6 +52,9 @@ void IterativeSolve::run(const GroupTask& task) {
             break;
         case Round::kMultigridResidual:
             Multigrid::residual(sys, work.r, work.z, begin, end, work.q);
+            break;
+        case Round::kMultigridRestrict:
+            problem_.multigrid->restrict_residual(work.q, task);
             break;
         case Round::kMultigridProlong:
             problem_.multigrid->prolong(sys.pinned, begin, end, work.z);
@@ -98,7 +102,7 @@ void IterativeSolve::finish_round() {
             break;
         case Round::kPcgStart:
             if (multigrid) {
-                multigrid->assemble(problem_.system);
+                multigrid->assemble_coarse();
                 starting_ = true;
                 go_on = budget_ > 0;
                 round_ = Round::kMultigridResidual;
@@ -134,7 +138,10 @@ void IterativeSolve::finish_round() {
             round_ = Round::kPcgProduct;
             break;
         case Round::kMultigridResidual:
-            multigrid->correct_coarse(work.q);
+            round_ = Round::kMultigridRestrict;
+            break;
+        case Round::kMultigridRestrict:
+            multigrid->correct_coarse();
             round_ = Round::kMultigridProlong;
             break;
         case Round::kMultigridProlong:

@@ -63,7 +63,8 @@ class IterativeSolve final : public StagedAlgorithm {
         kPcgProduct,
         kPcgUpdate,
         kPcgDirection,
-        kMultigridResidual,  // t = r - W z, then (one thread) the coarse levels
+        kMultigridResidual,  // t = r - W z
+        kMultigridRestrict,  // the first level's right-hand side, then (one thread) the coarse levels
         kMultigridProlong,   // z += P e
         kMultigridSmooth,    // z = z + w W_ii^-1 (r - W z); r.z
         kChebyshevBound,

@@ -90,6 +90,18 @@ void coarse_pairs(uint32_t finer_pairs, PairOf pair_of, const HostVector<uint32_
     }
 }
 
+// Lists by key: for each k < keys, the indices i with key_of[i] == k in
+// increasing order, at entries start[k] .. start[k + 1] of `items`.
+void counting_lists(const HostVector<uint32_t>& key_of, uint32_t keys, HostVector<uint32_t>& start,
+                    HostVector<uint32_t>& items) {
+    start.assign(keys + 1, 0);
+    for (uint32_t key : key_of) ++start[key + 1];
+    for (uint32_t k = 0; k < keys; ++k) start[k + 1] += start[k];
+    items.resize(key_of.size());
+    HostVector<uint32_t> fill(start.begin(), start.end() - 1, start.get_allocator());
+    for (uint32_t i = 0; i < key_of.size(); ++i) items[fill[key_of[i]]++] = i;
+}
+
 void set_pairs(const HostVector<uint64_t>& keys, HostVector<uint32_t>& first, HostVector<uint32_t>& second) {
     first.resize(keys.size());
     second.resize(keys.size());
@@ -183,7 +195,11 @@ Multigrid::Multigrid(const HostMemory* memory)
     : memory_(memory),
       aggregate_(HostAllocator<uint32_t>(memory)),
       spring_target_(HostAllocator<uint32_t>(memory)),
-      gathered_(HostAllocator<Sym3>(memory)),
+      target_start_(HostAllocator<uint32_t>(memory)),
+      target_spring_(HostAllocator<uint32_t>(memory)),
+      child_start_(HostAllocator<uint32_t>(memory)),
+      child_(HostAllocator<uint32_t>(memory)),
+      inner_(HostAllocator<Sym3>(memory)),
       levels_(HostAllocator<Level>(memory)),
       coarsest_(HostAllocator<double>(memory)),
       coarsest_vector_(HostAllocator<double>(memory)) {}
@@ -281,7 +297,13 @@ void Multigrid::plan(const Fabric& fabric, const SpringTerms& springs) {
         for (Vec3Soa* v : {&level.rhs, &level.x, &level.product}) v->resize(level.size);
         plan_families(level);
     }
-    gathered_.resize(levels_.front().pair_first.size() + levels_.front().size);
+    // The fine springs of each level-0 pair, then of each node (springs
+    // inside its aggregate), in for_each_block's order; the particles of
+    // each node in index order.
+    const uint32_t targets = static_cast<uint32_t>(levels_.front().pair_first.size()) + levels_.front().size;
+    counting_lists(spring_target_, targets, target_start_, target_spring_);
+    counting_lists(aggregate_, levels_.front().size, child_start_, child_);
+    inner_.resize(levels_.front().size);
     const size_t unknowns = 3 * size_t{levels_.back().size};
     coarsest_.assign(unknowns * unknowns, 0.0);
     coarsest_vector_.assign(unknowns, 0.0);
@@ -318,21 +340,40 @@ void Multigrid::plan_families(Level& level) {
 }
 
 void Multigrid::assemble(const LinearSystem& system) {
+    assemble_top(system, GroupTask{0, 1, 0, system.particle_count});
+    assemble_coarse();
+}
+
+void Multigrid::assemble_top(const LinearSystem& system, const GroupTask& task) {
     if (levels_.empty()) return;
-    // The first level from the fine system: W_II = sum of the free
-    // children's W_ii minus twice the springs inside the aggregate,
-    // W_IJ = minus the springs between the two aggregates.
+    // W_IJ = minus the springs between the two aggregates; W_II = the sum
+    // of the free children's W_ii minus twice the springs inside the
+    // aggregate. Gathers over lists in a fixed order: the same sums for
+    // any split of the pairs and nodes over tasks.
     Level& top = levels_.front();
     const uint32_t pairs = static_cast<uint32_t>(top.pair_first.size());
-    std::fill(gathered_.begin(), gathered_.end(), Sym3{});
-    std::fill(top.diagonal.begin(), top.diagonal.end(), Sym3{});
-    for (uint32_t i = 0; i < system.particle_count; ++i) {
-        if (system.pinned[i] == 0.0f) top.diagonal[aggregate_[i]] += system.diagonal->get(i);
+    uint32_t begin, end;
+    uint32_t pair_begin, pair_end;
+    task.items(pairs, pair_begin, pair_end);
+    system.springs->sum_blocks(system.pinned, target_start_.data(), target_spring_.data(), pair_begin,
+                               pair_end, top.pair_block.data());
+    for (uint32_t p = pair_begin; p < pair_end; ++p) top.pair_block[p] = top.pair_block[p] * -1.0f;
+    task.items(top.size, begin, end);
+    system.springs->sum_blocks(system.pinned, target_start_.data() + pairs, target_spring_.data(), begin, end,
+                               inner_.data());
+    for (uint32_t node = begin; node < end; ++node) {
+        Sym3 d{};
+        for (uint32_t k = child_start_[node]; k < child_start_[node + 1]; ++k) {
+            const uint32_t i = child_[k];
+            if (system.pinned[i] == 0.0f) d += system.diagonal->get(i);
+        }
+        top.diagonal[node] = d + inner_[node] * -2.0f;
     }
-    system.springs->add_blocks(system.pinned, spring_target_.data(), gathered_.data());
-    for (uint32_t p = 0; p < pairs; ++p) top.pair_block[p] = gathered_[p] * -1.0f;
-    for (uint32_t node = 0; node < top.size; ++node) top.diagonal[node] += gathered_[pairs + node] * -2.0f;
+    spread_blocks(top, pair_begin, pair_end, begin, end);
+}
 
+void Multigrid::assemble_coarse() {
+    if (levels_.empty()) return;
     // Each coarser level from the one above it.
     for (size_t l = 0; l + 1 < levels_.size(); ++l) {
         const Level& finer = levels_[l];
@@ -352,26 +393,29 @@ void Multigrid::assemble(const LinearSystem& system) {
         }
     }
     // Nodes with no free particle have a zero diagonal: they stay zero.
-    for (Level& level : levels_) {
-        if (!level.pair_family.empty()) {
-            for (Sym3Soa& block : level.family_block) {
-                for (HostVector<float>* a :
-                     {&block.xx, &block.xy, &block.xz, &block.yy, &block.yz, &block.zz}) {
-                    std::fill(a->begin(), a->end(), 0.0f);
-                }
-            }
-            for (size_t p = 0; p < level.pair_first.size(); ++p) {
-                level.family_block[level.pair_family[p]].set(level.family_pad + level.pair_first[p],
-                                                             level.pair_block[p]);
-            }
-        }
-        for (uint32_t node = 0; node < level.size; ++node) {
-            const Sym3& d = level.diagonal[node];
-            level.diagonal_blocks.set(node, d);
-            level.inverse.set(node, d.xx + d.yy + d.zz > 0.0f ? d.inverse() : Sym3{});
-        }
+    for (size_t l = 1; l < levels_.size(); ++l) {
+        Level& level = levels_[l];
+        spread_blocks(level, 0, static_cast<uint32_t>(level.pair_first.size()), 0, level.size);
     }
     factor_coarsest();
+}
+
+// The layouts the cycle's passes read: a grid level's pair blocks by family
+// (the entries of no pair stay zero from plan), the diagonal blocks and
+// their inverses as arrays (zero where no particle is free).
+void Multigrid::spread_blocks(Level& level, uint32_t pair_begin, uint32_t pair_end, uint32_t node_begin,
+                              uint32_t node_end) {
+    if (!level.pair_family.empty()) {
+        for (uint32_t p = pair_begin; p < pair_end; ++p) {
+            level.family_block[level.pair_family[p]].set(level.family_pad + level.pair_first[p],
+                                                         level.pair_block[p]);
+        }
+    }
+    for (uint32_t node = node_begin; node < node_end; ++node) {
+        const Sym3& d = level.diagonal[node];
+        level.diagonal_blocks.set(node, d);
+        level.inverse.set(node, d.xx + d.yy + d.zz > 0.0f ? d.inverse() : Sym3{});
+    }
 }
 
 // Cholesky of the coarsest level in place (lower triangle), nodes with no
@@ -490,17 +534,25 @@ void Multigrid::cycle(uint32_t index) {
     smooth_pass(level.inverse, level.rhs, level.product, 0, n, level.x);
 }
 
-void Multigrid::correct_coarse(const Vec3Soa& t) {
+void Multigrid::restrict_residual(const Vec3Soa& t, const GroupTask& task) {
     Level& top = levels_.front();
-    top.rhs.fill(Vec3::Zero());
-    for (uint32_t i = 0; i < aggregate_.size(); ++i) {
-        const uint32_t to = aggregate_[i];
-        top.rhs.x[to] += t.x[i];
-        top.rhs.y[to] += t.y[i];
-        top.rhs.z[to] += t.z[i];
+    uint32_t begin, end;
+    task.items(top.size, begin, end);
+    for (uint32_t node = begin; node < end; ++node) {
+        float x = 0, y = 0, z = 0;
+        for (uint32_t k = child_start_[node]; k < child_start_[node + 1]; ++k) {
+            const uint32_t i = child_[k];
+            x += t.x[i];
+            y += t.y[i];
+            z += t.z[i];
+        }
+        top.rhs.x[node] = x;
+        top.rhs.y[node] = y;
+        top.rhs.z[node] = z;
     }
-    cycle(0);
 }
+
+void Multigrid::correct_coarse() { cycle(0); }
 
 void Multigrid::smooth_from_zero(const LinearSystem& system, const Vec3Soa& r, uint32_t begin, uint32_t end,
                                  Vec3Soa& z) {

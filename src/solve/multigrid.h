@@ -19,16 +19,21 @@
 //
 // Written by hand: the levels follow the fabric's own grid, and every pass
 // must run over the library's SoA buffers without allocating (the coarsest
-// level's Cholesky too: 48 unknowns at most, factored in the host's memory). The fine
-// passes are range passes (split across workers like every PCG pass); the
-// coarse levels, a quarter of the fine work and less, run on one thread
-// between two barriers, in a fixed order, so results do not depend on the
-// worker count.
+// level's Cholesky too: 48 unknowns at most, factored in the host's
+// memory). The passes that read the fine level split across workers: the
+// fine passes by particle ranges like every PCG pass, and the first coarse
+// level's operator and right-hand side by ranges of its nodes and pairs,
+// each a gather in a fixed order. The cycle over the coarse levels, a
+// quarter of the fine work and less, runs on one thread between two
+// barriers. So results do not depend on the worker count. (Gathering the
+// first level on every worker took 2 workers at 128x128 from 1.6 to about
+// 1.8 times one worker's speed: cloth_bench Frame/DEFAULT_2_WORKERS.)
 #pragma once
 
 #include "base/host_allocator.h"
 #include "base/math.h"
 #include "base/soa.h"
+#include "base/staged.h"
 #include "fabric/fabric.h"
 #include "forces/grid_products.h"
 #include "forces/spring_terms.h"
@@ -55,19 +60,27 @@ class Multigrid {
     // 1e-4 kg, 1/10 s in 16 substeps) the strain cable switches within a
     // frame and five iterations with the kept operator gained 1e4 J.
     void assemble(const LinearSystem& system);
+    // The same in two parts: the first level's pairs and nodes that `task`
+    // owns (GroupTask::items), on any worker, then, on one thread after
+    // every task's, the coarser levels and the coarsest factor.
+    void assemble_top(const LinearSystem& system, const GroupTask& task);
+    void assemble_coarse();
 
     // The fine passes of one preconditioner application z = M r, each over
     // particles [begin, end); a barrier separates them:
     //   smooth_from_zero  z = w W_ii^-1 r
     //   residual          t = r - W z
-    //   (correct_coarse, one thread: restrict t, cycle the coarse levels)
+    //   restrict_residual  the first level's right-hand side: each node sums its particles' t
+    //   (correct_coarse, one thread: cycle the coarse levels)
     //   prolong           z += P e
     //   smooth            out = z + w W_ii^-1 (r - W z)   (solver_pcg.cpp, with PCG's dot product)
     static void smooth_from_zero(const LinearSystem& system, const Vec3Soa& r, uint32_t begin, uint32_t end,
                                  Vec3Soa& z);
     static void residual(const LinearSystem& system, const Vec3Soa& r, const Vec3Soa& z, uint32_t begin,
                          uint32_t end, Vec3Soa& t);
-    void correct_coarse(const Vec3Soa& t);
+    // The first level's nodes that `task` owns (GroupTask::items).
+    void restrict_residual(const Vec3Soa& t, const GroupTask& task);
+    void correct_coarse();
     void prolong(const float* pinned, uint32_t begin, uint32_t end, Vec3Soa& z) const;
 
     uint32_t level_count() const { return static_cast<uint32_t>(levels_.size()); }
@@ -101,6 +114,8 @@ class Multigrid {
     };
 
     void plan_families(Level& level);
+    static void spread_blocks(Level& level, uint32_t pair_begin, uint32_t pair_end, uint32_t node_begin,
+                              uint32_t node_end);
     void multiply(const Level& level, const Vec3Soa& x, Vec3Soa& y) const;
     void cycle(uint32_t level_index);
     void factor_coarsest();
@@ -108,8 +123,11 @@ class Multigrid {
     const HostMemory* memory_;
     HostVector<uint32_t> aggregate_;  // fine particle -> level 0 node
     HostVector<uint32_t>
-        spring_target_;          // fine spring (for_each_block order) -> level 0 pair or pair count + node
-    HostVector<Sym3> gathered_;  // assemble: sums of A_s per level 0 pair, then per node (inner springs)
+        spring_target_;  // fine spring (for_each_block order) -> level 0 pair or pair count + node
+    // The same as lists per target (pairs, then nodes), and each level 0
+    // node's particles: what assemble_top gathers.
+    HostVector<uint32_t> target_start_, target_spring_, child_start_, child_;
+    HostVector<Sym3> inner_;  // per level 0 node: the sum of the springs inside it
     std::vector<Level, HostAllocator<Level>> levels_;
     // The coarsest level as a dense matrix (3 unknowns per node), row-major,
     // factored in place (lower triangle: its Cholesky factor), and a vector.

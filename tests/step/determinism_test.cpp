@@ -136,8 +136,9 @@ uint64_t fnv1a(uint64_t hash, const void* data, size_t size) {
 }
 
 // 300 steps of a 40 x 40 flag in wind (seven particle groups) with the
-// default solver (multigrid-preconditioned PCG, whose coarse levels run on
-// one thread between barriers) and at least two substeps per step, and a
+// default solver (multigrid-preconditioned PCG: its first coarse level is
+// gathered by every worker, the cycle below runs on one thread between
+// barriers) and at least two substeps per step, and a
 // second flag in the same world so the stages of two cloths share the
 // workers. Hash of every cloth's positions and velocities.
 // spin_us: cloth_world_set_worker_spin (0: keep the default).
