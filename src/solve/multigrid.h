@@ -53,13 +53,13 @@ class Multigrid {
     void plan(const Fabric& fabric, const SpringTerms& springs);
     bool empty() const { return levels_.empty(); }
 
-    // Per substep, one thread: the coarse operators of `system` (pinned
+    // Per substep: the coarse operators of `system` (pinned
     // particles are left out, as they are of the system). Forming them
     // once a frame and keeping them for its other substeps was measured
     // and lost: at the stiff extreme of the stability map (k = 1e7 N/m,
     // 1e-4 kg, 1/10 s in 16 substeps) the strain cable switches within a
     // frame and five iterations with the kept operator gained 1e4 J.
-    void assemble(const LinearSystem& system);
+    void assemble(const LinearSystem& system);  // on this thread
     // The same in two parts: the first level's pairs and nodes that `task`
     // owns (GroupTask::items), on any worker, then, on one thread after
     // every task's, the coarser levels and the coarsest factor.
