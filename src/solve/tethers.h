@@ -95,9 +95,9 @@ class Tethers {
             return anchor > other.anchor;
         }
     };
-    HostVector<uint32_t> found_;   // the search's anchors, kAnchors per particle (particle-major)
-    HostVector<float> path_;       // and their path lengths
-    HostVector<uint8_t> settled_;  // anchors settled per particle
+    HostVector<uint32_t> found_;   // the plan's anchors, kAnchors per particle (particle-major)
+    HostVector<float> path_;       // and their path lengths (on a grid: straight distances)
+    HostVector<uint8_t> settled_;  // anchors found per particle
     HostVector<Reach> frontier_;   // the search's heap
     HostVector<uint32_t> pins_;    // the pinned particles, in index order
     HostVector<float> pin_x_, pin_y_, pin_z_,
