@@ -44,7 +44,7 @@ constexpr uint32_t kStrainLimitMorePasses = 4;
 // correction_i = 1/2 sum over over-stretched springs s = (i, j) of
 // w_i (L - (1 + max_strain) l0) (x_j - x_i) / L, with w_i = m_i^-1 /
 // (m_i^-1 + m_j^-1) (pinned: m^-1 = 0). Particles [begin, end); reads x.
-// Returns nothing; `correction` holds the result.
+// `correction` holds the result; returns what the pass found (StretchCount).
 StretchCount strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin,
                                       uint32_t end, Vec3Soa& correction);
 
