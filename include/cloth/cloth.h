@@ -1061,7 +1061,12 @@ CLOTH_API cloth_result cloth_world_set_zone_callbacks(cloth_world_id world, clot
  * that code never occurs. Cloths with an enabled quality policy have their Jacobi
  * iterations and substeps lowered after a frame over budget and raised
  * again after several frames well under it (below 70%), within the
- * policy's bounds, from the measured cost of the frames before. */
+ * policy's bounds, from the measured cost of the frames before. A
+ * CLOTH_SOLVER_DEFAULT cloth chooses its own iterations and substeps each
+ * step: the policy lowers it from what it ran (iterations first) and raises
+ * it back up to that choice, never past it; cloth_stats.last_solver_iterations
+ * shows what a step ran, and setting the policy again (or the solver) lifts
+ * the policy's cuts. */
 
 /// Set the world's frame budget in milliseconds, >= 0 (0: no budget, the default).
 CLOTH_API cloth_result cloth_world_set_frame_budget(cloth_world_id world, float milliseconds);
@@ -1087,7 +1092,8 @@ typedef struct cloth_quality_policy {
 CLOTH_API cloth_quality_policy cloth_default_quality_policy(void);
 /// Let the world's budget change this cloth's iterations and substeps within
 /// the bounds (enabling clamps the current settings into them; the current
-/// values are read back with cloth_get_solver).
+/// values are read back with cloth_get_solver, or for CLOTH_SOLVER_DEFAULT
+/// with cloth_get_stats: see "Frame budget").
 CLOTH_API cloth_result cloth_set_quality_policy(cloth_id cloth, const cloth_quality_policy* policy);
 
 /* Sleep. A cloth whose particles all move slower than max_speed for

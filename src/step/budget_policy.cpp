@@ -60,11 +60,12 @@ void BudgetPolicy::after_frame(double budget_ms, double step_ms, BudgetCloth* cl
         for (uint32_t c = 0; c < count && predicted > 0.9 * budget_ms; ++c) {
             ClothInstance& cloth = *cloths[c].cloth;
             if (!cloth.quality_policy().enabled) continue;
-            SolverSettings next = cloth.solver();
+            const SolverSettings current = cloth.quality_settings();
+            SolverSettings next = current;
             if (!lower(cloth.quality_policy(), next)) continue;
             predicted += predicted_change_ms(step_ms, static_cast<double>(cloths[c].cost_ns) / total_ns,
-                                             cloth.solver(), next);
-            cloth.solver() = next;
+                                             current, next);
+            cloth.set_quality_settings(next);
         }
         return;
     }
@@ -76,14 +77,15 @@ void BudgetPolicy::after_frame(double budget_ms, double step_ms, BudgetCloth* cl
     calm_frames_ = 0;
     for (uint32_t c = count; c-- > 0;) {  // the cheapest first
         ClothInstance& cloth = *cloths[c].cloth;
-        if (!cloth.quality_policy().enabled) continue;
-        SolverSettings next = cloth.solver();
+        if (!cloth.quality_policy().enabled || !cloth.quality_can_rise()) continue;
+        const SolverSettings current = cloth.quality_settings();
+        SolverSettings next = current;
         if (!raise(cloth.quality_policy(), next)) continue;
-        const double change = predicted_change_ms(step_ms, static_cast<double>(cloths[c].cost_ns) / total_ns,
-                                                  cloth.solver(), next);
+        const double change =
+            predicted_change_ms(step_ms, static_cast<double>(cloths[c].cost_ns) / total_ns, current, next);
         if (predicted + change > 0.85 * budget_ms) continue;
         predicted += change;
-        cloth.solver() = next;
+        cloth.set_quality_settings(next);
     }
 }
 

@@ -13,6 +13,10 @@
 //
 // Lowering takes iterations first, then substeps; raising undoes it in the
 // reverse order. The hysteresis band (70%..100%) keeps it from oscillating.
+// A CLOTH_SOLVER_DEFAULT cloth picks its own iterations and substeps every
+// frame: the policy lowers from what it ran and keeps the result as caps on
+// that choice, and raising ends when the caps reach it
+// (ClothInstance::quality_settings).
 #pragma once
 
 #include <cstdint>

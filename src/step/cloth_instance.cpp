@@ -123,10 +123,38 @@ const Vec3Soa& ClothInstance::normals() const {
 
 void ClothInstance::set_quality_policy(const QualityPolicy& policy) {
     quality_ = policy;
+    // A default solver the policy had capped goes back to its own choice.
+    solver_.default_iteration_cap = solver_.default_substep_cap = 0;
     if (!policy.enabled) return;
     solver_.iterations = std::clamp(solver_.iterations, policy.min_iterations, policy.max_iterations);
     solver_.substeps = std::clamp(solver_.substeps, policy.min_substeps, policy.max_substeps);
     wake();
+}
+
+SolverSettings ClothInstance::quality_settings() const {
+    if (solver_.kind != CLOTH_SOLVER_DEFAULT) return solver_;
+    SolverSettings out = solver_;
+    out.iterations =
+        solver_.default_iteration_cap > 0 ? solver_.default_iteration_cap : frame_solver_.iterations;
+    out.substeps = solver_.default_substep_cap > 0 ? solver_.default_substep_cap : frame_solver_.substeps;
+    return out;
+}
+
+void ClothInstance::set_quality_settings(const SolverSettings& settings) {
+    if (solver_.kind != CLOTH_SOLVER_DEFAULT) {
+        solver_ = settings;
+        return;
+    }
+    // Caps at or above the default's own choice of the last frame change
+    // nothing: drop them, so the default follows its own choice again.
+    const bool below = settings.iterations < frame_own_iterations_ || settings.substeps < frame_own_substeps_;
+    solver_.default_iteration_cap = below ? settings.iterations : 0;
+    solver_.default_substep_cap = below ? settings.substeps : 0;
+}
+
+bool ClothInstance::quality_can_rise() const {
+    return solver_.kind != CLOTH_SOLVER_DEFAULT || solver_.default_iteration_cap > 0 ||
+           solver_.default_substep_cap > 0;
 }
 
 // ---------------------------------------------------------------- sleep

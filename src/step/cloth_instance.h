@@ -107,6 +107,15 @@ class ClothInstance {
     // Frame-budget policy bounds; enabling clamps the solver into them.
     void set_quality_policy(const QualityPolicy& policy);
     const QualityPolicy& quality_policy() const { return quality_; }
+    // The iterations and substeps the frame-budget policy steps from
+    // (budget_policy.h): the solver settings' own or, for
+    // CLOTH_SOLVER_DEFAULT, its caps, or what its last frame ran when it has
+    // none. Setting them sets the settings, or the default's caps (removed
+    // once they reach what the default chooses by itself).
+    SolverSettings quality_settings() const;
+    void set_quality_settings(const SolverSettings& settings);
+    // Whether the policy may raise them: not for a default running its own choice.
+    bool quality_can_rise() const;
 
     // Snapshots (cloth_snapshot.cpp): the dynamic state in a flat buffer.
     size_t snapshot_size() const;
@@ -240,6 +249,9 @@ class ClothInstance {
     Material material_;
     SolverSettings solver_;
     SolverSettings frame_solver_;  // what this frame runs: solver_ with CLOTH_SOLVER_DEFAULT resolved
+    // What CLOTH_SOLVER_DEFAULT chose by itself this frame, before a quality
+    // policy's caps (quality_settings).
+    uint32_t frame_own_iterations_ = 0, frame_own_substeps_ = 0;
     AeroParams aero_;
 
     // State.

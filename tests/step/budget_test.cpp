@@ -1,5 +1,5 @@
 // The frame-budget policy: with a budget well below what the cloths cost,
-// their iterations go down and the share of frames over budget drops; with
+// their iterations go down (the default solver's too) and the share of frames over budget drops; with
 // a loose budget they go back up to the policy's maximum; cloths without
 // an enabled policy are never changed; an overrun is reported in the
 // profile and by its own result code, and the world advances as without a
@@ -108,6 +108,50 @@ TEST(Budget, ATightBudgetLowersIterationsAndOverrunsDropALooseOneRaisesThemAgain
     for (int i = 0; i < 200 && iterations_of(scene.cloths()[0]) < 16; ++i) step_under_budget(scene);
     EXPECT_EQ(iterations_of(scene.cloths()[0]), 16u) << "iterations went back up";
     EXPECT_EQ(overruns(scene, 5), 0);
+}
+
+uint32_t last_iterations(cloth_id cloth) {
+    cloth_stats s{};
+    s.struct_size = sizeof s;
+    EXPECT_EQ(cloth_get_stats(cloth, &s), CLOTH_OK);
+    return s.last_solver_iterations;
+}
+
+// CLOTH_SOLVER_DEFAULT picks its own iterations every frame; the policy
+// caps them under a tight budget and lifts the caps under a loose one.
+TEST(Budget, TheDefaultSolverGivesUpIterationsUnderATightBudgetAndTakesThemBackUnderALooseOne) {
+    SceneConfig config = four_flags(1);
+    config.solver.kind = CLOTH_SOLVER_DEFAULT;
+    Scene scene(config);
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    cloth_quality_policy policy = cloth_default_quality_policy();
+    policy.enabled = true;
+    for (size_t c = 0; c + 1 < scene.cloths().size(); ++c) {
+        ASSERT_EQ(cloth_set_quality_policy(scene.cloths()[c], &policy), CLOTH_OK);
+    }
+    const cloth_id capped = scene.cloths()[0], free_running = scene.cloths().back();
+
+    // One multigrid iteration costs about half of the default's five (its
+    // fixed stages and coarse levels stay), and the fourth cloth keeps its
+    // five: 80 % of the full cost lies between.
+    const double full_ms = median_step_ms(scene, 15);
+    const uint32_t own = last_iterations(free_running);
+    ASSERT_GT(own, 1u) << "the default iterates more than once here";
+    ASSERT_EQ(last_iterations(capped), own) << "no budget, no cap";
+    ASSERT_EQ(cloth_world_set_frame_budget(scene.world(), static_cast<float>(full_ms * 0.8)), CLOTH_OK);
+    const int early = overruns(scene, 3);
+    EXPECT_GE(early, 2) << "at full quality the frames overrun 80% of their cost";
+    for (int i = 0; i < 60; ++i) step_under_budget(scene);
+    EXPECT_LT(last_iterations(capped), own) << "the policy capped the default's iterations";
+    EXPECT_EQ(last_iterations(free_running), own) << "a cloth without a policy keeps the default's choice";
+    const int late = overruns(scene, 30);
+    EXPECT_LT(late / 30.0, early / 3.0) << "the overrun rate dropped (machine noise permitting)";
+
+    ASSERT_EQ(cloth_world_set_frame_budget(scene.world(), static_cast<float>(full_ms * 20.0)), CLOTH_OK);
+    for (int i = 0; i < 200 && last_iterations(capped) < own; ++i) step_under_budget(scene);
+    EXPECT_EQ(last_iterations(capped), own) << "the caps came off";
+    for (int i = 0; i < 30; ++i) step_under_budget(scene);
+    EXPECT_EQ(last_iterations(capped), own) << "and the policy raises nothing past the default's own choice";
 }
 
 TEST(Budget, PolicyBoundsAreValidatedAndEnablingClampsTheSolver) {
