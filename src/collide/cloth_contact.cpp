@@ -62,15 +62,10 @@ uint32_t ClothContact::collide(float h, float from, float to, const float* kinem
     for (const auto& slot : world_->colliders()) {
         const Collider& c = slot.object;
         if (!slot.live || !(c.group_bits & collision_.collider_mask)) continue;
-        MovingCollider moving;
-        moving.shape = c.shape.get();
-        if (c.body == UINT32_MAX) {
-            moving.start = moving.end = c.local;
-        } else {
-            moving.start = body_pose(c.body, from) * c.local;
-            moving.end = body_pose(c.body, to) * c.local;
-            moving.body = &world_->body(c.body).body;
-        }
+        const bool on_body = c.body != UINT32_MAX;
+        const MovingCollider moving(c.shape.get(), on_body ? body_pose(c.body, from) * c.local : c.local,
+                                    on_body ? body_pose(c.body, to) * c.local : c.local,
+                                    on_body ? &world_->body(c.body).body : nullptr);
         if (!bounded) {
             range = RangeBounds{};
             for (uint32_t k = 0; k < chunk_count; ++k) {

@@ -206,6 +206,16 @@ bool exact_distance_clear(const MovingCollider& collider, float thickness, const
 
 }  // namespace
 
+MovingCollider::MovingCollider(const Shape* shape, const Pose& start, const Pose& end, const Body* body)
+    : shape(shape),
+      start(start),
+      end(end),
+      body(body),
+      bound_start(start.apply(shape->bound_center)),
+      bound_end(end.apply(shape->bound_center)),
+      bound_half_chord(0.5f * (bound_end - bound_start).norm()),
+      is_static(start.position == end.position && start.rotation.coeffs() == end.rotation.coeffs()) {}
+
 RangeBounds range_bounds(float h, const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x,
                          const Vec3Soa& v) {
     RangeBounds b;
@@ -228,18 +238,16 @@ RangeBounds range_bounds(float h, const float* kinematic, uint32_t begin, uint32
 bool range_is_clear(const MovingCollider& collider, const CollisionParams& params, const RangeBounds& b) {
     if (!b.any) return true;
     const Shape& shape = *collider.shape;
-    const bool is_static = collider.start.position == collider.end.position &&
-                           collider.start.rotation.coeffs() == collider.end.rotation.coeffs();
-    if (shape.kind == ShapeKind::kHeightfield && is_static)
+    if (shape.kind == ShapeKind::kHeightfield && collider.is_static)
         return heightfield_clear(collider, b, params.thickness);
     if (!std::isfinite(shape.bound_radius)) return false;
     // Bounded shapes: every particle's own early out in collide_particles
     // (its end point farther from the bound centre's chord than the reach
     // plus its path) holds for the whole box when the box is that far from
     // the chord's bounds.
-    const Vec3 center_start = collider.start.apply(shape.bound_center);
-    const Vec3 center_end = collider.end.apply(shape.bound_center);
-    const float reach = shape.bound_radius + params.thickness + 0.5f * (center_end - center_start).norm();
+    const Vec3& center_start = collider.bound_start;
+    const Vec3& center_end = collider.bound_end;
+    const float reach = shape.bound_radius + params.thickness + collider.bound_half_chord;
     const Vec3 chord_lo = center_start.cwiseMin(center_end), chord_hi = center_start.cwiseMax(center_end);
     const Vec3 gap = (chord_lo - b.hi).cwiseMax(b.lo - chord_hi).cwiseMax(0.0f);
     if (gap.norm() - b.travel > reach + kCullMargin) return true;
@@ -251,11 +259,9 @@ uint32_t collide_particles(const MovingCollider& collider, const CollisionParams
     const Shape& shape = *collider.shape;
     const float thickness = params.thickness;
     const bool bounded = std::isfinite(shape.bound_radius);
-    const Vec3 center_start = collider.start.apply(shape.bound_center);
-    const Vec3 center_end = collider.end.apply(shape.bound_center);
-    // The centre's path under slerp is an arc; half its chord bounds how far
-    // the arc strays from the chord.
-    const float reach = shape.bound_radius + thickness + 0.5f * (center_end - center_start).norm();
+    const Vec3& center_start = collider.bound_start;
+    const Vec3& center_end = collider.bound_end;
+    const float reach = shape.bound_radius + thickness + collider.bound_half_chord;
     // Sphere tracing stops this close to the thickness surface.
     const float tolerance = 1e-5f + 1e-3f * thickness;
     uint32_t contacts = 0;

@@ -144,8 +144,7 @@ TEST(ColliderResponse, AParticleTouchingASurfaceSlidesAlongItInsteadOfStickingWh
     // from a start just outside once held the particle at its start point).
     Shape plane(heap());
     ASSERT_TRUE(build_plane(Vec3(0, 1, 0), 0.0f, plane).ok());
-    MovingCollider collider;
-    collider.shape = &plane;
+    const MovingCollider collider(&plane, Pose{}, Pose{});
     CollisionParams params;
     params.thickness = 0.01f;
     params.friction = 0.0f;
