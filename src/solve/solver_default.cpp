@@ -37,12 +37,6 @@ SolverSettings resolve_solver(const SolverSettings& requested, float dt, float s
     const uint32_t substeps = static_cast<uint32_t>(
         std::min<double>(std::max(wanted, 1.0), static_cast<double>(kDefaultMaxSubsteps)));
     out.substeps = std::max(requested.substeps, substeps);
-    // A quality policy's caps (budget_policy.h) come last: the host's budget
-    // wins over the default's own choice.
-    if (requested.default_iteration_cap > 0)
-        out.iterations = std::min(out.iterations, requested.default_iteration_cap);
-    if (requested.default_substep_cap > 0)
-        out.substeps = std::min(out.substeps, requested.default_substep_cap);
     if (!out.strain_limit.chosen)
         out.strain_limit = StrainLimit{kDefaultStrainLimit, kDefaultStrainLimitPasses};
     return out;

@@ -59,9 +59,7 @@ constexpr float kStrainCableStiffness = 100.0f;
 // The settings a step of `dt` runs with: `requested` itself unless its kind
 // is CLOTH_SOLVER_DEFAULT, in which case kind, preconditioner, iterations
 // and substeps follow from gamma as above (requested.substeps is a lower
-// bound) and then capped by requested.default_iteration_cap and
-// default_substep_cap when set; `multigrid`: whether the cloth has coarse
-// levels.
+// bound); `multigrid`: whether the cloth has coarse levels.
 SolverSettings resolve_solver(const SolverSettings& requested, float dt, float stiffness_per_mass,
                               bool multigrid);
 

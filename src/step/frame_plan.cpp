@@ -101,15 +101,14 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
             ? stiffness_over_mass(material_, mass_.data(), pinned_.data(), particle_count())
             : 0.0f;
     frame_solver_ = resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty());
+    // The default's own choice, then a quality policy's caps on it
+    // (quality_settings): the host's budget wins.
     frame_own_iterations_ = frame_solver_.iterations;
     frame_own_substeps_ = frame_solver_.substeps;
-    if (solver_.default_iteration_cap > 0 || solver_.default_substep_cap > 0) {
-        SolverSettings uncapped = solver_;
-        uncapped.default_iteration_cap = uncapped.default_substep_cap = 0;
-        const SolverSettings own = resolve_solver(uncapped, dt, stiffness_per_mass, !multigrid_.empty());
-        frame_own_iterations_ = own.iterations;
-        frame_own_substeps_ = own.substeps;
-    }
+    if (solver_.default_iteration_cap > 0)
+        frame_solver_.iterations = std::min(frame_solver_.iterations, solver_.default_iteration_cap);
+    if (solver_.default_substep_cap > 0)
+        frame_solver_.substeps = std::min(frame_solver_.substeps, solver_.default_substep_cap);
     if (contact_.carrier().active() || frame_solver_.kind == CLOTH_SOLVER_EXPLICIT) {
         backup_ = Backup::kCopied;
         backup_x_ = x_;
