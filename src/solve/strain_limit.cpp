@@ -158,22 +158,51 @@ void strain_limit_grid_corrections(const StrainLimitPass& pass, const GridStrain
     }
 }
 
-void strain_limit_apply(const Vec3Soa& correction, float h, uint32_t begin, uint32_t end, Vec3Soa& x,
-                        Vec3Soa& v) {
-    const float inverse_h = 1.0f / h;
+float strain_limit_next_omega(uint32_t pass, float omega) {
+    const float rho_squared = kStrainLimitChebyshevRho * kStrainLimitChebyshevRho;
+    return pass == 0 ? 2.0f / (2.0f - rho_squared) : 4.0f / (4.0f - rho_squared * omega);
+}
+
+namespace {
+
+// One coordinate of strain_limit_apply; arrays as __restrict parameters so
+// that GCC vectorizes the loop.
+CLOTH_HOT_LOOP void apply_kernel(uint32_t begin, uint32_t end, float omega, float inverse_h,
+                                 const float* __restrict correction, float* __restrict x, float* __restrict v,
+                                 float* __restrict previous) {
+    if (omega == 1.0f) {
+        for (uint32_t i = begin; i < end; ++i) {
+            previous[i] = x[i];
+            x[i] += correction[i];
+            v[i] += correction[i] * inverse_h;
+        }
+        return;
+    }
     for (uint32_t i = begin; i < end; ++i) {
-        x.x[i] += correction.x[i];
-        x.y[i] += correction.y[i];
-        x.z[i] += correction.z[i];
-        v.x[i] += correction.x[i] * inverse_h;
-        v.y[i] += correction.y[i] * inverse_h;
-        v.z[i] += correction.z[i] * inverse_h;
+        const float now = x[i];
+        const float next = omega * (now + correction[i] - previous[i]) + previous[i];
+        previous[i] = now;
+        x[i] = next;
+        v[i] += (next - now) * inverse_h;
     }
 }
 
+}  // namespace
+
+void strain_limit_apply(const Vec3Soa& correction, float h, float omega, uint32_t begin, uint32_t end,
+                        Vec3Soa& x, Vec3Soa& v, Vec3Soa& previous) {
+    const float inverse_h = 1.0f / h;
+    apply_kernel(begin, end, omega, inverse_h, correction.x.data(), x.x.data(), v.x.data(),
+                 previous.x.data());
+    apply_kernel(begin, end, omega, inverse_h, correction.y.data(), x.y.data(), v.y.data(),
+                 previous.y.data());
+    apply_kernel(begin, end, omega, inverse_h, correction.z.data(), x.z.data(), v.z.data(),
+                 previous.z.data());
+}
+
 void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, float h, Vec3Soa& x, Vec3Soa& v,
-                          Vec3Soa& correction, GridStrainTerms* grid, const Tethers* tethers,
-                          StretchCount* counts, uint32_t max_iterations) {
+                          Vec3Soa& correction, Vec3Soa& previous, bool accelerate, GridStrainTerms* grid,
+                          const Tethers* tethers, StretchCount* counts, uint32_t max_iterations) {
     counts_ = counts;
     grid_ = grid != nullptr && !grid->empty() ? grid : nullptr;
     tethers_ = tethers != nullptr && !tethers->empty() ? tethers : nullptr;
@@ -189,6 +218,9 @@ void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, floa
     x_ = &x;
     v_ = &v;
     correction_ = &correction;
+    previous_ = &previous;
+    omega_ = schedule_omega_ = 1.0f;
+    accelerate_ = accelerate;
 }
 
 void StrainLimiter::run(const GroupTask& task) {
@@ -201,13 +233,13 @@ void StrainLimiter::run(const GroupTask& task) {
     if (grid_ != nullptr) {
         if (applying()) {
             strain_limit_grid_corrections(pass_, *grid_, task.begin, task.end, *correction_);
-            strain_limit_apply(*correction_, h_, task.begin, task.end, *x_, *v_);
+            strain_limit_apply(*correction_, h_, omega_, task.begin, task.end, *x_, *v_, *previous_);
             return;
         }
         const StretchCount count = strain_limit_grid_terms(pass_, *x_, task.begin, task.end, *grid_);
         if (counts_) counts_[task.group] = count;
     } else if (applying()) {
-        strain_limit_apply(*correction_, h_, task.begin, task.end, *x_, *v_);
+        strain_limit_apply(*correction_, h_, omega_, task.begin, task.end, *x_, *v_, *previous_);
     } else {
         const StretchCount count = strain_limit_corrections(pass_, *x_, task.begin, task.end, *correction_);
         if (counts_) counts_[task.group] = count;
@@ -215,7 +247,13 @@ void StrainLimiter::run(const GroupTask& task) {
 }
 
 void StrainLimiter::finish_round() {
-    if (counts_ && !tether_round() && !applying()) {
+    if (applying()) {
+        if (accelerate_)
+            schedule_omega_ = strain_limit_next_omega((round_ - first_pass_round_) / 2, schedule_omega_);
+        ++round_;
+        return;
+    }
+    if (counts_ && !tether_round()) {
         // A corrections round: decide how many passes there are.
         uint64_t over_limit = 0, over_promise = 0;
         const uint32_t groups = (pass_.fabric->particle_count() + kGroupSize - 1) / kGroupSize;
@@ -230,13 +268,18 @@ void StrainLimiter::finish_round() {
             ++iterations_;
         }
     }
+    // The last pass applies its corrections as they are: an accelerated
+    // move past them would leave springs it stretched (or, when nothing is
+    // left to correct, move the cloth along the last passes for nothing).
+    if (!tether_round())
+        omega_ = (round_ - first_pass_round_) / 2 + 1 == iterations_ ? 1.0f : schedule_omega_;
     ++round_;
 }
 
 void limit_strain(const StrainLimitPass& pass, const StrainLimit& limit, float h, Vec3Soa& x, Vec3Soa& v,
-                  Vec3Soa& scratch) {
+                  Vec3Soa& correction, Vec3Soa& previous) {
     StrainLimiter limiter;
-    limiter.begin(pass, limit.iterations, h, x, v, scratch);
+    limiter.begin(pass, limit.iterations, h, x, v, correction, previous, true);
     run_serially(limiter, pass.fabric->particle_count());
 }
 

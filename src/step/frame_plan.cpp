@@ -62,8 +62,10 @@ void ClothInstance::plan_substep() {
     const StrainLimit& limit = frame_solver_.strain_limit;
     if (limit.max_strain > 0 && limit.iterations > 0) {
         const StrainLimitPass pass{fabric_.get(), mass_.data(), pinned_.data(), limit.max_strain};
-        strain_limiter_.begin(pass, limit.iterations, h_, x_, v_, solver_work_.r, &grid_strain_terms_,
-                              &tethers_, stretch_counts_.data(), kStrainLimitMorePasses * limit.iterations);
+        const bool accelerate = frame_solver_.kind != CLOTH_SOLVER_EXPLICIT;  // strain_limit.h
+        strain_limiter_.begin(pass, limit.iterations, h_, x_, v_, solver_work_.r, solver_work_.z, accelerate,
+                              &grid_strain_terms_, &tethers_, stretch_counts_.data(),
+                              kStrainLimitMorePasses * limit.iterations);
         plan(Stage::kStrainLimit, &C::limit_strain, nullptr, &strain_limiter_);
     }
     if (self_collision_) {
