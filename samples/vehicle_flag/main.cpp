@@ -63,7 +63,8 @@ struct Options {
     std::string solver = "default";
     uint32_t iterations = 0;  // 0: the solver kind's own (see solver_plan)
     uint32_t substeps = 0;    // 0: what the solver kind needs at these settings (see solver_plan)
-    float strain_limit = 0.1f;
+    // The default solver's own limit (8 %), set for every kind.
+    float strain_limit = 0.08f;
     float stiffness = 1000.0f;
     float damping = -1.0f;  // < 0: the solver kind's own (see solver_plan)
     double budget_ms = 2.0;
@@ -77,7 +78,10 @@ struct Options {
     int obj_every = 10;
     float max_attach_error = 1e-5f;
     float tolerance = 1e-3f;
-    float max_strain = 1.0f;
+    // What the default holds through the whole course, contact with the
+    // pole, the brake, the jump and the teleport included (0.113 measured,
+    // docs/vehicle_flag.md); the other kinds need a looser bound.
+    float max_strain = 0.12f;
     float max_speed = 120.0f;
     double trail_speed = 10.0;    // m/s: the trailing check counts frames faster than this...
     double trail_degrees = 30.0;  // ...where the free edge is within this of straight behind the pole
