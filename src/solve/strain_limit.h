@@ -145,8 +145,9 @@ class StrainLimiter final : public StagedAlgorithm {
     GridStrainTerms* grid_ = nullptr;
 };
 
-// The same rounds on this thread, over all particles (no tethers, no
-// pass counts), with two scratch vectors of one entry per particle.
+// The same rounds on this thread, over all particles (accelerated passes,
+// no tethers, no pass counts), with two scratch vectors of one entry per
+// particle.
 void limit_strain(const StrainLimitPass& pass, const StrainLimit& limit, float h, Vec3Soa& x, Vec3Soa& v,
                   Vec3Soa& correction, Vec3Soa& previous);
 
