@@ -737,7 +737,9 @@ CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
 /// the springs, about 2 ms for 4,096 particles and 10 ms for 16,384);
 /// then (Provot 1995)
 /// structural and shear springs still longer than the limit are pulled
-/// back in parallel passes, moving positions and velocities together:
+/// back in parallel passes, moving positions and velocities together
+/// (with every kind but CLOTH_SOLVER_EXPLICIT each pass but the last also
+/// carries on along the previous passes' move, a Chebyshev acceleration):
 /// `iterations` passes, fewer once a pass finds no spring past the limit,
 /// and up to 4 times as many while a spring is past it by more than 0.01
 /// (so the cost of a frame follows how hard it pulls). Off by default, but
