@@ -173,7 +173,7 @@ TEST(StrainLimitPromise, AClothOfTenMillionNewtonPerMetreSpringsAtATenthOfASecon
 // their rest length on this drag (and 31x with one anchor per particle,
 // torn along the seam between the two pins' regions); with tethers and
 // four passes, 2.7; with passes added while springs are past the limit
-// (up to 16), 0.62.
+// (up to 16), 0.62; with those passes Chebyshev-accelerated, 0.44.
 TEST(Tethers, TwoPinsDraggedTenMetresInOneStepTakeTheWholeClothWithoutTearingIt) {
     PinnedCloth c;
     for (int f = 0; f < 60; ++f) ASSERT_EQ(cloth_step(c.world, 1.0f / 60.0f), CLOTH_OK);
@@ -191,7 +191,7 @@ TEST(Tethers, TwoPinsDraggedTenMetresInOneStepTakeTheWholeClothWithoutTearingIt)
         ASSERT_EQ(cloth_step(c.world, 1.0f / 60.0f), CLOTH_OK);
         worst = std::max(worst, c.stats().max_strain);
     }
-    EXPECT_LT(worst, 0.7f) << "max strain over the drag and the way back";
+    EXPECT_LT(worst, 0.5f) << "max strain over the drag and the way back";
 }
 
 // 1 kg per particle on 1e3 N/m springs: solved exactly its springs would
