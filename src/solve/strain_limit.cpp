@@ -247,32 +247,30 @@ void StrainLimiter::run(const GroupTask& task) {
 }
 
 void StrainLimiter::finish_round() {
+    const uint32_t pass = (round_ - first_pass_round_) / 2;  // meaningless in the tether round
     if (applying()) {
-        if (accelerate_)
-            schedule_omega_ = strain_limit_next_omega((round_ - first_pass_round_) / 2, schedule_omega_);
-        ++round_;
-        return;
-    }
-    if (counts_ && !tether_round()) {
-        // A corrections round: decide how many passes there are.
-        uint64_t over_limit = 0, over_promise = 0;
-        const uint32_t groups = (pass_.fabric->particle_count() + kGroupSize - 1) / kGroupSize;
-        for (uint32_t g = 0; g < groups; ++g) {
-            over_limit += counts_[g].over_limit;
-            over_promise += counts_[g].over_promise;
+        if (accelerate_) schedule_omega_ = strain_limit_next_omega(pass, schedule_omega_);
+    } else if (!tether_round()) {
+        // A corrections round: decide how many passes there are...
+        if (counts_) {
+            uint64_t over_limit = 0, over_promise = 0;
+            const uint32_t groups = (pass_.fabric->particle_count() + kGroupSize - 1) / kGroupSize;
+            for (uint32_t g = 0; g < groups; ++g) {
+                over_limit += counts_[g].over_limit;
+                over_promise += counts_[g].over_promise;
+            }
+            if (over_limit == 0) {
+                iterations_ = pass + 1;  // this pass applies nothing, nor would any after it
+            } else if (over_promise > 0 && pass + 1 == iterations_ && iterations_ < max_iterations_) {
+                ++iterations_;
+            }
         }
-        const uint32_t pass = (round_ - first_pass_round_) / 2;
-        if (over_limit == 0) {
-            iterations_ = pass + 1;  // this pass applies nothing, nor would any after it
-        } else if (over_promise > 0 && pass + 1 == iterations_ && iterations_ < max_iterations_) {
-            ++iterations_;
-        }
+        // ...and the weight its application round moves by. The last pass
+        // applies its corrections as they are: an accelerated move past them
+        // would leave springs it stretched (or, when nothing is left to
+        // correct, move the cloth along the last passes for nothing).
+        omega_ = pass + 1 == iterations_ ? 1.0f : schedule_omega_;
     }
-    // The last pass applies its corrections as they are: an accelerated
-    // move past them would leave springs it stretched (or, when nothing is
-    // left to correct, move the cloth along the last passes for nothing).
-    if (!tether_round())
-        omega_ = (round_ - first_pass_round_) / 2 + 1 == iterations_ ? 1.0f : schedule_omega_;
     ++round_;
 }
 
