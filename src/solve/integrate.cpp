@@ -5,15 +5,17 @@
 namespace cloth {
 
 CLOTH_HOT_LOOP void integrate_implicit(const Vec3Soa& x, const Vec3Soa& v, const Vec3Soa& dv, float h,
-                                       uint32_t begin, uint32_t end, Vec3Soa& x_out, Vec3Soa& v_out) {
+                                       float theta, uint32_t begin, uint32_t end, Vec3Soa& x_out,
+                                       Vec3Soa& v_out) {
     for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
         using L = decltype(lanes);
-        const typename L::type vx = L::load(&v.x[i]) + L::load(&dv.x[i]);
-        const typename L::type vy = L::load(&v.y[i]) + L::load(&dv.y[i]);
-        const typename L::type vz = L::load(&v.z[i]) + L::load(&dv.z[i]);
-        store_vec3<L>(x_out, i, L::load(&x.x[i]) + vx * h, L::load(&x.y[i]) + vy * h,
-                      L::load(&x.z[i]) + vz * h);
-        store_vec3<L>(v_out, i, vx, vy, vz);
+        using T = typename L::type;
+        const T vx = L::load(&v.x[i]), vy = L::load(&v.y[i]), vz = L::load(&v.z[i]);
+        const T dvx = L::load(&dv.x[i]), dvy = L::load(&dv.y[i]), dvz = L::load(&dv.z[i]);
+        // theta = 1: v + dv, the same bits as backward Euler's v'.
+        store_vec3<L>(x_out, i, L::load(&x.x[i]) + (vx + dvx * theta) * h,
+                      L::load(&x.y[i]) + (vy + dvy * theta) * h, L::load(&x.z[i]) + (vz + dvz * theta) * h);
+        store_vec3<L>(v_out, i, vx + dvx, vy + dvy, vz + dvz);
     });
 }
 

@@ -14,10 +14,11 @@
 
 namespace cloth {
 
-// x_out_i = x_i + h (v_i + dv_i), v_out_i = v_i + dv_i. The outputs may be
-// the inputs (in place) or other buffers.
-void integrate_implicit(const Vec3Soa& x, const Vec3Soa& v, const Vec3Soa& dv, float h, uint32_t begin,
-                        uint32_t end, Vec3Soa& x_out, Vec3Soa& v_out);
+// x_out_i = x_i + h (v_i + theta dv_i), v_out_i = v_i + dv_i (theta = 1:
+// backward Euler). The outputs may be the inputs (in place) or other
+// buffers.
+void integrate_implicit(const Vec3Soa& x, const Vec3Soa& v, const Vec3Soa& dv, float h, float theta,
+                        uint32_t begin, uint32_t end, Vec3Soa& x_out, Vec3Soa& v_out);
 
 // v_i += h f_i / m_i; x_i += h v_i, where `force` already holds external and
 // spring forces. Pinned particles are left alone.

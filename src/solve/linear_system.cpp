@@ -8,7 +8,7 @@ CLOTH_HOT_LOOP void assemble_particles(const AssemblyPass& pass, uint32_t begin,
                                        Sym3Soa& diagonal, Sym3Soa& diagonal_inverse, Vec3Soa& rhs,
                                        Vec3Soa& p) {
     const Vec3Soa& external = *pass.external_force;
-    const float mass_factor = 1.0f + pass.h * pass.linear_drag;
+    const float mass_factor = 1.0f + pass.theta * pass.h * pass.linear_drag;
     // rhs starts as the external force, diagonal as m (1 + h c) I; the
     // springs add theirs.
     for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {

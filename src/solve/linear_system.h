@@ -35,7 +35,8 @@ struct AssemblyPass {
     const float* mass;
     const float* pinned;  // 1 for pinned particles, 0 for free ones
     float h;
-    float linear_drag;  // c: force -c m v, implicit on the diagonal
+    float linear_drag;   // c: force -c m v, implicit on the diagonal
+    float theta = 1.0f;  // the theta step's (integrate.h): the drag is taken at theta h
 };
 
 // Stage 2 (per particle, independent): f~_i = external + incident springs,

@@ -39,6 +39,8 @@ SolverSettings resolve_solver(const SolverSettings& requested, float dt, float s
     out.substeps = std::max(requested.substeps, substeps);
     if (!out.strain_limit.chosen)
         out.strain_limit = StrainLimit{kDefaultStrainLimit, kDefaultStrainLimitPasses};
+    const bool limited = out.strain_limit.max_strain > 0 && out.strain_limit.iterations > 0;
+    out.theta = limited ? kDefaultTheta : 1.0f;
     return out;
 }
 

@@ -31,6 +31,10 @@ struct SolverSettings {
     float cg_tolerance = 1e-6f;
     uint32_t cg_max_iterations = 1000;
     bool compression_safe_jacobian = true;
+    // How implicit a substep is (the theta step, integrate.h): 1 is the
+    // paper's backward Euler; below 1 the forces are taken part way
+    // through the substep, which damps less.
+    float theta = 1.0f;
     // PCG preconditioned by multigrid (multigrid.h) rather than block
     // Jacobi: what CLOTH_SOLVER_DEFAULT resolves to.
     bool multigrid = false;

@@ -212,7 +212,8 @@ void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, floa
     max_iterations_ = tethers_ != nullptr ? std::max(iterations, max_iterations) : iterations;
     first_pass_round_ = tethers_ != nullptr ? 1 : 0;
     pass_ = pass;
-    iterations_ = iterations;
+    iterations_ = asked_ = iterations;
+    past_promise_ = false;
     round_ = 0;
     h_ = h;
     x_ = &x;
@@ -259,6 +260,7 @@ void StrainLimiter::finish_round() {
                 over_limit += counts_[g].over_limit;
                 over_promise += counts_[g].over_promise;
             }
+            if (pass + 1 == asked_) past_promise_ = over_promise > 0;
             if (over_limit == 0) {
                 iterations_ = pass + 1;  // this pass applies nothing, nor would any after it
             } else if (over_promise > 0 && pass + 1 == iterations_ && iterations_ < max_iterations_) {

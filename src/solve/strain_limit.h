@@ -118,6 +118,10 @@ class StrainLimiter final : public StagedAlgorithm {
                const Tethers* tethers = nullptr, StretchCount* counts = nullptr, uint32_t max_iterations = 0);
     // Passes run so far (the last frame's, after it).
     uint32_t passes() const { return iterations_; }
+    // The last pass asked for found a spring longer than the limit plus
+    // kStrainPromiseSlack (with `counts`): the passes asked for did not
+    // hold it. False until that pass.
+    bool past_promise() const { return past_promise_; }
     // The current round applies corrections.
     bool applying() const { return !tether_round() && (round_ - first_pass_round_) % 2 == 1; }
 
@@ -132,7 +136,8 @@ class StrainLimiter final : public StagedAlgorithm {
 
     StrainLimitPass pass_{};
     const Tethers* tethers_ = nullptr;
-    uint32_t iterations_ = 0, max_iterations_ = 0, round_ = 0, first_pass_round_ = 0;
+    uint32_t iterations_ = 0, max_iterations_ = 0, asked_ = 0, round_ = 0, first_pass_round_ = 0;
+    bool past_promise_ = false;
     StretchCount* counts_ = nullptr;  // per group, written by the corrections or terms round
     float h_ = 0;
     Vec3Soa* x_ = nullptr;

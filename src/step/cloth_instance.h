@@ -223,6 +223,7 @@ class ClothInstance {
     /// One round of strain limiting, then the colliders again after the last
     /// round, and after every applying round of a substep with contacts.
     void limit_strain(const GroupTask& task);
+    void note_strain();
     /// One round of self-collision (hash, sort, contacts, project, respond).
     void resolve_self_contacts(const GroupTask& task);
     /// Checks the group's new state for NaN and Inf (in the frame's last round).
@@ -310,6 +311,12 @@ class ClothInstance {
     Tethers tethers_;                          // the strain limiter's long-range attachments
     HostVector<StretchCount> stretch_counts_;  // the strain limiter's counts, one per group
     bool tethers_follow_pins_ = false;         // planned for the current pin set
+    // The last substep's strain limiter ended past its promise, so the next
+    // runs backward Euler (solver_default.h): as the last successful frame
+    // ended (strained_, saved in snapshots) and in this frame so far.
+    bool strained_ = false;
+    bool substep_strained_ = false;
+    float theta_ = 1.0f;  // this substep's (integrate.h)
     uint32_t group_count_ = 0;
     Cursor cursor_;
     bool frame_done_ = true;

@@ -8,6 +8,8 @@
 // Layout (native endianness, floats IEEE 754):
 //   SnapshotHeader, then x, y, z of positions, of velocities and of pin
 //   targets (n floats each), then the pinned flags (n floats, 0 or 1).
+//   The header's flags say whether the last frame's strain limiter ended
+//   past its promise (the default's next frame depends on it).
 // The header's checksum is XXH3 of every byte before it and every byte
 // after it, so a restore checks it before it reads anything else: a
 // snapshot is either exactly what was saved or refused as corrupt.
@@ -45,9 +47,13 @@ struct SnapshotHeader {
     uint32_t rest_frames;
     float wind[3];
     float air_density, drag_coefficient, lift_coefficient, linear_drag;
-    uint32_t reserved;  // zero; keeps the checksum 8-byte aligned
+    uint32_t flags;     // kStrainedFlag or zero (zero in 1.5.0); keeps the checksum 8-byte aligned
     uint64_t checksum;  // XXH3 of every other byte of the snapshot
 };
+
+// The last frame's strain limiter ended a substep past its promise (the
+// default's next frame runs backward Euler: solver_default.h).
+constexpr uint32_t kStrainedFlag = 1;
 
 constexpr size_t kChecksumAt = offsetof(SnapshotHeader, checksum);
 constexpr size_t kAfterChecksum = kChecksumAt + sizeof(uint64_t);
@@ -87,6 +93,7 @@ void ClothInstance::save_snapshot(void* out) const {
     h.substeps = solver_.substeps;
     h.sleeping = sleeping_ ? 1 : 0;
     h.rest_frames = rest_frames_;
+    h.flags = strained_ ? kStrainedFlag : 0;
     for (int c = 0; c < 3; ++c) h.wind[c] = aero_.wind[c];
     h.air_density = aero_.air_density;
     h.drag_coefficient = aero_.drag_coefficient;
@@ -146,6 +153,7 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
         h.substeps < 1 || h.substeps > CLOTH_MAX_SUBSTEPS) {
         return corrupt("its solver settings are out of range");
     }
+    if ((h.flags & ~kStrainedFlag) != 0) return corrupt("it has flags no library of this format writes");
     const float air[7] = {h.wind[0],          h.wind[1],          h.wind[2],    h.air_density,
                           h.drag_coefficient, h.lift_coefficient, h.linear_drag};
     for (float a : air) {
@@ -182,6 +190,7 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
     }
     sleeping_ = h.sleeping != 0;
     rest_frames_ = h.rest_frames;
+    strained_ = (h.flags & kStrainedFlag) != 0;
     return {};
 }
 

@@ -21,8 +21,8 @@ LinearSystem ClothInstance::system() const {
 }
 
 AssemblyPass ClothInstance::assembly() const {
-    return AssemblyPass{springs_.get(),   &external_force_, mass_.data(), pinned_.data(), h_,
-                        aero_.linear_drag};
+    return AssemblyPass{springs_.get(), &external_force_, mass_.data(), pinned_.data(), h_, aero_.linear_drag,
+                        theta_};
 }
 
 SpringModel ClothInstance::spring_model() const {
@@ -96,7 +96,8 @@ CLOTH_HOT_LOOP void ClothInstance::evaluate_forces(const GroupTask& task) {
     // Springs: each spring (grid: each first particle) belongs to one group.
     uint32_t spring_begin, spring_end;
     task.items(springs_->item_count(), spring_begin, spring_end);
-    const float h = frame_solver_.kind == CLOTH_SOLVER_EXPLICIT ? 0.0f : h_;  // h = 0: plain forces
+    // h = 0: plain forces; the theta step takes them at theta h (integrate.h).
+    const float h = frame_solver_.kind == CLOTH_SOLVER_EXPLICIT ? 0.0f : theta_ * h_;
     springs_->evaluate(x_, v_, h, spring_model(), spring_begin, spring_end);
 }
 
@@ -143,7 +144,7 @@ void ClothInstance::integrate_implicitly(const GroupTask& task) {
     // dv is zero on pinned particles; they are placed below. Writes to x_, v_
     // or, on the frame's first integration, to the spare buffers.
     Vec3Soa& x_out = integration_x();
-    integrate_implicit(x_, v_, *solution_, h_, task.begin, task.end, x_out, integration_v());
+    integrate_implicit(x_, v_, *solution_, h_, theta_, task.begin, task.end, x_out, integration_v());
     land_pins(task.begin, task.end, x_out);
 }
 
@@ -188,6 +189,10 @@ void ClothInstance::limit_strain(const GroupTask& task) {
     // does fall on the pole and the chassis, needs them (strain 0.27 with
     // them, 1.4 without).
     if (collides_ && (strain_limiter_.last_round() || (applying && touching_))) collide(task);
+}
+
+void ClothInstance::note_strain() {
+    if (strain_limiter_.done()) substep_strained_ = strain_limiter_.past_promise();
 }
 
 void ClothInstance::resolve_self_contacts(const GroupTask& task) {

@@ -39,6 +39,7 @@ void ClothInstance::plan_substep() {
     plan_size_ = 0;
     solution_ = &dv_;  // where the solver leaves dv (JACOBI: record_iterative_result says)
     const cloth_solver_kind kind = frame_solver_.kind;
+    theta_ = substep_strained_ ? 1.0f : frame_solver_.theta;
     if (has_air()) plan(Stage::kAir, &C::apply_air);
     plan(Stage::kForces, &C::evaluate_forces);
     if (kind == CLOTH_SOLVER_EXPLICIT) {
@@ -66,7 +67,7 @@ void ClothInstance::plan_substep() {
         strain_limiter_.begin(pass, limit.iterations, h_, x_, v_, solver_work_.r, solver_work_.z, accelerate,
                               &grid_strain_terms_, &tethers_, stretch_counts_.data(),
                               kStrainLimitMorePasses * limit.iterations);
-        plan(Stage::kStrainLimit, &C::limit_strain, nullptr, &strain_limiter_);
+        plan(Stage::kStrainLimit, &C::limit_strain, &C::note_strain, &strain_limiter_);
     }
     if (self_collision_) {
         self_collision_->begin(x_, v_, mass_.data(), pinned_.data());
@@ -103,6 +104,7 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
             ? stiffness_over_mass(material_, mass_.data(), pinned_.data(), particle_count())
             : 0.0f;
     frame_solver_ = resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty());
+    substep_strained_ = strained_;
     // The default's own choice, then a quality policy's caps on it
     // (quality_settings): the host's budget wins.
     frame_own_iterations_ = frame_solver_.iterations;
@@ -226,6 +228,7 @@ Status ClothInstance::end_frame() {
             "the step (lower dt, raise substeps or iterations, or use a sturdier solver)");
     }
     last_step_result_ = frame_converged_ ? CLOTH_OK : CLOTH_ERROR_SOLVER_FAILED;
+    strained_ = substep_strained_;
     update_sleep();
     if (!frame_converged_) {
         return Status::error(CLOTH_ERROR_SOLVER_FAILED,

@@ -143,6 +143,22 @@ TEST(DefaultSolver, SubstepsFollowGamma) {
         << "explicit kinds are untouched";
 }
 
+TEST(DefaultSolver, TakesTheThetaStepOnlyWithAStrainLimitToWatchIt) {
+    const float dt = 1.0f / 60.0f, k_over_m = 1e6f;
+    cloth::SolverSettings requested;
+    requested.kind = CLOTH_SOLVER_DEFAULT;
+    EXPECT_EQ(cloth::resolve_solver(requested, dt, k_over_m, true).theta, cloth::kDefaultTheta)
+        << "the default's own strain limit";
+    requested.strain_limit = cloth::StrainLimit{0.05f, 2, true};
+    EXPECT_EQ(cloth::resolve_solver(requested, dt, k_over_m, true).theta, cloth::kDefaultTheta)
+        << "a limit the host set";
+    requested.strain_limit = cloth::StrainLimit{0.0f, 4, true};
+    EXPECT_EQ(cloth::resolve_solver(requested, dt, k_over_m, true).theta, 1.0f)
+        << "the host turned the limit off: backward Euler";
+    requested.kind = CLOTH_SOLVER_PCG;
+    EXPECT_EQ(cloth::resolve_solver(requested, dt, k_over_m, true).theta, 1.0f) << "other kinds keep theirs";
+}
+
 TEST(StrainLimitApi, BadLimitsAreRejectedAndChangeNothing) {
     SceneConfig config;
     Scene scene(config);
