@@ -1136,7 +1136,8 @@ CLOTH_API cloth_result cloth_is_sleeping(cloth_id cloth, bool* out_sleeping);
 
 /* A snapshot is a cloth's dynamic state in a caller's buffer: positions,
  * velocities, pins and pin targets, solver kind, iterations and substeps,
- * air and wind, and the sleep state. Restoring it into a cloth of the same
+ * air and wind, the sleep state, and whether CLOTH_SOLVER_DEFAULT's next
+ * substep is backward Euler (cloth_solver_kind). Restoring it into a cloth of the same
  * fabric and stepping again reproduces the same bits (replays, rollback
  * networking). Material, spring settings and feature settings are not in
  * it. The bytes are native-endian: for this library build and machine.
