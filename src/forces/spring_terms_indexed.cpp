@@ -6,6 +6,7 @@
 // products (many per substep) load blocks contiguously and gather only
 // the other particle's x: a 64x64 mesh's products took 58 % of its frame
 // when they gathered six block entries per slot as well.
+#include "base/lanes.h"
 #include "forces/spring_terms.h"
 
 namespace cloth {
@@ -16,15 +17,16 @@ namespace {
 // indexed loads.
 // kCable: with the strain cable (springs.h).
 template <bool kCable>
-void evaluate_kernel(uint32_t begin, uint32_t end, float h, SpringModel model,
-                     const uint32_t* __restrict first, const uint32_t* __restrict second,
-                     const float* __restrict rest, const float* __restrict stiffness,
-                     const float* __restrict damping, const float* __restrict px, const float* __restrict py,
-                     const float* __restrict pz, const float* __restrict vx, const float* __restrict vy,
-                     const float* __restrict vz, float* __restrict fx, float* __restrict fy,
-                     float* __restrict fz, float* __restrict bxx, float* __restrict bxy,
-                     float* __restrict bxz, float* __restrict byy, float* __restrict byz,
-                     float* __restrict bzz) {
+CLOTH_HOT_LOOP void evaluate_kernel(uint32_t begin, uint32_t end, float h, SpringModel model,
+                                    const uint32_t* __restrict first, const uint32_t* __restrict second,
+                                    const float* __restrict rest, const float* __restrict stiffness,
+                                    const float* __restrict damping, const float* __restrict px,
+                                    const float* __restrict py, const float* __restrict pz,
+                                    const float* __restrict vx, const float* __restrict vy,
+                                    const float* __restrict vz, float* __restrict fx, float* __restrict fy,
+                                    float* __restrict fz, float* __restrict bxx, float* __restrict bxy,
+                                    float* __restrict bxz, float* __restrict byy, float* __restrict byz,
+                                    float* __restrict bzz) {
     for (uint32_t s = begin; s < end; ++s) {
         const uint32_t i = first[s], j = second[s];
         const SpringTerm t =
@@ -43,12 +45,13 @@ void evaluate_kernel(uint32_t begin, uint32_t end, float h, SpringModel model,
 }
 
 // The blocks of springs [begin, end) at their two incidence slots.
-void slot_blocks_kernel(uint32_t begin, uint32_t end, const size_t* __restrict first_slot,
-                        const size_t* __restrict second_slot, const float* __restrict bxx,
-                        const float* __restrict bxy, const float* __restrict bxz, const float* __restrict byy,
-                        const float* __restrict byz, const float* __restrict bzz, float* __restrict oxx,
-                        float* __restrict oxy, float* __restrict oxz, float* __restrict oyy,
-                        float* __restrict oyz, float* __restrict ozz) {
+CLOTH_HOT_LOOP void slot_blocks_kernel(uint32_t begin, uint32_t end, const size_t* __restrict first_slot,
+                                       const size_t* __restrict second_slot, const float* __restrict bxx,
+                                       const float* __restrict bxy, const float* __restrict bxz,
+                                       const float* __restrict byy, const float* __restrict byz,
+                                       const float* __restrict bzz, float* __restrict oxx,
+                                       float* __restrict oxy, float* __restrict oxz, float* __restrict oyy,
+                                       float* __restrict oyz, float* __restrict ozz) {
     for (uint32_t s = begin; s < end; ++s) {
         for (const size_t k : {first_slot[s], second_slot[s]}) {
             oxx[k] = bxx[s];
@@ -62,10 +65,11 @@ void slot_blocks_kernel(uint32_t begin, uint32_t end, const size_t* __restrict f
 }
 
 // One incidence slot (entry of particle i at base + i): f_i += sign * force_s.
-void gather_kernel(uint32_t begin, uint32_t end, int64_t base, const uint32_t* __restrict spring,
-                   const float* __restrict sign, const float* __restrict sfx, const float* __restrict sfy,
-                   const float* __restrict sfz, float* __restrict fx, float* __restrict fy,
-                   float* __restrict fz) {
+CLOTH_HOT_LOOP void gather_kernel(uint32_t begin, uint32_t end, int64_t base,
+                                  const uint32_t* __restrict spring, const float* __restrict sign,
+                                  const float* __restrict sfx, const float* __restrict sfy,
+                                  const float* __restrict sfz, float* __restrict fx, float* __restrict fy,
+                                  float* __restrict fz) {
     for (uint32_t i = begin; i < end; ++i) {
         const uint32_t s = spring[base + i];
         const float g = sign[base + i];
@@ -76,12 +80,13 @@ void gather_kernel(uint32_t begin, uint32_t end, int64_t base, const uint32_t* _
 }
 
 // One incidence slot: w_i += A_s.
-void gather_block_kernel(uint32_t begin, uint32_t end, int64_t base, const uint32_t* __restrict spring,
-                         const float* __restrict sxx, const float* __restrict sxy,
-                         const float* __restrict sxz, const float* __restrict syy,
-                         const float* __restrict syz, const float* __restrict szz, float* __restrict wxx,
-                         float* __restrict wxy, float* __restrict wxz, float* __restrict wyy,
-                         float* __restrict wyz, float* __restrict wzz) {
+CLOTH_HOT_LOOP void gather_block_kernel(uint32_t begin, uint32_t end, int64_t base,
+                                        const uint32_t* __restrict spring, const float* __restrict sxx,
+                                        const float* __restrict sxy, const float* __restrict sxz,
+                                        const float* __restrict syy, const float* __restrict syz,
+                                        const float* __restrict szz, float* __restrict wxx,
+                                        float* __restrict wxy, float* __restrict wxz, float* __restrict wyy,
+                                        float* __restrict wyz, float* __restrict wzz) {
     for (uint32_t i = begin; i < end; ++i) {
         const uint32_t s = spring[base + i];
         wxx[i] += sxx[s];
@@ -94,11 +99,13 @@ void gather_block_kernel(uint32_t begin, uint32_t end, int64_t base, const uint3
 }
 
 // One incidence slot: q_i += A_s x_other, A_s stored at the slot.
-void product_kernel(uint32_t begin, uint32_t end, int64_t base, const uint32_t* __restrict other,
-                    const float* __restrict sxx, const float* __restrict sxy, const float* __restrict sxz,
-                    const float* __restrict syy, const float* __restrict syz, const float* __restrict szz,
-                    const float* __restrict xx, const float* __restrict xy, const float* __restrict xz,
-                    float* __restrict qx, float* __restrict qy, float* __restrict qz) {
+CLOTH_HOT_LOOP void product_kernel(uint32_t begin, uint32_t end, int64_t base,
+                                   const uint32_t* __restrict other, const float* __restrict sxx,
+                                   const float* __restrict sxy, const float* __restrict sxz,
+                                   const float* __restrict syy, const float* __restrict syz,
+                                   const float* __restrict szz, const float* __restrict xx,
+                                   const float* __restrict xy, const float* __restrict xz,
+                                   float* __restrict qx, float* __restrict qy, float* __restrict qz) {
     for (uint32_t i = begin; i < end; ++i) {
         const int64_t s = base + i;
         const uint32_t o = other[s];
