@@ -673,7 +673,7 @@ CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id fabric, uint3
 /// How a cloth's implicit step is solved (cloth_solver_settings.kind).
 typedef enum cloth_solver_kind {
     /// the library's choice: PCG preconditioned by multigrid, 5 iterations, substeps picked per step from
-    /// gamma = dt^2 k_max / m_min, and an 8 % strain limit unless one is set (docs/accuracy.md); a cloth of
+    /// gamma = dt^2 k_max / m_min and no longer than 1/120 s, and an 8 % strain limit unless one is set (docs/accuracy.md); a cloth of
     /// 16 particles or fewer gets block-Jacobi PCG with 16 iterations. With a strain limit its step takes
     /// the forces 0.7 of the way through each substep instead of at its end (a theta step, which damps the
     /// motion less than backward Euler at the same cost), and takes them at the end (backward Euler) in a

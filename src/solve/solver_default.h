@@ -25,13 +25,18 @@ float stiffness_over_mass(const Material& material, const float* mass, const flo
 //
 // Multigrid converges in a number of iterations that does not grow with
 // stiffness (frontier.md), so its substeps are there for accuracy, not to
-// let the solve converge: measured against the converged reference
-// (docs/accuracy.md), 5 iterations with a substep gamma of 2500 are more
-// accurate in the hanging, falling and flag scenes at 64x64 than 16
-// block-Jacobi iterations with a substep gamma of 700, at two thirds of
-// the cost or less.
+// let the solve converge, and implicit Euler's error follows the substep's
+// length, not the resolution: the longest substep (below) sets the
+// accuracy, the same at every resolution, and the substep gamma only adds
+// substeps for stiff cloth. Measured (docs/accuracy.md): with the theta
+// step, a substep gamma of 8000 and substeps of at most 1/120 s hold every
+// cell of the stability map and of the default matrix in still air, run a
+// 128x128 cloth at 1e3 N/m in two substeps (17x a JACOBI k=1 step instead
+// of 33x with 2500 and 1/30 s) and put it 4.0 / 15 / 125 mm from the
+// converged reference (hanging / falling flat / flag; 64x64: 0.33 / 18 /
+// 121 mm, unchanged).
 constexpr uint32_t kDefaultMultigridIterations = 5;
-constexpr double kDefaultMultigridSubstepGamma = 2500.0;
+constexpr double kDefaultMultigridSubstepGamma = 8000.0;
 // Block Jacobi, measured in docs/accuracy.md: a substep gamma of ~700 with 16 PCG
 // iterations keeps a 1 kg cloth under 10 % strain without energy gain at
 // 64x64 and k = 1e4 N/m. Softer springs stretch more than 10 % near the pins
@@ -42,12 +47,14 @@ constexpr uint32_t kDefaultPcgIterations = 16;
 constexpr float kDefaultPcgTolerance = 1e-4f;
 constexpr double kDefaultSubstepGamma = 700.0;
 constexpr uint32_t kDefaultMaxSubsteps = 16;
-// And never a substep longer than this, whatever gamma: a long step of a
-// soft or heavy cloth pulls the strain cable (101 times the springs'
-// stiffness, which gamma does not count) further than 16 iterations
-// converge, and such cells of the stability map gained 16 J to 8e4 J at
-// 1/10 s with one substep (docs/stability.md).
-constexpr double kDefaultLongestSubstep = 1.0 / 30.0;
+// And never a substep longer than this, whatever gamma: two substeps at
+// 60 Hz, which the flag in wind needs (one substep of 1/60 s, converged,
+// is 186 mm from the reference at 64x64). It also bounds how far a long
+// step of a soft or heavy cloth pulls the strain cable (101 times the
+// springs' stiffness, which gamma does not count): such cells of the
+// stability map gained 16 J to 8e4 J at 1/10 s with one substep, and none
+// gains with this bound (docs/stability.md).
+constexpr double kDefaultLongestSubstep = 1.0 / 120.0;
 constexpr float kDefaultStrainLimit = 0.08f;
 constexpr uint32_t kDefaultStrainLimitPasses = 4;
 // The strain cable's stiffness as a multiple of the spring's own

@@ -111,8 +111,9 @@ TEST(DefaultSolver, SubstepsFollowGamma) {
     requested.kind = CLOTH_SOLVER_DEFAULT;
     // gamma = dt^2 k / m; one substep while gamma is at most the limit: the
     // multigrid one for a cloth with coarse levels, the block-Jacobi one
-    // for a cloth too small for them.
-    const float dt = 1.0f / 60.0f;
+    // for a cloth too small for them. A step no longer than the longest
+    // substep, so that gamma alone decides.
+    const float dt = static_cast<float>(cloth::kDefaultLongestSubstep);
     for (const bool multigrid : {true, false}) {
         SCOPED_TRACE(multigrid ? "multigrid" : "block Jacobi");
         const double limit = multigrid ? cloth::kDefaultMultigridSubstepGamma : cloth::kDefaultSubstepGamma;
@@ -129,10 +130,10 @@ TEST(DefaultSolver, SubstepsFollowGamma) {
         EXPECT_EQ(resolve(dt, low).multigrid, multigrid);
         EXPECT_EQ(resolve(dt, low).iterations,
                   multigrid ? cloth::kDefaultMultigridIterations : cloth::kDefaultPcgIterations);
-        // However soft the cloth, no substep is longer than kDefaultLongestSubstep.
-        EXPECT_EQ(resolve(1.0f / 30.0f, 0.0f).substeps, 1u);
-        EXPECT_EQ(resolve(0.05f, 0.0f).substeps, 2u);
-        EXPECT_EQ(resolve(0.1f, 0.0f).substeps, 3u);
+        // However soft the cloth, no substep is longer than kDefaultLongestSubstep (1/120 s).
+        EXPECT_EQ(resolve(1.0f / 60.0f, 0.0f).substeps, 2u);
+        EXPECT_EQ(resolve(1.0f / 30.0f, 0.0f).substeps, 4u);
+        EXPECT_EQ(resolve(0.1f, 0.0f).substeps, 12u);
     }
     const float low = float(cloth::kDefaultMultigridSubstepGamma) / (dt * dt);
     requested.substeps = 3;
