@@ -673,12 +673,12 @@ CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id fabric, uint3
 /// How a cloth's implicit step is solved (cloth_solver_settings.kind).
 typedef enum cloth_solver_kind {
     /// the library's choice: PCG preconditioned by multigrid, 5 iterations, substeps picked per step from
-    /// gamma = dt^2 k_max / m_min and no longer than 1/120 s, and an 8 % strain limit unless one is set (docs/accuracy.md); a cloth of
-    /// 16 particles or fewer gets block-Jacobi PCG with 16 iterations. With a strain limit its step takes
-    /// the forces 0.7 of the way through each substep instead of at its end (a theta step, which damps the
-    /// motion less than backward Euler at the same cost), and takes them at the end (backward Euler) in a
-    /// substep after one whose strain-limit passes left a spring more than 0.01 past the limit, and in
-    /// every substep when the limit is 0 (off)
+    /// gamma = dt^2 k_max / m_min and no longer than 1/120 s, and an 8 % strain limit unless one is set
+    /// (docs/accuracy.md); a cloth of 16 particles or fewer gets block-Jacobi PCG with 16 iterations.
+    /// With a strain limit its step takes the forces 0.7 of the way through each substep instead of at
+    /// its end (a theta step, which damps the motion less than backward Euler at the same cost), and
+    /// takes them at the end (backward Euler) in a substep after one whose strain-limit passes left a
+    /// spring more than 0.01 past the limit, and in every substep when the limit is 0 (off)
     CLOTH_SOLVER_DEFAULT = 0,
     /// linearized backward Euler, `iterations` Jacobi sweeps (1 = the paper's method)
     CLOTH_SOLVER_JACOBI = 1,
@@ -1137,10 +1137,11 @@ CLOTH_API cloth_result cloth_is_sleeping(cloth_id cloth, bool* out_sleeping);
 /* A snapshot is a cloth's dynamic state in a caller's buffer: positions,
  * velocities, pins and pin targets, solver kind, iterations and substeps,
  * air and wind, the sleep state, and whether CLOTH_SOLVER_DEFAULT's next
- * substep is backward Euler (cloth_solver_kind). Restoring it into a cloth of the same
- * fabric and stepping again reproduces the same bits (replays, rollback
- * networking). Material, spring settings and feature settings are not in
- * it. The bytes are native-endian: for this library build and machine.
+ * substep is backward Euler (cloth_solver_kind). Restoring it into a cloth
+ * of the same fabric and stepping again reproduces the same bits (replays,
+ * rollback networking). Material, spring settings and feature settings
+ * are not in it. The bytes are native-endian: for this library build and
+ * machine.
  *
  * A snapshot opens with a header: a magic number, the snapshot format
  * version, the version of the library that wrote it, the size of the whole
