@@ -29,8 +29,9 @@ float stiffness_over_mass(const Material& material, const float* mass, const flo
 // length, not the resolution: the longest substep (below) sets the
 // accuracy, the same at every resolution, and the substep gamma only adds
 // substeps for stiff cloth. Measured (docs/accuracy.md): with the theta
-// step, a substep gamma of 8000 and substeps of at most 1/120 s hold every
-// cell of the stability map and of the default matrix in still air, run a
+// step, a substep gamma of 8000 and substeps of at most 1/120 s leave no
+// cell of the stability map gaining energy or blowing up, hold every cell
+// of the default matrix in still air, run a
 // 128x128 cloth at 1e3 N/m in two substeps (17x a JACOBI k=1 step instead
 // of 33x with 2500 and 1/30 s) and put it 4.0 / 15 / 125 mm from the
 // converged reference (hanging / falling flat / flag; 64x64: 0.33 / 18 /
@@ -67,7 +68,7 @@ constexpr float kStrainCableStiffness = 100.0f;
 // the default's error against the converged reference in calm scenes. At
 // 0.7 the 64x64 hanging, falling and flag scenes are 0.33 / 18 / 121 mm
 // off instead of 0.82 / 31 / 141 at the same cost, and the stability map
-// does not change (docs/accuracy.md). But the less damped cloth snaps
+// does not lose a cell (docs/accuracy.md). But the less damped cloth snaps
 // harder when something yanks it (a pin moved 10 m, a flag's edge at
 // 30 m/s), so a substep after one whose strain limiter ended past its
 // promise runs backward Euler (step/frame_plan.cpp), as does every substep
