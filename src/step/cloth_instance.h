@@ -223,6 +223,7 @@ class ClothInstance {
     /// One round of strain limiting, then the colliders again after the last
     /// round, and after every applying round of a substep with contacts.
     void limit_strain(const GroupTask& task);
+    /// After the strain limiter's last round: whether it ended past its promise.
     void note_strain();
     /// One round of self-collision (hash, sort, contacts, project, respond).
     void resolve_self_contacts(const GroupTask& task);

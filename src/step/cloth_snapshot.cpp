@@ -8,8 +8,9 @@
 // Layout (native endianness, floats IEEE 754):
 //   SnapshotHeader, then x, y, z of positions, of velocities and of pin
 //   targets (n floats each), then the pinned flags (n floats, 0 or 1).
-//   The header's flags say whether the last frame's strain limiter ended
-//   past its promise (the default's next frame depends on it).
+//   The header's flags say whether the strain limiter of the last frame's
+//   last substep ended past its promise (the default's next substep
+//   depends on it).
 // The header's checksum is XXH3 of every byte before it and every byte
 // after it, so a restore checks it before it reads anything else: a
 // snapshot is either exactly what was saved or refused as corrupt.
@@ -51,8 +52,8 @@ struct SnapshotHeader {
     uint64_t checksum;  // XXH3 of every other byte of the snapshot
 };
 
-// The last frame's strain limiter ended a substep past its promise (the
-// default's next frame runs backward Euler: solver_default.h).
+// The last frame's last substep ended with its strain limiter past its
+// promise (the default's next substep runs backward Euler: solver_default.h).
 constexpr uint32_t kStrainedFlag = 1;
 
 constexpr size_t kChecksumAt = offsetof(SnapshotHeader, checksum);
