@@ -758,7 +758,8 @@ typedef struct cloth_strain_limit {
     float max_strain;
     /// passes per substep, 1..CLOTH_MAX_STRAIN_LIMIT_ITERATIONS; default 4
     /// (see above: fewer when nothing is past the limit, up to 4 times as
-    /// many while a spring is past it by more than 0.01)
+    /// many while a spring is past it by more than 0.01, unless a quality
+    /// policy has lowered the cloth: see "Frame budget")
     uint32_t iterations;
 } cloth_strain_limit;
 
@@ -1072,7 +1073,10 @@ CLOTH_API cloth_result cloth_world_set_zone_callbacks(cloth_world_id world, clot
  * step: the policy lowers it from what it ran (iterations first) and raises
  * it back up to that choice, never past it; cloth_stats.last_solver_iterations
  * shows what a step ran, and setting the policy again (or the solver) lifts
- * the policy's cuts. */
+ * the policy's cuts. While the policy holds a cloth below that quality, its
+ * strain limit runs only the passes asked for (cloth_strain_limit.iterations),
+ * not the extra passes it otherwise adds while a spring stays past the limit:
+ * the frame keeps to the budget and the strain gives. */
 
 /// Set the world's frame budget in milliseconds, >= 0 (0: no budget, the default).
 CLOTH_API cloth_result cloth_world_set_frame_budget(cloth_world_id world, float milliseconds);

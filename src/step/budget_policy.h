@@ -13,6 +13,9 @@
 //
 // Lowering takes iterations first, then substeps; raising undoes it in the
 // reverse order. The hysteresis band (70%..100%) keeps it from oscillating.
+// A lowered cloth also runs only the strain-limit passes asked for
+// (ClothInstance::quality_lowered): the extra passes would grow as the
+// substeps shrink, which the cost model above cannot see.
 // A CLOTH_SOLVER_DEFAULT cloth picks its own iterations and substeps every
 // frame: the policy lowers from what it ran and keeps the result as caps on
 // that choice, and raising ends when the caps reach it

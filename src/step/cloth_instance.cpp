@@ -157,6 +157,14 @@ bool ClothInstance::quality_can_rise() const {
            solver_.default_substep_cap > 0;
 }
 
+bool ClothInstance::quality_lowered() const {
+    if (!quality_.enabled) return false;
+    if (solver_.kind == CLOTH_SOLVER_DEFAULT)
+        return frame_solver_.iterations < frame_own_iterations_ ||
+               frame_solver_.substeps < frame_own_substeps_;
+    return solver_.iterations < quality_.max_iterations || solver_.substeps < quality_.max_substeps;
+}
+
 // ---------------------------------------------------------------- sleep
 
 void ClothInstance::set_sleep(const SleepSettings& settings) {

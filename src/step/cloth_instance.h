@@ -116,6 +116,10 @@ class ClothInstance {
     void set_quality_settings(const SolverSettings& settings);
     // Whether the policy may raise them: not for a default running its own choice.
     bool quality_can_rise() const;
+    // Whether this frame runs below the quality the policy would give it
+    // with time to spare (a default under caps, another kind below the
+    // policy's top iterations or substeps).
+    bool quality_lowered() const;
 
     // Snapshots (cloth_snapshot.cpp): the dynamic state in a flat buffer.
     size_t snapshot_size() const;

@@ -175,6 +175,58 @@ TEST(Budget, PolicyBoundsAreValidatedAndEnablingClampsTheSolver) {
     EXPECT_EQ(iterations_of(cloth), 8u);
 }
 
+// A cloth whose strain limiter needs more passes than it was asked for (1 kg
+// per particle hanging from two corners: springs stay past the limit) runs
+// them while it has time, and only the passes asked for once the policy has
+// lowered it: cutting a substep must not make those passes, and not the
+// frame, the thing that grows.
+TEST(Budget, ALoweredClothRunsOnlyTheStrainLimitPassesAskedFor) {
+    cloth_world_desc world_desc = cloth_default_world_desc();
+    cloth_world_id world{};
+    ASSERT_EQ(cloth_world_create(&world_desc, &world), CLOTH_OK);
+    cloth_grid_desc grid = cloth_default_grid_desc();
+    grid.columns = grid.rows = 32;
+    cloth_fabric_id fabric{};
+    ASSERT_EQ(cloth_fabric_create_grid(world, &grid, &fabric), CLOTH_OK);
+    cloth_desc desc = cloth_default_desc();
+    desc.fabric = fabric;
+    desc.particle_mass = 1.0f;
+    cloth_id cloth{};
+    ASSERT_EQ(cloth_create(world, &desc, &cloth), CLOTH_OK);
+    const uint32_t pins[] = {0, 31};
+    ASSERT_EQ(cloth_pin(cloth, pins, 2), CLOTH_OK);
+    cloth_strain_limit limit = cloth_default_strain_limit();
+    limit.max_strain = 0.08f;
+    ASSERT_EQ(cloth_set_strain_limit(cloth, &limit), CLOTH_OK);
+    cloth_quality_policy policy = cloth_default_quality_policy();
+    policy.enabled = true;
+    ASSERT_EQ(cloth_set_quality_policy(cloth, &policy), CLOTH_OK);
+    ASSERT_EQ(cloth_world_set_profiling(world, 1u << 16), CLOTH_OK);  // stage task counts
+    // Rounds of the strain limiter per substep: its tasks over the force
+    // stage's (one task per group and substep each).
+    const auto strain_rounds = [&] {
+        const cloth_frame_profile p = profile_of(world);
+        return static_cast<double>(p.stage_tasks[CLOTH_STAGE_STRAIN_LIMIT]) /
+               p.stage_tasks[CLOTH_STAGE_FORCES];
+    };
+    // A tether round and two rounds (corrections, moves) per pass.
+    const double asked = 1.0 + 2.0 * limit.iterations;
+    double most = 0;
+    for (int i = 0; i < 30; ++i) {
+        ASSERT_EQ(cloth_step(world, kDt), CLOTH_OK);
+        most = std::max(most, strain_rounds());
+    }
+    EXPECT_GT(most, asked) << "with time to spare it runs more passes than asked for";
+    ASSERT_EQ(cloth_world_set_frame_budget(world, 1e-6f), CLOTH_OK);  // no step meets it: always lowered
+    for (int i = 0; i < 30; ++i) {
+        ASSERT_EQ(cloth_step(world, kDt), CLOTH_ERROR_OVER_BUDGET);
+        if (i >= 2) {
+            EXPECT_LE(strain_rounds(), asked) << "frame " << i;
+        }
+    }
+    cloth_world_destroy(world);
+}
+
 // Recovery from a budget blow-out: a budget no step can meet makes every
 // step return CLOTH_ERROR_OVER_BUDGET and log a warning with that code, yet
 // the cloths end in the same bits as in a world without a budget, and once
