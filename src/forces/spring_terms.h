@@ -43,7 +43,10 @@ class SpringTerms {
     // Stage 2 for particles [begin, end): force_i += sum of the incident
     // spring forces (signed); diagonal_i += sum of their A_s unless null.
     virtual void gather(uint32_t begin, uint32_t end, Vec3Soa& force, Sym3Soa* diagonal) const = 0;
-    // q_i = sum over incident springs of A_s x_other, particles [begin, end).
+    // q_i = sum over incident springs of A_s x_other, particles [begin, end),
+    // with the blocks of the last evaluate once a gather with a diagonal
+    // (the assembly stage) has run over those particles: the index-pair
+    // layout copies each block next to its particle there.
     virtual void neighbour_sums(const Vec3Soa& x, uint32_t begin, uint32_t end, Vec3Soa& q) const = 0;
     // Every spring's (i, j, A_s) once, in a fixed order.
     virtual void for_each_block(const std::function<void(uint32_t, uint32_t, const Sym3&)>& visit) const = 0;
