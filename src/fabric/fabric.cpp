@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "base/hash.h"
@@ -28,6 +29,8 @@ Fabric::Fabric(const HostMemory* memory)
       triangle_incidence(HostAllocator<uint32_t>(memory)),
       spring_slots(memory),
       triangle_slots(memory),
+      limited_slots(memory),
+      limited_slot_rest(HostAllocator<float>(memory)),
       grid_families(HostAllocator<SpringFamily>(memory)),
       grid_triangle_shapes(HostAllocator<uint32_t>(memory)),
       grid_cell_mask(HostAllocator<float>(memory)),
@@ -155,6 +158,34 @@ Status finish_fabric(const std::vector<SpringSpec>& springs, Fabric& f) {
                                                      : f.spring_first[spring];
         f.spring_slots.sign[slot] = e == UINT32_MAX ? 0.0f : first ? 1.0f : -1.0f;
     });
+    // The strain limiter's lists: the same, structural and shear springs only.
+    std::vector<uint32_t> limited;
+    for (uint32_t s = 0; s < count; ++s)
+        if (f.spring_kind[s] != kBend) limited.push_back(s);
+    HostVector<uint32_t> limited_offset{HostAllocator<uint32_t>(f.memory)};
+    HostVector<uint32_t> limited_incidence{HostAllocator<uint32_t>(f.memory)};
+    build_incidence(
+        n, static_cast<uint32_t>(limited.size()), 2,
+        [&](uint32_t l, uint32_t* out) {
+            out[0] = f.spring_first[limited[l]];
+            out[1] = f.spring_second[limited[l]];
+        },
+        limited_offset, limited_incidence);
+    build_slots(limited_offset, true, f.limited_slots, [&](size_t slot, uint32_t p, uint32_t e) {
+        const uint32_t spring = e == UINT32_MAX ? count : limited[limited_incidence[e]];
+        const bool first = e != UINT32_MAX && f.spring_first[spring] == p;
+        f.limited_slots.item[slot] = spring;
+        f.limited_slots.other[slot] = e == UINT32_MAX ? p
+                                      : first         ? f.spring_second[spring]
+                                                      : f.spring_first[spring];
+        f.limited_slots.sign[slot] = e == UINT32_MAX ? 0.0f : first ? 1.0f : -1.0f;
+    });
+    f.limited_slot_rest.resize(f.limited_slots.item.size());
+    for (size_t slot = 0; slot < f.limited_slot_rest.size(); ++slot) {
+        const uint32_t spring = f.limited_slots.item[slot];
+        f.limited_slot_rest[slot] =
+            spring < count ? f.spring_rest_length[spring] : std::numeric_limits<float>::infinity();
+    }
     build_incidence(
         n, t_count, 3,
         [&](uint32_t t, uint32_t* out) {

@@ -114,6 +114,11 @@ struct Fabric {
     // the gathers run as vectorized loops over particles.
     PaddedSlots spring_slots;    // item: spring; other: particle at its other end; sign: +-1
     PaddedSlots triangle_slots;  // item: triangle
+    // The strain limiter's: the same for structural and shear springs only
+    // (in the same order), and per slot its spring's rest length (infinity
+    // for padding, which is never over the limit).
+    PaddedSlots limited_slots;  // item, other and sign as in spring_slots
+    HostVector<float> limited_slot_rest;
 
     // Grid fabrics only (empty otherwise): the same springs as families,
     // and the triangles as two shapes per cell. Shape k of the cell whose

@@ -10,7 +10,9 @@
 // one pass over the springs of each structural and shear family, stored by
 // first particle, then one pass per particle summing the families in a
 // fixed order. Every loop is contiguous and vectorizes; the general path
-// walks each particle's incidence list with a square root per spring end.
+// runs over the fabric's padded slots of structural and shear springs
+// (Fabric::limited_slots), a square root per spring end, vectorized with
+// gathers.
 #pragma once
 
 #include "base/soa.h"

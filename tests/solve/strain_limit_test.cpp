@@ -315,6 +315,67 @@ PassesOutcome run_passes(const cloth::Fabric& fabric, float stretch, uint32_t pa
     return out;
 }
 
+// The definition the mesh path's vectorized slot loop must keep to the bit:
+// each particle walks its incidence list in order and adds the correction
+// of every structural or shear spring past the limit.
+cloth::StretchCount corrections_by_walking(const cloth::StrainLimitPass& pass, const cloth::Vec3Soa& x,
+                                           cloth::Vec3Soa& correction) {
+    const cloth::Fabric& f = *pass.fabric;
+    const float stretch_limit = 1.0f + pass.max_strain;
+    cloth::StretchCount count;
+    for (uint32_t i = 0; i < f.particle_count(); ++i) {
+        Vec3 sum = Vec3::Zero();
+        if (pass.pinned[i] == 0.0f) {
+            const float own = 1.0f / pass.mass[i];
+            for (uint32_t e = f.incidence_offset[i]; e < f.incidence_offset[i + 1]; ++e) {
+                const uint32_t s = f.incidence_spring[e];
+                if (f.spring_kind[s] == cloth::kBend) continue;
+                const uint32_t j = f.spring_first[s] == i ? f.spring_second[s] : f.spring_first[s];
+                const Vec3 d = x.get(j) - x.get(i);
+                const float length = d.norm(), allowed = stretch_limit * f.spring_rest_length[s];
+                if (!(length > allowed)) continue;
+                ++count.over_limit;
+                count.over_promise +=
+                    length > (stretch_limit + cloth::kStrainPromiseSlack) * f.spring_rest_length[s];
+                const float other = pass.pinned[j] != 0.0f ? 0.0f : 1.0f / pass.mass[j];
+                const float share = own / (own + other);
+                sum += d * (0.5f * share * (length - allowed) / length);
+            }
+        }
+        correction.set(i, sum);
+    }
+    return count;
+}
+
+TEST(StrainLimitPasses, AMeshPassGivesTheBitsOfAWalkOverEachParticlesSprings) {
+    auto fabric = cloth::testing::make_mesh_from_grid(20, 17);
+    ASSERT_TRUE(fabric->grid_families.empty()) << "a mesh: the general path";
+    const cloth::Material material = cloth::testing::uniform_material(500.0f, 0.3f, 1.0f);
+    cloth::ClothInstance cloth(cloth::testing::heap(), fabric, material, cloth::SolverSettings{},
+                               cloth::testing::still_air());
+    cloth::testing::perturb(cloth, 0.3f);  // many springs past the limit, some far past
+    const uint32_t n = cloth.particle_count();
+    std::vector<float> mass(n, 0.01f), pinned(n, 0.0f);
+    pinned[0] = pinned[5] = 1.0f;
+    mass[3] = 0.05f;
+    const cloth::StrainLimitPass pass{fabric.get(), mass.data(), pinned.data(), 0.05f};
+    cloth::Vec3Soa walked(cloth::testing::heap()), looped(cloth::testing::heap());
+    walked.resize(n);
+    looped.resize(n);
+    const cloth::StretchCount expected = corrections_by_walking(pass, cloth.positions(), walked);
+    // Two ranges, as two workers would run them.
+    cloth::StretchCount a = cloth::strain_limit_corrections(pass, cloth.positions(), 0, 150, looped);
+    const cloth::StretchCount b = cloth::strain_limit_corrections(pass, cloth.positions(), 150, n, looped);
+    ASSERT_GT(expected.over_limit, 100u);
+    ASSERT_GT(expected.over_promise, 0u);
+    EXPECT_EQ(a.over_limit + b.over_limit, expected.over_limit);
+    EXPECT_EQ(a.over_promise + b.over_promise, expected.over_promise);
+    for (uint32_t i = 0; i < n; ++i) {
+        const Vec3 u = walked.get(i), v = looped.get(i);
+        EXPECT_EQ(std::memcmp(&u, &v, sizeof u), 0) << "particle " << i;
+    }
+}
+
 // Local passes move tension one spring per pass; the Chebyshev schedule
 // carries it further in as many passes, on the grid's family loops and on
 // a mesh's incidence lists alike, and a pinned particle stays put.
