@@ -741,7 +741,10 @@ CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
 /// the springs, about 2 ms for 4,096 particles and 10 ms for 16,384);
 /// then (Provot 1995)
 /// structural and shear springs still longer than the limit are pulled
-/// back in parallel passes, moving positions and velocities together
+/// back in parallel passes (on a grid, in the same passes, each particle
+/// and the one four places on along its row and column are held within
+/// the limit of their rest distance, which carries the pull across the
+/// cloth in fewer passes), moving positions and velocities together
 /// (with every kind but CLOTH_SOLVER_EXPLICIT each pass but the last also
 /// carries on along the previous passes' move, a Chebyshev acceleration):
 /// `iterations` passes, fewer once a pass finds no spring past the limit,

@@ -72,23 +72,54 @@ StretchCount strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa
 }
 
 GridStrainTerms::GridStrainTerms(const HostMemory* memory)
-    : family(HostAllocator<uint32_t>(memory)),
+    : reach(HostAllocator<SpringFamily>(memory)),
+      families(HostAllocator<const SpringFamily*>(memory)),
+      weight(HostAllocator<float>(memory)),
       x(HostAllocator<float>(memory)),
       y(HostAllocator<float>(memory)),
       z(HostAllocator<float>(memory)),
       share(HostAllocator<float>(memory)) {}
 
 void GridStrainTerms::resize(const Fabric& fabric) {
-    family.clear();
-    lead = 0;
-    for (uint32_t f = 0; f < fabric.grid_families.size(); ++f) {
-        const SpringFamily& spring_family = fabric.grid_families[f];
-        if (spring_family.kind == kBend) continue;
-        family.push_back(f);
-        lead = std::max(lead, spring_family.offset);
+    const uint32_t n = fabric.particle_count();
+    reach.clear();
+    families.clear();
+    weight.clear();
+    // A grid's columns: the offset of its structural springs along rows.
+    uint32_t columns = 0;
+    for (const SpringFamily& family : fabric.grid_families) {
+        if (family.kind == kStructural) columns = std::max(columns, family.offset);
     }
-    stride = lead + fabric.particle_count();
-    for (HostVector<float>* a : {&x, &y, &z, &share}) a->assign(size_t{stride} * family.size(), 0.0f);
+    if (columns > 1) {
+        for (const uint32_t offset : {kStrainReach, kStrainReach * columns}) {
+            SpringFamily family(fabric.memory);
+            family.offset = offset;
+            family.mask.assign(n, 0.0f);
+            family.rest_length.assign(n, 0.0f);
+            bool any = false;
+            for (uint32_t p = 0; p + offset < n; ++p) {
+                if (offset < columns && p % columns + offset >= columns) continue;  // past the row's end
+                family.mask[p] = 1.0f;
+                family.rest_length[p] = (fabric.rest_positions[p + offset] - fabric.rest_positions[p]).norm();
+                any = true;
+            }
+            if (any) reach.push_back(std::move(family));
+        }
+    }
+    lead = 0;
+    for (const SpringFamily& family : fabric.grid_families) {
+        if (family.kind == kBend) continue;
+        families.push_back(&family);
+        weight.push_back(1.0f);
+        lead = std::max(lead, family.offset);
+    }
+    for (const SpringFamily& family : reach) {
+        families.push_back(&family);
+        weight.push_back(kStrainReachWeight);
+        lead = std::max(lead, family.offset);
+    }
+    stride = lead + n;
+    for (HostVector<float>* a : {&x, &y, &z, &share}) a->assign(size_t{stride} * families.size(), 0.0f);
 }
 
 namespace {
@@ -97,7 +128,7 @@ namespace {
 // vectorizes them (as in spring_terms_grid.cpp).
 // Returns the springs over the limit and over `promise` (a stretch).
 CLOTH_HOT_LOOP StretchCount family_terms_kernel(size_t begin, size_t last, size_t offset, float stretch_limit,
-                                                float promise, const float* __restrict mask,
+                                                float promise, float weight, const float* __restrict mask,
                                                 const float* __restrict rest, const float* __restrict mass,
                                                 const float* __restrict pinned, const float* __restrict px,
                                                 const float* __restrict py, const float* __restrict pz,
@@ -111,7 +142,8 @@ CLOTH_HOT_LOOP StretchCount family_terms_kernel(size_t begin, size_t last, size_
         const float excess = length - stretch_limit * rest[p];
         // Zero unless over-stretched (where the family has no spring,
         // mask and rest length are zero); length > 0 wherever excess > 0.
-        const float c = excess > 0.0f ? mask[p] * kRelaxation * excess / std::max(length, 1e-30f) : 0.0f;
+        const float c =
+            excess > 0.0f ? weight * mask[p] * kRelaxation * excess / std::max(length, 1e-30f) : 0.0f;
         const float wp = (1.0f - pinned[p]) / mass[p], wq = (1.0f - pinned[q]) / mass[q];
         const float sum = wp + wq;
         tx[p] = c * dx;
@@ -147,16 +179,16 @@ StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa&
     const Fabric& f = *pass.fabric;
     const uint32_t n = f.particle_count();
     StretchCount count;
-    for (size_t k = 0; k < terms.family.size(); ++k) {
-        const SpringFamily& family = f.grid_families[terms.family[k]];
+    for (size_t k = 0; k < terms.families.size(); ++k) {
+        const SpringFamily& family = *terms.families[k];
         const uint32_t last = std::min(end, n > family.offset ? n - family.offset : 0u);
         if (begin >= last) continue;
         const size_t base = k * terms.stride + terms.lead;
         const StretchCount found = family_terms_kernel(
             begin, last, family.offset, 1.0f + pass.max_strain, 1.0f + pass.max_strain + kStrainPromiseSlack,
-            family.mask.data(), family.rest_length.data(), pass.mass, pass.pinned, x.x.data(), x.y.data(),
-            x.z.data(), terms.x.data() + base, terms.y.data() + base, terms.z.data() + base,
-            terms.share.data() + base);
+            terms.weight[k], family.mask.data(), family.rest_length.data(), pass.mass, pass.pinned,
+            x.x.data(), x.y.data(), x.z.data(), terms.x.data() + base, terms.y.data() + base,
+            terms.z.data() + base, terms.share.data() + base);
         count.over_limit += found.over_limit;
         count.over_promise += found.over_promise;
     }
@@ -165,13 +197,12 @@ StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa&
 
 void strain_limit_grid_corrections(const StrainLimitPass& pass, const GridStrainTerms& terms, uint32_t begin,
                                    uint32_t end, Vec3Soa& correction) {
-    const Fabric& f = *pass.fabric;
     std::fill(correction.x.begin() + begin, correction.x.begin() + end, 0.0f);
     std::fill(correction.y.begin() + begin, correction.y.begin() + end, 0.0f);
     std::fill(correction.z.begin() + begin, correction.z.begin() + end, 0.0f);
-    for (size_t k = 0; k < terms.family.size(); ++k) {
+    for (size_t k = 0; k < terms.families.size(); ++k) {
         const size_t base = k * terms.stride + terms.lead;
-        const size_t back = base - f.grid_families[terms.family[k]].offset;  // >= k * stride: the lead
+        const size_t back = base - terms.families[k]->offset;  // >= k * stride: the lead
         family_corrections_kernel(begin, end, terms.x.data() + base, terms.y.data() + base,
                                   terms.z.data() + base, terms.share.data() + base, terms.x.data() + back,
                                   terms.y.data() + back, terms.z.data() + back, terms.share.data() + back,
