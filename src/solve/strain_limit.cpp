@@ -113,7 +113,6 @@ void GridStrainTerms::resize(const Fabric& fabric) {
         weight.push_back(1.0f);
         lead = std::max(lead, family.offset);
     }
-    spring_families = active = static_cast<uint32_t>(families.size());
     for (const SpringFamily& family : reach) {
         families.push_back(&family);
         weight.push_back(kStrainReachWeight);
@@ -180,7 +179,7 @@ StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa&
     const Fabric& f = *pass.fabric;
     const uint32_t n = f.particle_count();
     StretchCount count;
-    for (size_t k = 0; k < terms.active; ++k) {
+    for (size_t k = 0; k < terms.families.size(); ++k) {
         const SpringFamily& family = *terms.families[k];
         const uint32_t last = std::min(end, n > family.offset ? n - family.offset : 0u);
         if (begin >= last) continue;
@@ -201,7 +200,7 @@ void strain_limit_grid_corrections(const StrainLimitPass& pass, const GridStrain
     std::fill(correction.x.begin() + begin, correction.x.begin() + end, 0.0f);
     std::fill(correction.y.begin() + begin, correction.y.begin() + end, 0.0f);
     std::fill(correction.z.begin() + begin, correction.z.begin() + end, 0.0f);
-    for (size_t k = 0; k < terms.active; ++k) {
+    for (size_t k = 0; k < terms.families.size(); ++k) {
         const size_t base = k * terms.stride + terms.lead;
         const size_t back = base - terms.families[k]->offset;  // >= k * stride: the lead
         family_corrections_kernel(begin, end, terms.x.data() + base, terms.y.data() + base,
@@ -264,8 +263,6 @@ void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, floa
                           const Tethers* tethers, StretchCount* counts, uint32_t max_iterations) {
     counts_ = counts;
     grid_ = grid != nullptr && !grid->empty() ? grid : nullptr;
-    if (grid_ != nullptr) grid_->active = static_cast<uint32_t>(grid_->families.size());
-    reach_next_ = false;
     tethers_ = tethers != nullptr && !tethers->empty() ? tethers : nullptr;
     // Passes past those asked for only where tethers hold the cloth's
     // stretch as a whole: on a cloth without them, dragged 10 m, sixteen
@@ -312,16 +309,6 @@ void StrainLimiter::finish_round() {
     const uint32_t pass = (round_ - first_pass_round_) / 2;  // meaningless in the tether round
     if (applying()) {
         if (accelerate_) schedule_omega_ = strain_limit_next_omega(pass, schedule_omega_);
-        // A calm cloth hardly needs the long-range limits (a spring within
-        // the limit cannot break one): a substep's first pass has them, and
-        // the later ones only if that pass found a spring past the promise,
-        // decided once (docs/accuracy.md: in every pass they cost the 64x64
-        // default 5 % of its frame; without them in the first pass the
-        // dragged cloth reached 0.44 instead of 0.27; taken up and dropped
-        // pass by pass, they sent the soak test's flag non-finite).
-        if (grid_ != nullptr)
-            grid_->active =
-                reach_next_ ? static_cast<uint32_t>(grid_->families.size()) : grid_->spring_families;
     } else if (!tether_round()) {
         // A corrections round: decide how many passes there are...
         if (counts_) {
@@ -332,7 +319,6 @@ void StrainLimiter::finish_round() {
                 over_promise += counts_[g].over_promise;
             }
             if (pass + 1 == asked_) past_promise_ = over_promise > 0;
-            if (pass == 0) reach_next_ = over_promise > 0;
             if (over_limit == 0) {
                 iterations_ = pass + 1;  // this pass applies nothing, nor would any after it
             } else if (over_promise > 0 && pass + 1 == iterations_ && iterations_ < max_iterations_) {

@@ -79,10 +79,6 @@ struct GridStrainTerms {
     std::vector<SpringFamily, HostAllocator<SpringFamily>> reach;
     HostVector<const SpringFamily*> families;  // the fabric's structural and shear ones, then `reach`
     HostVector<float> weight;                  // per family: 1, or kStrainReachWeight
-    // The passes use families [0, active): the fabric's (spring_families),
-    // and `reach` too in a substep's first pass and, if that pass found a
-    // spring past the promise, in the rest (StrainLimiter::finish_round).
-    uint32_t spring_families = 0, active = 0;
     uint32_t lead = 0, stride = 0;
     HostVector<float> x, y, z, share;  // family k's entry for p at k * stride + lead + p
 };
@@ -173,7 +169,6 @@ class StrainLimiter final : public StagedAlgorithm {
     float schedule_omega_ = 1.0f;  // ...and the schedule's, which the last pass does not follow
     bool accelerate_ = false;
     GridStrainTerms* grid_ = nullptr;
-    bool reach_next_ = false;  // the passes after the first keep the long-range families
 };
 
 // The same rounds on this thread, over all particles (accelerated passes,
