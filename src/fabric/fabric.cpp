@@ -96,6 +96,22 @@ void build_slots(const HostVector<uint32_t>& offset, bool with_other_and_sign, P
     });
 }
 
+// Padded slots (build_slots) of the springs listed per particle by the CSR
+// `offset` and spring_of(entry): item the spring, other the particle at its
+// other end, sign +1 at its first particle and -1 at its second; padding
+// the dummy spring (spring_count()), the particle itself, sign 0.
+template <class SpringOf>
+void build_spring_slots(Fabric& f, const HostVector<uint32_t>& offset, SpringOf spring_of,
+                        PaddedSlots& slots) {
+    build_slots(offset, true, slots, [&](size_t slot, uint32_t p, uint32_t e) {
+        const uint32_t spring = e == UINT32_MAX ? f.spring_count() : spring_of(e);
+        const bool first = e != UINT32_MAX && f.spring_first[spring] == p;
+        slots.item[slot] = spring;
+        slots.other[slot] = e == UINT32_MAX ? p : first ? f.spring_second[spring] : f.spring_first[spring];
+        slots.sign[slot] = e == UINT32_MAX ? 0.0f : first ? 1.0f : -1.0f;
+    });
+}
+
 }  // namespace
 
 Status finish_fabric(const std::vector<SpringSpec>& springs, Fabric& f) {
@@ -148,16 +164,8 @@ Status finish_fabric(const std::vector<SpringSpec>& springs, Fabric& f) {
             out[1] = f.spring_second[s];
         },
         f.incidence_offset, f.incidence_spring);
-    // Padding: the dummy spring `count`, the particle itself at the other end, sign 0.
-    build_slots(f.incidence_offset, true, f.spring_slots, [&](size_t slot, uint32_t p, uint32_t e) {
-        const uint32_t spring = e == UINT32_MAX ? count : f.incidence_spring[e];
-        const bool first = e != UINT32_MAX && f.spring_first[spring] == p;
-        f.spring_slots.item[slot] = spring;
-        f.spring_slots.other[slot] = e == UINT32_MAX ? p
-                                     : first         ? f.spring_second[spring]
-                                                     : f.spring_first[spring];
-        f.spring_slots.sign[slot] = e == UINT32_MAX ? 0.0f : first ? 1.0f : -1.0f;
-    });
+    build_spring_slots(
+        f, f.incidence_offset, [&](uint32_t e) { return f.incidence_spring[e]; }, f.spring_slots);
     // The strain limiter's lists: the same, structural and shear springs only.
     std::vector<uint32_t> limited;
     for (uint32_t s = 0; s < count; ++s)
@@ -171,15 +179,8 @@ Status finish_fabric(const std::vector<SpringSpec>& springs, Fabric& f) {
             out[1] = f.spring_second[limited[l]];
         },
         limited_offset, limited_incidence);
-    build_slots(limited_offset, true, f.limited_slots, [&](size_t slot, uint32_t p, uint32_t e) {
-        const uint32_t spring = e == UINT32_MAX ? count : limited[limited_incidence[e]];
-        const bool first = e != UINT32_MAX && f.spring_first[spring] == p;
-        f.limited_slots.item[slot] = spring;
-        f.limited_slots.other[slot] = e == UINT32_MAX ? p
-                                      : first         ? f.spring_second[spring]
-                                                      : f.spring_first[spring];
-        f.limited_slots.sign[slot] = e == UINT32_MAX ? 0.0f : first ? 1.0f : -1.0f;
-    });
+    build_spring_slots(
+        f, limited_offset, [&](uint32_t e) { return limited[limited_incidence[e]]; }, f.limited_slots);
     f.limited_slot_rest.resize(f.limited_slots.item.size());
     for (size_t slot = 0; slot < f.limited_slot_rest.size(); ++slot) {
         const uint32_t spring = f.limited_slots.item[slot];
