@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "pinned_cloth.h"
 #include "scenes.h"
 
 namespace {
@@ -181,20 +182,9 @@ TEST(Budget, PolicyBoundsAreValidatedAndEnablingClampsTheSolver) {
 // lowered it: cutting a substep must not make those passes, and not the
 // frame, the thing that grows.
 TEST(Budget, ALoweredClothRunsOnlyTheStrainLimitPassesAskedFor) {
-    cloth_world_desc world_desc = cloth_default_world_desc();
-    cloth_world_id world{};
-    ASSERT_EQ(cloth_world_create(&world_desc, &world), CLOTH_OK);
-    cloth_grid_desc grid = cloth_default_grid_desc();
-    grid.columns = grid.rows = 32;
-    cloth_fabric_id fabric{};
-    ASSERT_EQ(cloth_fabric_create_grid(world, &grid, &fabric), CLOTH_OK);
-    cloth_desc desc = cloth_default_desc();
-    desc.fabric = fabric;
-    desc.particle_mass = 1.0f;
-    cloth_id cloth{};
-    ASSERT_EQ(cloth_create(world, &desc, &cloth), CLOTH_OK);
-    const uint32_t pins[] = {0, 31};
-    ASSERT_EQ(cloth_pin(cloth, pins, 2), CLOTH_OK);
+    const cloth::testing::PinnedCloth pinned(1.0f);  // 1 kg per particle
+    const cloth_world_id world = pinned.world;
+    const cloth_id cloth = pinned.cloth;
     cloth_strain_limit limit = cloth_default_strain_limit();
     limit.max_strain = 0.08f;
     ASSERT_EQ(cloth_set_strain_limit(cloth, &limit), CLOTH_OK);
@@ -224,7 +214,6 @@ TEST(Budget, ALoweredClothRunsOnlyTheStrainLimitPassesAskedFor) {
             EXPECT_LE(strain_rounds(), asked) << "frame " << i;
         }
     }
-    cloth_world_destroy(world);
 }
 
 // Recovery from a budget blow-out: a budget no step can meet makes every
