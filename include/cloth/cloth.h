@@ -762,7 +762,7 @@ typedef struct cloth_strain_limit {
     /// passes per substep, 1..CLOTH_MAX_STRAIN_LIMIT_ITERATIONS; default 4
     /// (see above: fewer when nothing is past the limit, up to 4 times as
     /// many while a spring is past it by more than 0.01, unless a quality
-    /// policy has lowered the cloth: see "Frame budget")
+    /// policy has taken the cloth below half its iterations: see "Frame budget")
     uint32_t iterations;
 } cloth_strain_limit;
 
@@ -1068,18 +1068,21 @@ CLOTH_API cloth_result cloth_world_set_zone_callbacks(cloth_world_id world, clot
  * CLOTH_ERROR_OVER_BUDGET (logged as a warning): the world advanced
  * completely, nothing was lost, and a failure of a cloth in the same step
  * (CLOTH_ERROR_NONFINITE_STATE, ...) is returned instead. Without a budget
- * that code never occurs. Cloths with an enabled quality policy have their Jacobi
+ * that code never occurs. Cloths with an enabled quality policy have their
  * iterations and substeps lowered after a frame over budget and raised
  * again after several frames well under it (below 70%), within the
- * policy's bounds, from the measured cost of the frames before. A
- * CLOTH_SOLVER_DEFAULT cloth chooses its own iterations and substeps each
- * step: the policy lowers it from what it ran (iterations first) and raises
- * it back up to that choice, never past it; cloth_stats.last_solver_iterations
- * shows what a step ran, and setting the policy again (or the solver) lifts
- * the policy's cuts. While the policy holds a cloth below that quality, its
+ * policy's bounds, as far as the measured cost of their recent frames
+ * predicts. Lowering goes down a ladder from the top (the policy's maximum,
+ * or what a CLOTH_SOLVER_DEFAULT cloth chooses by itself each step): the
+ * iterations to half the top's, then one substep fewer with the iterations
+ * back at the top's, and so on; raising retraces it, never past the top.
+ * At the policy's fewest substeps the iterations go below half only after
+ * many frames over budget in a row (a load, not a spike), and there the
  * strain limit runs only the passes asked for (cloth_strain_limit.iterations),
- * not the extra passes it otherwise adds while a spring stays past the limit:
- * the frame keeps to the budget and the strain gives. */
+ * not the extra passes it otherwise adds while a spring stays past the
+ * limit: the frame keeps to the budget and the strain gives.
+ * cloth_stats.last_solver_iterations shows what a step ran, and setting the
+ * policy again (or the solver) lifts the policy's cuts. */
 
 /// Set the world's frame budget in milliseconds, >= 0 (0: no budget, the default).
 CLOTH_API cloth_result cloth_world_set_frame_budget(cloth_world_id world, float milliseconds);

@@ -3,73 +3,124 @@
 #include <algorithm>
 
 namespace cloth {
+
 namespace {
 
-double units(uint32_t substeps, uint32_t iterations) {
-    return static_cast<double>(substeps) * (static_cast<double>(iterations) + BudgetPolicy::kFixedStages);
+// Where a cloth stands on its ladder: its current settings, brought onto a
+// rung (settings made outside the policy may lie between rungs).
+QualityRung current_rung(const QualityLadder& ladder, const SolverSettings& settings) {
+    QualityRung rung;
+    rung.substeps = std::clamp(settings.substeps, std::min(ladder.min_substeps, ladder.top.substeps),
+                               ladder.top.substeps);
+    const uint32_t fewest = rung.substeps > std::min(ladder.min_substeps, ladder.top.substeps)
+                                ? ladder.floor()
+                                : std::min(ladder.min_iterations, ladder.top.iterations);
+    rung.iterations = std::clamp(settings.iterations, fewest, ladder.top.iterations);
+    return rung;
 }
 
-// One notch down (iterations first) or up (substeps first, undoing the
-// last cut); false at the bound.
-bool lower(const QualityPolicy& q, SolverSettings& s) {
-    if (s.iterations > q.min_iterations) {
-        --s.iterations;
-        return true;
+// A cloth's task time at a rung: the average it cost there lately
+// (QualityCosts) or, at a rung it has not run, a model of the frame just
+// run scaled to its rung's average: a cost per substep (every stage but
+// the solve) and per iteration and substep.
+class RungCost {
+  public:
+    RungCost(const BudgetCloth& c, uint64_t frame) : costs_(c.cloth->quality_costs()), frame_(frame) {
+        const QualityRung ran = c.cloth->ran_rung();
+        const double substeps = std::max(ran.substeps, 1u), iterations = std::max(ran.iterations, 1u);
+        const double cost = static_cast<double>(c.cost_ns);
+        const double usual = costs_.cost_ns(ran, frame);
+        const double scale = usual > 0 && cost > 0 ? usual / cost : 1.0;
+        const double solve = static_cast<double>(std::clamp(c.solve_ns, int64_t{0}, c.cost_ns));
+        per_substep_ = scale * (cost - solve) / substeps;
+        per_iteration_ = scale * solve / (substeps * iterations);
     }
-    if (s.substeps > q.min_substeps) {
-        --s.substeps;
-        return true;
+    double operator()(QualityRung rung) const {
+        const double known = costs_.cost_ns(rung, frame_);
+        return known >= 0 ? known : rung.substeps * (per_substep_ + rung.iterations * per_iteration_);
     }
-    return false;
+
+  private:
+    const QualityCosts& costs_;
+    uint64_t frame_;
+    double per_substep_ = 0, per_iteration_ = 0;
+};
+
+void set_rung(ClothInstance& cloth, QualityRung rung) {
+    SolverSettings next = cloth.quality_settings();
+    next.iterations = rung.iterations;
+    next.substeps = rung.substeps;
+    cloth.set_quality_settings(next);
 }
 
-bool raise(const QualityPolicy& q, SolverSettings& s) {
-    if (s.substeps < q.max_substeps &&
-        (s.iterations <= q.min_iterations || s.iterations >= q.max_iterations)) {
-        ++s.substeps;
-        return true;
+// Moves one cloth down its ladder until the predicted step (`predicted`,
+// this cloth's share included) is at `target`, below its floor only if
+// `below_floor`; returns the new prediction.
+double lower(const BudgetCloth& c, uint64_t frame, double predicted, double target, double ms_per_ns,
+             bool below_floor) {
+    ClothInstance& cloth = *c.cloth;
+    const QualityLadder ladder = cloth.quality_ladder();
+    const RungCost cost(c, frame);
+    const double others = predicted - static_cast<double>(c.cost_ns) * ms_per_ns;
+    QualityRung rung = current_rung(ladder, cloth.quality_settings());
+    // From the rung's usual cost: a frame that cost more than that (a
+    // spike) moves the cloth down less than its own cost says.
+    predicted = others + cost(rung) * ms_per_ns;
+    // The floor's last rung: the fewest substeps at the floor's iterations.
+    // Past it each rung gives up much of the hold, so one a decision.
+    const QualityRung last_holding{ladder.floor(), std::min(ladder.min_substeps, ladder.top.substeps)};
+    const auto at_or_below_floor = [&] {
+        return rung.substeps == last_holding.substeps && rung.iterations <= last_holding.iterations;
+    };
+    bool moved = false;
+    while (predicted > target && !(moved && at_or_below_floor()) && (below_floor || !at_or_below_floor()) &&
+           ladder.down(rung)) {
+        predicted = others + cost(rung) * ms_per_ns;
+        moved = true;
     }
-    if (s.iterations < q.max_iterations) {
-        ++s.iterations;
-        return true;
-    }
-    return false;
-}
-
-// Step time the frame would have taken with `after` instead of `before`
-// for a cloth that had `share` of the step.
-double predicted_change_ms(double step_ms, double share, const SolverSettings& before,
-                           const SolverSettings& after) {
-    return step_ms * share *
-           (units(after.substeps, after.iterations) / units(before.substeps, before.iterations) - 1.0);
+    if (moved) set_rung(cloth, rung);
+    return predicted;
 }
 
 }  // namespace
 
-void BudgetPolicy::after_frame(double budget_ms, double step_ms, BudgetCloth* cloths, uint32_t count) {
+void BudgetPolicy::after_frame(double budget_ms, double step_ms, uint64_t frame, BudgetCloth* cloths,
+                               uint32_t count) {
     if (budget_ms <= 0) return;
     int64_t total_ns = 0;
     for (uint32_t c = 0; c < count; ++c) total_ns += cloths[c].cost_ns;
     if (total_ns <= 0) return;
+    decide(budget_ms, step_ms, frame, total_ns, cloths, count);
+    // The frame joins each cloth's memory after the decision: a spike is
+    // judged against what the rung usually costs, not with itself in it.
+    for (uint32_t c = 0; c < count; ++c) {
+        ClothInstance& cloth = *cloths[c].cloth;
+        if (cloth.quality_policy().enabled)
+            cloth.quality_costs().record(cloth.ran_rung(), static_cast<double>(cloths[c].cost_ns), frame);
+    }
+}
+
+void BudgetPolicy::decide(double budget_ms, double step_ms, uint64_t frame, int64_t total_ns,
+                          BudgetCloth* cloths, uint32_t count) {
+    // Wall time per task nanosecond: a cloth's change of task time changes
+    // the step by its share.
+    const double ms_per_ns = step_ms / static_cast<double>(total_ns);
     // The most expensive first (ties by position: deterministic).
     std::stable_sort(cloths, cloths + count,
                      [](const BudgetCloth& a, const BudgetCloth& b) { return a.cost_ns > b.cost_ns; });
     double predicted = step_ms;
     if (step_ms > budget_ms) {
         calm_frames_ = 0;
-        for (uint32_t c = 0; c < count && predicted > 0.9 * budget_ms; ++c) {
-            ClothInstance& cloth = *cloths[c].cloth;
-            if (!cloth.quality_policy().enabled) continue;
-            const SolverSettings current = cloth.quality_settings();
-            SolverSettings next = current;
-            if (!lower(cloth.quality_policy(), next)) continue;
-            predicted += predicted_change_ms(step_ms, static_cast<double>(cloths[c].cost_ns) / total_ns,
-                                             current, next);
-            cloth.set_quality_settings(next);
+        ++overruns_in_a_row_;
+        const bool below_floor = overruns_in_a_row_ >= kOverrunsBelowFloor;
+        for (uint32_t c = 0; c < count && predicted > kLowerTo * budget_ms; ++c) {
+            if (!cloths[c].cloth->quality_policy().enabled) continue;
+            predicted = lower(cloths[c], frame, predicted, kLowerTo * budget_ms, ms_per_ns, below_floor);
         }
         return;
     }
-    if (step_ms >= 0.7 * budget_ms) {
+    overruns_in_a_row_ = 0;
+    if (step_ms >= kCalmBelow * budget_ms) {
         calm_frames_ = 0;
         return;
     }
@@ -78,14 +129,14 @@ void BudgetPolicy::after_frame(double budget_ms, double step_ms, BudgetCloth* cl
     for (uint32_t c = count; c-- > 0;) {  // the cheapest first
         ClothInstance& cloth = *cloths[c].cloth;
         if (!cloth.quality_policy().enabled || !cloth.quality_can_rise()) continue;
-        const SolverSettings current = cloth.quality_settings();
-        SolverSettings next = current;
-        if (!raise(cloth.quality_policy(), next)) continue;
-        const double change =
-            predicted_change_ms(step_ms, static_cast<double>(cloths[c].cost_ns) / total_ns, current, next);
-        if (predicted + change > 0.85 * budget_ms) continue;
+        const QualityLadder ladder = cloth.quality_ladder();
+        const RungCost cost(cloths[c], frame);
+        QualityRung rung = current_rung(ladder, cloth.quality_settings());
+        if (!ladder.up(rung)) continue;
+        const double change = (cost(rung) - static_cast<double>(cloths[c].cost_ns)) * ms_per_ns;
+        if (predicted + change > kRaiseTo * budget_ms) continue;
         predicted += change;
-        cloth.set_quality_settings(next);
+        set_rung(cloth, rung);
     }
 }
 

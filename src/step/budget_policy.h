@@ -1,24 +1,42 @@
 // The frame-budget policy: after each frame of a world with a budget, lower
-// or raise the Jacobi iterations and substeps of the cloths whose quality
-// policy is enabled, within their bounds, so the step stays inside the
-// budget. It works from the measured cost of the frame just run: the step's
-// wall time and each cloth's share of the task time, with a cloth's cost
-// taken as proportional to substeps * (iterations + kFixedStages).
+// or raise the iterations and substeps of the cloths whose quality policy
+// is enabled, within their bounds, so the step stays inside the budget.
 //
-//   over budget          lower cloths one notch each, the most expensive
-//                        first, until the predicted step is at 90% of it
-//   below 70% of budget  for kCalmFrames frames in a row: raise cloths one
-//                        notch each while the predicted step stays at or
-//                        below 85% of it
+// Quality is a ladder of (iterations, substeps) rungs (quality_ladder.h):
+// from the top (the policy's maximum, or what CLOTH_SOLVER_DEFAULT chooses
+// by itself) the iterations fall to half the top's, then a substep goes
+// and the iterations come back, and so on. Measured on the vehicle flag's
+// course (docs/vehicle_flag.md, the default's own 5 iterations at 2
+// substeps: max strain 0.106): below about half its iterations a solve
+// stops holding the strain limit (3 iterations at 2 substeps 0.114, 1
+// iteration 0.150), while a substep costs more than the iterations it
+// would run (5 iterations at 1 substep hold 0.117 for 0.57 ms a frame, 1
+// iteration at 2 substeps 0.150 for 0.71 ms).
 //
-// Lowering takes iterations first, then substeps; raising undoes it in the
-// reverse order. The hysteresis band (70%..100%) keeps it from oscillating.
-// A lowered cloth also runs only the strain-limit passes asked for
-// (ClothInstance::quality_lowered): the extra passes would grow as the
-// substeps shrink, which the cost model above cannot see.
-// A CLOTH_SOLVER_DEFAULT cloth picks its own iterations and substeps every
-// frame: the policy lowers from what it ran and keeps the result as caps on
-// that choice, and raising ends when the caps reach it
+// A rung's cost is what the cloth's frames cost there lately
+// (QualityCosts), or at a rung it has not run a model of its last frame:
+// its task time split into the solve stages (a cost per iteration and
+// substep) and the rest (a cost per substep).
+//
+//   over budget          each cloth, the most expensive first, goes down
+//                        the ladder until the predicted step is at
+//                        kLowerTo of the budget, predicted from its rung's
+//                        usual cost (a spike moves it less than its own
+//                        cost says); below the floor only after
+//                        kOverrunsBelowFloor frames over budget in a row,
+//                        and one rung a frame
+//   below kCalmBelow     for kCalmFrames frames in a row: each cloth, the
+//                        cheapest first, goes one rung up if the predicted
+//                        step stays at or below kRaiseTo of the budget (a
+//                        rung that ran over is remembered, and not tried
+//                        again until forgotten)
+//
+// Below the floor a cloth's strain limit runs only the passes asked for
+// (ClothInstance::quality_below_floor): behind a solve that no longer
+// holds the cloth the extra passes grow with every rung cut, which no
+// prediction sees (docs/vehicle_flag.md). A CLOTH_SOLVER_DEFAULT cloth
+// picks its own iterations and substeps every frame: the policy keeps its
+// rung as caps on that choice, and raising ends when the caps reach it
 // (ClothInstance::quality_settings).
 #pragma once
 
@@ -30,19 +48,29 @@ namespace cloth {
 
 struct BudgetCloth {
     ClothInstance* cloth;
-    int64_t cost_ns;  // task time of the last frame
+    int64_t cost_ns;   // task time of the last frame
+    int64_t solve_ns;  // the part of it in solve stages
 };
 
 class BudgetPolicy {
   public:
     static constexpr uint32_t kCalmFrames = 5;
-    static constexpr double kFixedStages = 3.0;  // air, forces + assembly, integration, in sweep units
+    static constexpr double kLowerTo = 0.75;
+    static constexpr double kCalmBelow = 0.7;
+    static constexpr double kRaiseTo = 0.7;
+    // Below the floor the solve no longer holds the cloth: only this many
+    // frames over budget in a row (a load, not a spike) take a cloth there.
+    static constexpr uint32_t kOverrunsBelowFloor = 30;
 
     // cloths: every awake cloth of the frame (policy or not), `count` of them.
-    void after_frame(double budget_ms, double step_ms, BudgetCloth* cloths, uint32_t count);
+    // `frame`: the world's frame count (the cost memory's clock).
+    void after_frame(double budget_ms, double step_ms, uint64_t frame, BudgetCloth* cloths, uint32_t count);
 
   private:
+    void decide(double budget_ms, double step_ms, uint64_t frame, int64_t total_ns, BudgetCloth* cloths,
+                uint32_t count);
     uint32_t calm_frames_ = 0;
+    uint32_t overruns_in_a_row_ = 0;
 };
 
 }  // namespace cloth

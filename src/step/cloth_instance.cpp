@@ -123,6 +123,7 @@ const Vec3Soa& ClothInstance::normals() const {
 
 void ClothInstance::set_quality_policy(const QualityPolicy& policy) {
     quality_ = policy;
+    quality_costs_.clear();
     // A default solver the policy had capped goes back to its own choice.
     solver_.default_iteration_cap = solver_.default_substep_cap = 0;
     if (!policy.enabled) return;
@@ -152,17 +153,25 @@ void ClothInstance::set_quality_settings(const SolverSettings& settings) {
     solver_.default_substep_cap = below ? settings.substeps : 0;
 }
 
+QualityLadder ClothInstance::quality_ladder() const {
+    const QualityRung top = solver_.kind == CLOTH_SOLVER_DEFAULT
+                                ? QualityRung{frame_own_iterations_, frame_own_substeps_}
+                                : QualityRung{quality_.max_iterations, quality_.max_substeps};
+    return {top, quality_.min_iterations, quality_.min_substeps};
+}
+
 bool ClothInstance::quality_can_rise() const {
     return solver_.kind != CLOTH_SOLVER_DEFAULT || solver_.default_iteration_cap > 0 ||
            solver_.default_substep_cap > 0;
 }
 
-bool ClothInstance::quality_lowered() const {
+bool ClothInstance::quality_below_floor() const {
     if (!quality_.enabled) return false;
-    if (solver_.kind == CLOTH_SOLVER_DEFAULT)
-        return frame_solver_.iterations < frame_own_iterations_ ||
-               frame_solver_.substeps < frame_own_substeps_;
-    return solver_.iterations < quality_.max_iterations || solver_.substeps < quality_.max_substeps;
+    const bool lowered =
+        solver_.kind == CLOTH_SOLVER_DEFAULT
+            ? frame_solver_.iterations < frame_own_iterations_ || frame_solver_.substeps < frame_own_substeps_
+            : solver_.iterations < quality_.max_iterations || solver_.substeps < quality_.max_substeps;
+    return lowered && frame_solver_.iterations < quality_ladder().floor();
 }
 
 // ---------------------------------------------------------------- sleep

@@ -30,6 +30,7 @@
 #include "solve/solver_settings.h"
 #include "solve/solvers.h"
 #include "solve/strain_limit.h"
+#include "step/quality_ladder.h"
 #include "step/step_stage.h"
 
 namespace cloth {
@@ -114,12 +115,19 @@ class ClothInstance {
     // once they reach what the default chooses by itself).
     SolverSettings quality_settings() const;
     void set_quality_settings(const SolverSettings& settings);
+    // The ladder the policy moves this cloth along (budget_policy.h): from
+    // the policy's top, or the default's own choice of this frame, down to
+    // the policy's minimum. And the rung this frame ran.
+    QualityLadder quality_ladder() const;
+    QualityRung ran_rung() const { return {frame_solver_.iterations, frame_solver_.substeps}; }
+    QualityCosts& quality_costs() { return quality_costs_; }
+    const QualityCosts& quality_costs() const { return quality_costs_; }
     // Whether the policy may raise them: not for a default running its own choice.
     bool quality_can_rise() const;
-    // Whether this frame runs below the quality the policy would give it
-    // with time to spare (a default under caps, another kind below the
-    // policy's top iterations or substeps).
-    bool quality_lowered() const;
+    // Whether the policy has taken this frame below its ladder's floor
+    // (fewer iterations than half the top's): a solve that no longer holds
+    // the cloth, whose strain limit then runs only the passes asked for.
+    bool quality_below_floor() const;
 
     // Snapshots (cloth_snapshot.cpp): the dynamic state in a flat buffer.
     size_t snapshot_size() const;
@@ -337,6 +345,7 @@ class ClothInstance {
     void update_sleep();  // end of a successful frame
     SleepSettings sleep_;
     QualityPolicy quality_;
+    QualityCosts quality_costs_;  // the budget policy's memory of what each rung cost
     bool sleeping_ = false;
     uint32_t rest_frames_ = 0;  // consecutive frames below sleep_.max_speed
 

@@ -65,11 +65,11 @@ void ClothInstance::plan_substep() {
         const StrainLimitPass pass{fabric_.get(), mass_.data(), pinned_.data(), limit.max_strain};
         const bool accelerate = frame_solver_.kind != CLOTH_SOLVER_EXPLICIT;  // strain_limit.h
         // The passes past those asked for are quality the budget cannot
-        // predict: a cloth a quality policy has lowered runs without them,
-        // since cutting its substeps would make them grow, and the frame
-        // with them (docs/vehicle_flag.md).
+        // predict: a cloth a quality policy has taken below its floor runs
+        // without them, since behind a solve that no longer holds the cloth
+        // they grow, and the frame with them (docs/vehicle_flag.md).
         const uint32_t most =
-            quality_lowered() ? limit.iterations : kStrainLimitMorePasses * limit.iterations;
+            quality_below_floor() ? limit.iterations : kStrainLimitMorePasses * limit.iterations;
         strain_limiter_.begin(pass, limit.iterations, h_, x_, v_, solver_work_.r, solver_work_.z, accelerate,
                               &grid_strain_terms_, &tethers_, stretch_counts_.data(), most);
         plan(Stage::kStrainLimit, &C::limit_strain, &C::note_strain, &strain_limiter_);

@@ -30,6 +30,12 @@ enum class Stage : uint8_t {
 
 constexpr uint32_t kStageCount = static_cast<uint32_t>(Stage::kCount);
 
+// The stages whose work grows with the solver's iterations (the frame-budget
+// policy's cost model, budget_policy.h).
+inline bool is_solve_stage(Stage stage) {
+    return stage == Stage::kJacobiSweep || stage == Stage::kSerialSolve || stage == Stage::kIterativeSolve;
+}
+
 // Short stable names, for profiles and traces.
 inline const char* stage_name(Stage stage) {
     switch (stage) {

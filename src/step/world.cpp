@@ -25,6 +25,7 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       round_(HostAllocator<RoundTask>(&memory_)),
       round_times_(HostAllocator<TaskTime>(&memory_)),
       cloth_cost_ns_(HostAllocator<int64_t>(&memory_)),
+      cloth_solve_ns_(HostAllocator<int64_t>(&memory_)),
       profile_(&memory_),
       budget_cloths_(HostAllocator<BudgetCloth>(&memory_)) {
     fabrics_.make_all_slots();
@@ -32,6 +33,7 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
     stepping_.reserve(desc.max_cloths);
     stepping_cloths_.reserve(desc.max_cloths);
     cloth_cost_ns_.assign(desc.max_cloths, 0);
+    cloth_solve_ns_.assign(desc.max_cloths, 0);
     budget_cloths_.reserve(desc.max_cloths);
     profile_.origin_ns = now_ns();
     if (desc.enqueue_task) {
@@ -153,6 +155,7 @@ void World::account_round(uint32_t count) {
         const uint32_t s = static_cast<uint32_t>(task.stage);
         const int64_t duration = time.end_ns - time.start_ns;
         cloth_cost_ns_[task.slot] += duration;
+        if (is_solve_stage(task.stage)) cloth_solve_ns_[task.slot] += duration;
         profile_.worker_busy_ns[time.worker] += duration;
         profile_.stage_tasks[s] += 1;
         first[s] = std::min(first[s], time.start_ns);
@@ -215,14 +218,14 @@ Status World::step(float dt) {
     for (uint32_t s = 0; s < cloths_.size(); ++s) {
         ClothInstance* cloth = cloths_[s].object.get();
         if (!cloth) continue;
-        cloth_cost_ns_[s] = 0;
+        cloth_cost_ns_[s] = cloth_solve_ns_[s] = 0;
         if (cloth->sleeping() && cloth->contact().follows_bodies()) cloth->wake();  // bodies move freely
         if (cloth->sleeping()) {
             ++profile_.sleeping_cloths;
             continue;
         }
         cloth->begin_frame(dt, gravity);
-        cloth_cost_ns_[s] = 0;
+        cloth_cost_ns_[s] = cloth_solve_ns_[s] = 0;
         stepping_.push_back(s);
         stepping_cloths_.push_back(cloth);
     }
@@ -276,8 +279,9 @@ Status World::step(float dt) {
         }
         budget_cloths_.clear();
         for (uint32_t s : stepping_)
-            budget_cloths_.push_back(BudgetCloth{cloths_[s].object.get(), cloth_cost_ns_[s]});
-        budget_policy_.after_frame(budget_ms_, profile_.step_ms(), budget_cloths_.data(),
+            budget_cloths_.push_back(
+                BudgetCloth{cloths_[s].object.get(), cloth_cost_ns_[s], cloth_solve_ns_[s]});
+        budget_policy_.after_frame(budget_ms_, profile_.step_ms(), frame_, budget_cloths_.data(),
                                    static_cast<uint32_t>(budget_cloths_.size()));
     }
     if (zone_end_) zone_end_("cloth_step", 0, zone_user_);

@@ -123,6 +123,7 @@ class World {
     HostVector<RoundTask> round_;                 // sized for every group of every cloth
     HostVector<TaskTime> round_times_;            // one slot per task of the round, written by its worker
     HostVector<int64_t> cloth_cost_ns_;           // per cloth slot: task time of the last frame
+    HostVector<int64_t> cloth_solve_ns_;          // per cloth slot: the part of it in solve stages
 
     FrameProfile profile_;
     uint64_t frame_ = 0;

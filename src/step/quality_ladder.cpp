@@ -1,0 +1,63 @@
+#include "step/quality_ladder.h"
+
+#include <algorithm>
+
+namespace cloth {
+
+uint32_t QualityLadder::floor() const {
+    return std::clamp((top.iterations + 1) / 2, std::min(min_iterations, top.iterations), top.iterations);
+}
+
+bool QualityLadder::down(QualityRung& rung) const {
+    const uint32_t fewest_substeps = std::min(min_substeps, top.substeps);
+    if (rung.substeps > fewest_substeps) {
+        if (rung.iterations > floor()) {
+            --rung.iterations;
+        } else {
+            --rung.substeps;
+            rung.iterations = top.iterations;
+        }
+        return true;
+    }
+    if (rung.iterations > std::min(min_iterations, top.iterations)) {
+        --rung.iterations;
+        return true;
+    }
+    return false;
+}
+
+bool QualityLadder::up(QualityRung& rung) const {
+    if (rung.iterations < top.iterations) {
+        ++rung.iterations;
+        return true;
+    }
+    if (rung.substeps < top.substeps) {
+        ++rung.substeps;
+        rung.iterations = floor();
+        return true;
+    }
+    return false;
+}
+
+void QualityCosts::record(QualityRung rung, double cost_ns, uint64_t frame) {
+    Entry* slot = nullptr;
+    for (Entry& e : entries_) {
+        if (e.used && e.rung == rung) {
+            e.cost_ns += kWeight * (cost_ns - e.cost_ns);
+            e.last_frame = frame;
+            return;
+        }
+        // An empty entry, else the one run longest ago.
+        if (!slot || (slot->used && (!e.used || e.last_frame < slot->last_frame))) slot = &e;
+    }
+    *slot = Entry{rung, cost_ns, frame, true};
+}
+
+double QualityCosts::cost_ns(QualityRung rung, uint64_t frame) const {
+    for (const Entry& e : entries_) {
+        if (e.used && e.rung == rung && frame - e.last_frame < kForgetFrames) return e.cost_ns;
+    }
+    return -1.0;
+}
+
+}  // namespace cloth
