@@ -133,6 +133,35 @@ CLOTH_API cloth_result cloth_set_positions(cloth_id id, const uint32_t* indices,
     });
 }
 
+CLOTH_API cloth_result cloth_set_particle_masses(cloth_id id, const uint32_t* indices, const float* masses,
+                                                 uint32_t count) {
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+        Status s = check_indices(indices, count, cloth.particle_count());
+        if (!s.ok()) return s;
+        if (!masses) return null_error("masses");
+        for (uint32_t k = 0; k < count; ++k) {
+            if (!std::isfinite(masses[k]))
+                return Status::error(CLOTH_ERROR_NOT_FINITE, "masses[%u] is not finite", k);
+            if (!(masses[k] > 0)) {
+                return Status::error(CLOTH_ERROR_INVALID_VALUE, "masses[%u] = %g, but a mass must be > 0", k,
+                                     double(masses[k]));
+            }
+        }
+        for (uint32_t k = 0; k < count; ++k) cloth.set_mass(cloth.fabric().particle(indices[k]), masses[k]);
+        return {};
+    });
+}
+
+CLOTH_API cloth_result cloth_read_particle_masses(cloth_id id, float* out_masses, uint32_t capacity) {
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+        Status s = check_capacity(out_masses, capacity, cloth.particle_count());
+        if (!s.ok()) return s;
+        const HostVector<float>& mass = cloth.masses();
+        for (uint32_t i = 0; i < cloth.particle_count(); ++i) out_masses[cloth.fabric().vertex(i)] = mass[i];
+        return {};
+    });
+}
+
 CLOTH_API cloth_result cloth_set_spring_params(cloth_id id, uint32_t kinds, cloth_spring_params params) {
     return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
         if (kinds == 0 || (kinds & ~static_cast<uint32_t>(CLOTH_SPRING_ALL))) {

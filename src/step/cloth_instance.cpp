@@ -73,13 +73,25 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
 
 void ClothInstance::set_material(const Material& material) {
     wake();
+    // The masses follow the mass parameters only when those change (at
+    // creation): new spring parameters keep masses the host set.
+    const bool new_masses = material.particle_mass != material_.particle_mass ||
+                            material.area_density != material_.area_density || !masses_set_;
     material_ = material;
     const Fabric& f = *fabric_;
-    for (uint32_t i = 0; i < f.particle_count(); ++i) {
-        mass_[i] =
-            material.particle_mass > 0 ? material.particle_mass : material.area_density * f.rest_area[i];
+    if (new_masses) {
+        for (uint32_t i = 0; i < f.particle_count(); ++i) {
+            mass_[i] =
+                material.particle_mass > 0 ? material.particle_mass : material.area_density * f.rest_area[i];
+        }
+        masses_set_ = true;
     }
     springs_->set_material(material);
+}
+
+void ClothInstance::set_mass(uint32_t particle, float mass) {
+    wake();
+    mass_[particle] = mass;
 }
 
 void ClothInstance::set_pinned(const uint32_t* indices, uint32_t count, bool pinned, bool vertex_indices) {

@@ -141,7 +141,10 @@ class ClothInstance {
     static constexpr uint32_t kGroupSize = cloth::kGroupSize;
     uint32_t group_count() const { return group_count_; }
 
-    void set_material(const Material& material);  // recomputes masses
+    // Recomputes the masses when the material's mass parameters change.
+    void set_material(const Material& material);
+    // One particle's mass (kg, > 0), replacing what the material gave it.
+    void set_mass(uint32_t particle, float mass);
     const Material& material() const { return material_; }
     // How the last frame shaped its springs (compression-safe Jacobian,
     // strain cable: springs.h).
@@ -271,6 +274,7 @@ class ClothInstance {
     // State.
     Vec3Soa x_, v_;
     HostVector<float> mass_;
+    bool masses_set_ = false;           // mass_ holds the material's (or the host's) masses
     HostVector<float> pinned_;          // 1 pinned, 0 free (a factor in branch-free loops)
     HostVector<uint32_t> pinned_list_;  // the pinned particles, ascending
     Vec3Soa pin_target_;                // where a pinned particle is at the end of the next frame

@@ -136,6 +136,8 @@ struct cloth_header_api {
     cloth_result (*read_velocities)(cloth_id, float*, uint32_t);
     cloth_result (*read_normals)(cloth_id, float*, uint32_t);
     cloth_result (*set_positions)(cloth_id, const uint32_t*, const float*, uint32_t);
+    cloth_result (*set_particle_masses)(cloth_id, const uint32_t*, const float*, uint32_t);
+    cloth_result (*read_particle_masses)(cloth_id, float*, uint32_t);
     cloth_result (*pin)(cloth_id, const uint32_t*, uint32_t);
     cloth_result (*unpin)(cloth_id, const uint32_t*, uint32_t);
     cloth_result (*set_pin_targets)(cloth_id, const uint32_t*, const float*, uint32_t);
@@ -192,6 +194,8 @@ const struct cloth_header_api* cloth_header_c99_api(void) {
         cloth_read_velocities,
         cloth_read_normals,
         cloth_set_positions,
+        cloth_set_particle_masses,
+        cloth_read_particle_masses,
         cloth_pin,
         cloth_unpin,
         cloth_set_pin_targets,

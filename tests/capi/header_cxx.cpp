@@ -140,6 +140,9 @@ CLOTH_CHECK_SIGNATURE(cloth_read_velocities, cloth_result (*)(cloth_id, float*, 
 CLOTH_CHECK_SIGNATURE(cloth_read_normals, cloth_result (*)(cloth_id, float*, uint32_t));
 CLOTH_CHECK_SIGNATURE(cloth_set_positions,
                       cloth_result (*)(cloth_id, const uint32_t*, const float*, uint32_t));
+CLOTH_CHECK_SIGNATURE(cloth_set_particle_masses,
+                      cloth_result (*)(cloth_id, const uint32_t*, const float*, uint32_t));
+CLOTH_CHECK_SIGNATURE(cloth_read_particle_masses, cloth_result (*)(cloth_id, float*, uint32_t));
 CLOTH_CHECK_SIGNATURE(cloth_pin, cloth_result (*)(cloth_id, const uint32_t*, uint32_t));
 CLOTH_CHECK_SIGNATURE(cloth_unpin, cloth_result (*)(cloth_id, const uint32_t*, uint32_t));
 CLOTH_CHECK_SIGNATURE(cloth_set_pin_targets,

@@ -677,8 +677,13 @@ void Harness::particle_edit() {
             guarded(watch, "cloth_unpin", [&] { return cloth_unpin(id, idx, count); });
             break;
         case 2:
-            guarded(watch, "cloth_set_positions",
-                    [&] { return cloth_set_positions(id, idx, xyz.data(), count); });
+            if (what & 0x40) {  // the same indices and floats as masses
+                guarded(watch, "cloth_set_particle_masses",
+                        [&] { return cloth_set_particle_masses(id, idx, xyz.data(), count); });
+            } else {
+                guarded(watch, "cloth_set_positions",
+                        [&] { return cloth_set_positions(id, idx, xyz.data(), count); });
+            }
             break;
         default:
             guarded(watch, "cloth_set_pin_targets",
@@ -768,8 +773,13 @@ void Harness::read() {
                     [&] { return cloth_read_velocities(id, out.data(), capacity); });
             break;
         default:
-            guarded(watch, "cloth_read_normals",
-                    [&] { return cloth_read_normals(id, out.data(), capacity); });
+            if (what & 0x40) {  // one float a particle: capacities below 3 n may hold them
+                guarded(watch, "cloth_read_particle_masses",
+                        [&] { return cloth_read_particle_masses(id, out.data(), capacity); });
+            } else {
+                guarded(watch, "cloth_read_normals",
+                        [&] { return cloth_read_normals(id, out.data(), capacity); });
+            }
     }
 }
 

@@ -161,6 +161,50 @@ TEST(ApiBehaviour, SameCallsGiveBitIdenticalResults) {
     EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
 }
 
+// Masses a host sets are read back in vertex order (a mesh keeps its own
+// particle order inside), stay through new spring parameters, and weigh:
+// a hanging cloth whose bottom row weighs ten times more sags lower.
+TEST(ApiBehaviour, ParticleMassesAreReadBackKeptThroughSpringChangesAndWeighTheCloth) {
+    SceneConfig config;
+    config.kind = SceneKind::kHanging;
+    config.resolution = 16;
+    config.mesh = true;
+    Scene heavy_hem(config), plain(config);
+    ASSERT_TRUE(heavy_hem.ok() && plain.ok()) << heavy_hem.error();
+    const uint32_t n = heavy_hem.particle_count();
+    std::vector<float> masses(n);
+    ASSERT_EQ(cloth_read_particle_masses(heavy_hem.cloth(), masses.data(), n), CLOTH_OK);
+    float total = 0;
+    for (float m : masses) total += m;
+    EXPECT_NEAR(total, config.total_mass, 1e-4f) << "the material's masses, read back";
+    // The bottom row (the grid's last 16 vertices) ten times heavier.
+    std::vector<uint32_t> hem;
+    std::vector<float> hem_masses;
+    for (uint32_t v = n - 16; v < n; ++v) {
+        hem.push_back(v);
+        hem_masses.push_back(10.0f * masses[v]);
+    }
+    ASSERT_EQ(cloth_set_particle_masses(heavy_hem.cloth(), hem.data(), hem_masses.data(), 16), CLOTH_OK);
+    ASSERT_EQ(cloth_set_spring_params(heavy_hem.cloth(), CLOTH_SPRING_ALL, {1000.0f, 0.0f}), CLOTH_OK);
+    ASSERT_EQ(cloth_set_spring_params(plain.cloth(), CLOTH_SPRING_ALL, {1000.0f, 0.0f}), CLOTH_OK);
+    std::vector<float> after(n);
+    ASSERT_EQ(cloth_read_particle_masses(heavy_hem.cloth(), after.data(), n), CLOTH_OK);
+    for (uint32_t v = 0; v < n; ++v) {
+        EXPECT_EQ(after[v], v >= n - 16 ? 10.0f * masses[v] : masses[v]) << "vertex " << v;
+    }
+    for (int frame = 0; frame < 120; ++frame) {
+        ASSERT_EQ(heavy_hem.step(1.0f / 60.0f), CLOTH_OK);
+        ASSERT_EQ(plain.step(1.0f / 60.0f), CLOTH_OK);
+    }
+    const std::vector<float> x = heavy_hem.positions(), y = plain.positions();
+    float hem_height = 0, plain_height = 0;
+    for (uint32_t v = n - 16; v < n; ++v) {
+        hem_height += x[3 * v + 1] / 16;
+        plain_height += y[3 * v + 1] / 16;
+    }
+    EXPECT_LT(hem_height, plain_height - 1e-3f) << "the heavier hem hangs lower";
+}
+
 TEST(ApiBehaviour, VersionMatchesTheHeader) {
     const cloth_version v = cloth_get_version();
     EXPECT_EQ(v.major, CLOTH_VERSION_MAJOR);

@@ -21,6 +21,9 @@ TEST_F(BadInput, ClothFunctionsRejectEachNullPointerAndChangeNothing) {
     EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_read_normals(c, nullptr, kFloats));
     EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_set_positions(c, nullptr, xyz, 1));
     EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_set_positions(c, pinned, nullptr, 1));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_set_particle_masses(c, nullptr, xyz, 1));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_set_particle_masses(c, pinned, nullptr, 1));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_read_particle_masses(c, nullptr, kParticles));
     EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_pin(c, nullptr, 1));
     EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_unpin(c, nullptr, 1));
     EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_set_pin_targets(c, nullptr, xyz, 1));
@@ -39,6 +42,30 @@ TEST_F(BadInput, ReadWithTooSmallCapacityReturnsInvalidCountAndWritesNothing) {
         EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, cloth_read_positions(a_.cloth, outs_.floats, capacity));
         EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, cloth_read_velocities(a_.cloth, outs_.floats, capacity));
         EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, cloth_read_normals(a_.cloth, outs_.floats, capacity));
+    }
+    for (uint32_t capacity : {0u, kParticles - 1}) {
+        SCOPED_TRACE("capacity " + std::to_string(capacity));
+        EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                        cloth_read_particle_masses(a_.cloth, outs_.floats, capacity));
+    }
+}
+
+TEST_F(BadInput, SetMassesWithZeroCountOrBadIndexOrAMassNotAboveZeroChangesNoMass) {
+    const uint32_t two[] = {20, 21};
+    const float masses[2] = {0.01f, 0.02f};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, cloth_set_particle_masses(a_.cloth, two, masses, 0));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT,
+                    cloth_set_particle_masses(a_.cloth, two, masses, kParticles + 1));
+    for (uint32_t bad : {kParticles, UINT32_MAX}) {
+        SCOPED_TRACE("index " + std::to_string(bad));
+        const uint32_t second_bad[] = {20, bad};
+        EXPECT_REJECTED(CLOTH_ERROR_INDEX_OUT_OF_RANGE,
+                        cloth_set_particle_masses(a_.cloth, second_bad, masses, 2));
+    }
+    for (float bad : {0.0f, -0.0f, -1.0f, -1e-30f}) {
+        SCOPED_TRACE("mass " + std::to_string(bad));
+        const float second_bad[2] = {0.01f, bad};
+        EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_set_particle_masses(a_.cloth, two, second_bad, 2));
     }
 }
 

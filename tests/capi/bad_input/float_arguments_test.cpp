@@ -173,6 +173,9 @@ std::vector<FloatArgument> FloatArguments::Table() {
                                     positions[6], positions[7], positions[8]};
     AddArray(t, "cloth_set_positions positions", true, two_positions, 6,
              [=](const float* p) { return cloth_set_positions(cloth, kTwo, p, 2); });
+    static const float kTwoMasses[2] = {0.01f, 0.02f};
+    AddArray(t, "cloth_set_particle_masses masses", false, kTwoMasses, 2,
+             [=](const float* m) { return cloth_set_particle_masses(cloth, kTwo, m, 2); });
     static const uint32_t kPinned[] = {0};
     AddArray(t, "cloth_set_pin_targets targets", true, positions.data(), 3,
              [=](const float* p) { return cloth_set_pin_targets(cloth, kPinned, p, 1); });

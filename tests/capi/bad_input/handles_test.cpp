@@ -124,6 +124,10 @@ TEST_F(BadInput, EveryClothFunctionRejectsNullStaleWrongGenerationAndOutOfTableC
         EXPECT_REJECTED_MAYBE_LOGGED(CLOTH_ERROR_INVALID_HANDLE,
                                      cloth_read_normals(id, outs_.floats, kFloats));
         EXPECT_REJECTED_MAYBE_LOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_set_positions(id, index, xyz, 1));
+        EXPECT_REJECTED_MAYBE_LOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                                     cloth_set_particle_masses(id, index, xyz, 1));
+        EXPECT_REJECTED_MAYBE_LOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                                     cloth_read_particle_masses(id, outs_.floats, kFloats));
         EXPECT_REJECTED_MAYBE_LOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_pin(id, index, 1));
         EXPECT_REJECTED_MAYBE_LOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_unpin(id, index, 1));
         EXPECT_REJECTED_MAYBE_LOGGED(CLOTH_ERROR_INVALID_HANDLE, cloth_set_pin_targets(id, index, xyz, 1));

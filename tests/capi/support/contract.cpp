@@ -73,6 +73,9 @@ std::string read_cloth_state(cloth_id cloth, ClothState* out) {
         return read_failed("cloth_read_velocities", r);
     if ((r = cloth_read_normals(cloth, s.normals.data(), floats)) != CLOTH_OK)
         return read_failed("cloth_read_normals", r);
+    s.masses.assign(s.count, 0.0f);
+    if ((r = cloth_read_particle_masses(cloth, s.masses.data(), s.count)) != CLOTH_OK)
+        return read_failed("cloth_read_particle_masses", r);
     s.pinned.assign(s.count, 0);
     s.attached_to.assign(s.count, cloth_body_id{});
     s.attach_offsets.assign(floats, 0.0f);
@@ -120,6 +123,8 @@ std::string first_difference(const ClothState& a, const ClothState& b, Compare c
         if (!d.empty()) return d;
     }
     for (uint32_t i = 0; i < a.count; ++i) {
+        if (!same_bits(a.masses[i], b.masses[i]))
+            return "mass of particle " + str(i) + " was " + str(a.masses[i]) + ", now " + str(b.masses[i]);
         if (a.pinned[i] != b.pinned[i]) {
             return "pin state of particle " + str(i) + " was " + str(int(a.pinned[i])) + ", now " +
                    str(int(b.pinned[i]));

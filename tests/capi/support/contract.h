@@ -23,6 +23,7 @@ namespace cloth_test {
 struct ClothState {
     uint32_t count = 0;
     std::vector<float> positions, velocities, normals;
+    std::vector<float> masses;  // one per particle
     std::vector<uint8_t> pinned;
     std::vector<cloth_body_id> attached_to;  // per particle; null if not attached
     std::vector<float> attach_offsets;       // 3 per particle
