@@ -1090,9 +1090,9 @@ CLOTH_API cloth_result cloth_world_set_zone_callbacks(cloth_world_id world, clot
  * or what a CLOTH_SOLVER_DEFAULT cloth chooses by itself each step): the
  * iterations to half the top's, then one substep fewer with the iterations
  * back at the top's, and so on; raising retraces it, never past the top.
- * At the policy's fewest substeps the iterations go below half only after
- * many frames over budget in a row (a load, not a spike), and there the
- * strain limit runs only the passes asked for (cloth_strain_limit.iterations),
+ * At the policy's fewest substeps the iterations go below half only once
+ * most of the last frames ran over budget (a load, not a spike), and there
+ * the strain limit runs only the passes asked for (cloth_strain_limit.iterations),
  * not the extra passes it otherwise adds while a spring stays past the
  * limit: the frame keeps to the budget and the strain gives.
  * cloth_stats.last_solver_iterations shows what a step ran, and setting the

@@ -109,17 +109,18 @@ void BudgetPolicy::decide(double budget_ms, double step_ms, uint64_t frame, int6
     std::stable_sort(cloths, cloths + count,
                      [](const BudgetCloth& a, const BudgetCloth& b) { return a.cost_ns > b.cost_ns; });
     double predicted = step_ms;
+    recent_overruns_ = (recent_overruns_ << 1) | (step_ms > budget_ms ? 1u : 0u);
     if (step_ms > budget_ms) {
         calm_frames_ = 0;
-        ++overruns_in_a_row_;
-        const bool below_floor = overruns_in_a_row_ >= kOverrunsBelowFloor;
+        const uint32_t window = (1u << kLoadWindow) - 1;
+        const bool below_floor =
+            static_cast<uint32_t>(__builtin_popcount(recent_overruns_ & window)) >= kLoadOverruns;
         for (uint32_t c = 0; c < count && predicted > kLowerTo * budget_ms; ++c) {
             if (!cloths[c].cloth->quality_policy().enabled) continue;
             predicted = lower(cloths[c], frame, predicted, kLowerTo * budget_ms, ms_per_ns, below_floor);
         }
         return;
     }
-    overruns_in_a_row_ = 0;
     if (step_ms >= kCalmBelow * budget_ms) {
         calm_frames_ = 0;
         return;

@@ -23,7 +23,8 @@
 //                        kLowerTo of the budget, predicted from its rung's
 //                        usual cost (a spike moves it less than its own
 //                        cost says); below the floor only after
-//                        kOverrunsBelowFloor frames over budget in a row,
+//                        kLoadOverruns of the last kLoadWindow frames
+//                        over budget (a load, not a spike),
 //                        and one rung a frame
 //   below kCalmBelow     for kCalmFrames frames in a row: each cloth, the
 //                        cheapest first, goes one rung up if the predicted
@@ -59,8 +60,10 @@ class BudgetPolicy {
     static constexpr double kCalmBelow = 0.7;
     static constexpr double kRaiseTo = 0.7;
     // Below the floor the solve no longer holds the cloth: only this many
-    // frames over budget in a row (a load, not a spike) take a cloth there.
-    static constexpr uint32_t kOverrunsBelowFloor = 30;
+    // frames over budget among the last kLoadWindow (a load, not a spike)
+    // take a cloth there.
+    static constexpr uint32_t kLoadWindow = 30;
+    static constexpr uint32_t kLoadOverruns = 24;
 
     // cloths: every awake cloth of the frame (policy or not), `count` of them.
     // `frame`: the world's frame count (the cost memory's clock).
@@ -70,7 +73,7 @@ class BudgetPolicy {
     void decide(double budget_ms, double step_ms, uint64_t frame, int64_t total_ns, BudgetCloth* cloths,
                 uint32_t count);
     uint32_t calm_frames_ = 0;
-    uint32_t overruns_in_a_row_ = 0;
+    uint32_t recent_overruns_ = 0;  // bit k: the frame k frames ago overran
 };
 
 }  // namespace cloth

@@ -240,9 +240,9 @@ TEST(Budget, AClothBelowItsFloorRunsOnlyTheStrainLimitPassesAskedFor) {
     }
     EXPECT_GT(most, asked) << "with time to spare it runs more passes than asked for";
     ASSERT_EQ(cloth_world_set_frame_budget(world, 1e-6f), CLOTH_OK);  // no step meets it: always lowered
-    // Down to the floor's last rung in one frame; below it after
-    // kOverrunsBelowFloor frames over budget in a row.
-    const int below = static_cast<int>(cloth::BudgetPolicy::kOverrunsBelowFloor) + 1;
+    // Down to the floor's last rung in one frame; below it once
+    // kLoadOverruns frames have run over budget.
+    const int below = static_cast<int>(cloth::BudgetPolicy::kLoadOverruns) + 1;
     for (int i = 0; i < below + 10; ++i) {
         ASSERT_EQ(cloth_step(world, kDt), CLOTH_ERROR_OVER_BUDGET);
         if (i > 0 && i < below - 1) {
