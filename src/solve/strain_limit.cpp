@@ -38,7 +38,9 @@ CLOTH_HOT_LOOP void slot_corrections_kernel(uint32_t begin, uint32_t end, int64_
         const bool over = pinned[i] == 0.0f && length > allowed;
         const float own = 1.0f / mass[i], other_inverse = 1.0f / mass[j];
         const float other_weight = pinned[j] != 0.0f ? 0.0f : other_inverse;
-        const float share = own / (own + other_weight);
+        const float share = other_weight > 0.0f
+                                ? std::clamp(own / (own + other_weight), kLeastShare, 1.0f - kLeastShare)
+                                : 1.0f;
         const float factor = over ? kRelaxation * share * (length - allowed) / length : 0.0f;
         cx[i] += dx * factor;
         cy[i] += dy * factor;
@@ -149,7 +151,8 @@ CLOTH_HOT_LOOP StretchCount family_terms_kernel(size_t begin, size_t last, size_
         tx[p] = c * dx;
         ty[p] = c * dy;
         tz[p] = c * dz;
-        share[p] = sum > 0.0f ? wp / std::max(sum, 1e-30f) : 0.0f;
+        const float raw = sum > 0.0f ? wp / std::max(sum, 1e-30f) : 0.0f;
+        share[p] = wp > 0.0f && wq > 0.0f ? std::min(std::max(raw, kLeastShare), 1.0f - kLeastShare) : raw;
         over_limit += c != 0.0f;
         over_promise += mask[p] > 0.0f && length > promise * rest[p];
     }

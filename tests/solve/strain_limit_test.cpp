@@ -175,12 +175,13 @@ TEST(Tethers, AClothFarTooHeavyForItsSpringsHangsWithinThirteenPerCentStrain) {
     EXPECT_LT(worst, 0.13f);
 }
 
-// 1e-4 kg particles beside 1 kg ones (cloth_set_particle_masses): a
-// light particle between heavy ones takes nearly all of each correction.
-// With the 0.08 limit the default holds a checkerboard of them at 0.117
-// and one light column at 0.147, where with the limit off the same cloths
-// stretch past 2.
-TEST(Tethers, AClothOfLightParticlesBesideHeavyOnesHangsWithinTwentyPerCentStrain) {
+// 1e-4 kg particles beside 1 kg ones (cloth_set_particle_masses). By
+// inverse mass alone a light particle between heavy ones takes nearly all
+// of each correction and cannot meet both springs: with the 0.08 limit a
+// checkerboard of them reached 0.117 and one light column 0.147. With
+// each end's share at least kLeastShare, 0.104 and 0.132; with the limit
+// off the same cloths stretch past 2.
+TEST(Tethers, AClothOfLightParticlesBesideHeavyOnesHangsCloseToTheLimit) {
     for (const bool checkerboard : {true, false}) {
         SCOPED_TRACE(checkerboard ? "checkerboard" : "one light column");
         auto worst_strain = [&](float limit_value) {
@@ -205,7 +206,7 @@ TEST(Tethers, AClothOfLightParticlesBesideHeavyOnesHangsWithinTwentyPerCentStrai
             }
             return worst;
         };
-        EXPECT_LT(worst_strain(0.08f), 0.2f);
+        EXPECT_LT(worst_strain(0.08f), checkerboard ? 0.11f : 0.14f);
         EXPECT_GT(worst_strain(0.0f), 2.0f) << "the limit is what holds it";
     }
 }
