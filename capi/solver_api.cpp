@@ -29,8 +29,7 @@ CLOTH_API cloth_result cloth_set_solver(cloth_id id, const cloth_solver_settings
         if (!s.ok()) return s;
         SolverSettings core = to_core(*settings);
         core.strain_limit = cloth.solver().strain_limit;
-        cloth.solver() = core;
-        cloth.wake();
+        cloth.set_solver(core);
         return {};
     });
 }

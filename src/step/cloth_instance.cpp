@@ -165,6 +165,12 @@ void ClothInstance::set_quality_settings(const SolverSettings& settings) {
     solver_.default_substep_cap = below ? settings.substeps : 0;
 }
 
+void ClothInstance::set_solver(const SolverSettings& settings) {
+    solver_ = settings;
+    quality_costs_.clear();
+    wake();
+}
+
 QualityLadder ClothInstance::quality_ladder() const {
     const QualityRung top = solver_.kind == CLOTH_SOLVER_DEFAULT
                                 ? QualityRung{frame_own_iterations_, frame_own_substeps_}

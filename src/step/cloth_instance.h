@@ -151,6 +151,9 @@ class ClothInstance {
     SpringModel spring_model() const;
     SolverSettings& solver() { return solver_; }
     const SolverSettings& solver() const { return solver_; }
+    // New solver settings from the host: a quality policy's caps and its
+    // memory of what each rung cost go with the old ones.
+    void set_solver(const SolverSettings& settings);
     AeroParams& aero() { return aero_; }
     const AeroParams& aero() const { return aero_; }
 
