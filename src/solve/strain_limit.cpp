@@ -38,9 +38,10 @@ CLOTH_HOT_LOOP void slot_corrections_kernel(uint32_t begin, uint32_t end, int64_
         const bool over = pinned[i] == 0.0f && length > allowed;
         const float own = 1.0f / mass[i], other_inverse = 1.0f / mass[j];
         const float other_weight = pinned[j] != 0.0f ? 0.0f : other_inverse;
-        const float share = other_weight > 0.0f
-                                ? std::clamp(own / (own + other_weight), kLeastShare, 1.0f - kLeastShare)
-                                : 1.0f;
+        // min and max rather than std::clamp, which GCC does not vectorize here.
+        const float raw = own / (own + other_weight);
+        const float share =
+            other_weight > 0.0f ? std::min(std::max(raw, kLeastShare), 1.0f - kLeastShare) : raw;
         const float factor = over ? kRelaxation * share * (length - allowed) / length : 0.0f;
         cx[i] += dx * factor;
         cy[i] += dy * factor;
