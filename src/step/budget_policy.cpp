@@ -6,17 +6,10 @@ namespace cloth {
 
 namespace {
 
-// Where a cloth stands on its ladder: its current settings, brought onto a
-// rung (settings made outside the policy may lie between rungs).
-QualityRung current_rung(const QualityLadder& ladder, const SolverSettings& settings) {
-    QualityRung rung;
-    rung.substeps = std::clamp(settings.substeps, std::min(ladder.min_substeps, ladder.top.substeps),
-                               ladder.top.substeps);
-    const uint32_t fewest = rung.substeps > std::min(ladder.min_substeps, ladder.top.substeps)
-                                ? ladder.floor()
-                                : std::min(ladder.min_iterations, ladder.top.iterations);
-    rung.iterations = std::clamp(settings.iterations, fewest, ladder.top.iterations);
-    return rung;
+// Where a cloth stands on its ladder: its current settings' rung.
+QualityRung current_rung(const QualityLadder& ladder, const ClothInstance& cloth) {
+    const SolverSettings settings = cloth.quality_settings();
+    return ladder.rung_of(settings.iterations, settings.substeps);
 }
 
 // A cloth's task time at a rung: the average it cost there lately
@@ -62,19 +55,16 @@ double lower(const BudgetCloth& c, uint64_t frame, double predicted, double targ
     const QualityLadder ladder = cloth.quality_ladder();
     const RungCost cost(c, frame);
     const double others = predicted - static_cast<double>(c.cost_ns) * ms_per_ns;
-    QualityRung rung = current_rung(ladder, cloth.quality_settings());
+    QualityRung rung = current_rung(ladder, cloth);
     // From the rung's usual cost: a frame that cost more than that (a
     // spike) moves the cloth down less than its own cost says.
     predicted = others + cost(rung) * ms_per_ns;
-    // The floor's last rung: the fewest substeps at the floor's iterations.
-    // Past it each rung gives up much of the hold, so one a decision.
-    const QualityRung last_holding{ladder.floor(), std::min(ladder.min_substeps, ladder.top.substeps)};
-    const auto at_or_below_floor = [&] {
-        return rung.substeps == last_holding.substeps && rung.iterations <= last_holding.iterations;
-    };
     bool moved = false;
-    while (predicted > target && !(moved && at_or_below_floor()) && (below_floor || !at_or_below_floor()) &&
-           ladder.down(rung)) {
+    while (predicted > target) {
+        // Past the floor's last rung each rung gives up much of the hold:
+        // only under a load, and one a decision.
+        if (ladder.at_or_below_floor(rung) && (!below_floor || moved)) break;
+        if (!ladder.down(rung)) break;
         predicted = others + cost(rung) * ms_per_ns;
         moved = true;
     }
@@ -132,7 +122,7 @@ void BudgetPolicy::decide(double budget_ms, double step_ms, uint64_t frame, int6
         if (!cloth.quality_policy().enabled || !cloth.quality_can_rise()) continue;
         const QualityLadder ladder = cloth.quality_ladder();
         const RungCost cost(cloths[c], frame);
-        QualityRung rung = current_rung(ladder, cloth.quality_settings());
+        QualityRung rung = current_rung(ladder, cloth);
         if (!ladder.up(rung)) continue;
         const double change = (cost(rung) - static_cast<double>(cloths[c].cost_ns)) * ms_per_ns;
         if (predicted + change > kRaiseTo * budget_ms) continue;

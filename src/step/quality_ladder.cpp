@@ -4,13 +4,28 @@
 
 namespace cloth {
 
+uint32_t QualityLadder::fewest_substeps() const { return std::min(min_substeps, top.substeps); }
+
+uint32_t QualityLadder::fewest_iterations() const { return std::min(min_iterations, top.iterations); }
+
 uint32_t QualityLadder::floor() const {
-    return std::clamp((top.iterations + 1) / 2, std::min(min_iterations, top.iterations), top.iterations);
+    return std::clamp((top.iterations + 1) / 2, fewest_iterations(), top.iterations);
+}
+
+bool QualityLadder::at_or_below_floor(QualityRung rung) const {
+    return rung.substeps == fewest_substeps() && rung.iterations <= floor();
+}
+
+QualityRung QualityLadder::rung_of(uint32_t iterations, uint32_t substeps) const {
+    QualityRung rung;
+    rung.substeps = std::clamp(substeps, fewest_substeps(), top.substeps);
+    const uint32_t fewest = rung.substeps > fewest_substeps() ? floor() : fewest_iterations();
+    rung.iterations = std::clamp(iterations, fewest, top.iterations);
+    return rung;
 }
 
 bool QualityLadder::down(QualityRung& rung) const {
-    const uint32_t fewest_substeps = std::min(min_substeps, top.substeps);
-    if (rung.substeps > fewest_substeps) {
+    if (rung.substeps > fewest_substeps()) {
         if (rung.iterations > floor()) {
             --rung.iterations;
         } else {
@@ -19,7 +34,7 @@ bool QualityLadder::down(QualityRung& rung) const {
         }
         return true;
     }
-    if (rung.iterations > std::min(min_iterations, top.iterations)) {
+    if (rung.iterations > fewest_iterations()) {
         --rung.iterations;
         return true;
     }

@@ -16,8 +16,18 @@ struct QualityRung {
 struct QualityLadder {
     QualityRung top;
     uint32_t min_iterations, min_substeps;
+
+    // The ends (bounds above the top count as the top).
+    uint32_t fewest_substeps() const;
+    uint32_t fewest_iterations() const;
     // The fewest iterations a rung above the fewest substeps runs.
     uint32_t floor() const;
+    // Whether `rung` is the floor's last rung (the fewest substeps at the
+    // floor's iterations) or below it.
+    bool at_or_below_floor(QualityRung rung) const;
+    // The rung nearest to these settings (settings made outside the ladder
+    // may lie between rungs or past its ends).
+    QualityRung rung_of(uint32_t iterations, uint32_t substeps) const;
     // The rung below or above `rung`, in place; false at the ends.
     bool down(QualityRung& rung) const;
     bool up(QualityRung& rung) const;

@@ -311,6 +311,15 @@ TEST(QualityLadder, GivesUpIterationsToHalfBeforeEachSubstepAndRetracesItsStepsU
     while (ladder.up(rung)) up.emplace_back(rung.iterations, rung.substeps);
     const std::vector<std::pair<uint32_t, uint32_t>> reversed(expected.rbegin(), expected.rend());
     EXPECT_EQ(up, reversed);
+    // Settings made outside the ladder are read as its nearest rung.
+    const cloth::QualityRung between = ladder.rung_of(1, 3), past = ladder.rung_of(9, 9);
+    EXPECT_EQ(std::make_pair(between.iterations, between.substeps), std::make_pair(3u, 3u));
+    EXPECT_EQ(std::make_pair(past.iterations, past.substeps), std::make_pair(5u, 3u));
+    // The floor's last rung and those below it.
+    EXPECT_TRUE(ladder.at_or_below_floor({3, 1}));
+    EXPECT_TRUE(ladder.at_or_below_floor({1, 1}));
+    EXPECT_FALSE(ladder.at_or_below_floor({4, 1}));
+    EXPECT_FALSE(ladder.at_or_below_floor({3, 2}));
     // Bounds above the top (a policy minimum over the default's own choice)
     // leave one rung.
     const cloth::QualityLadder tight{{2, 1}, 4, 2};
