@@ -1,11 +1,13 @@
-// The frame-budget policy: with a budget well below what the cloths cost,
-// their quality goes down along the ladder (the default solver's iterations
-// to half, then a substep) and the share of frames over budget drops; with
-// a loose budget it goes back up to the policy's maximum; cloths without
-// an enabled policy are never changed; an overrun is reported in the
-// profile and by its own result code, and the world advances as without a
-// budget (a blow-out loses nothing). The ladder itself is checked rung by
-// rung.
+// The frame-budget policy against this machine's measured times, through
+// the C API: under a budget no step meets, the cloths with an enabled
+// policy go down their ladder (the default solver's iterations no lower
+// than half while a substep can still go) and every step reports the
+// overrun by its result code; under a budget every step meets they come
+// back to the top; cloths without an enabled policy are never changed; a
+// blow-out loses nothing. The assertions hold whatever the machine's
+// speed and noise: how far the cloths go and how few frames run over once
+// settled are exact facts of the policy, checked against a cost model in
+// budget_policy_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,7 +17,6 @@
 #include "pinned_cloth.h"
 #include "scenes.h"
 #include "step/budget_policy.h"
-#include "step/quality_ladder.h"
 
 namespace {
 
@@ -49,16 +50,8 @@ cloth_frame_profile profile_of(cloth_world_id world) {
     return p;
 }
 
-// Median step time over `frames` frames.
-double median_step_ms(Scene& scene, int frames) {
-    std::vector<double> ms;
-    for (int i = 0; i < frames; ++i) {
-        EXPECT_EQ(scene.step(kDt), CLOTH_OK);
-        ms.push_back(profile_of(scene.world()).step_ms);
-    }
-    std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
-    return ms[ms.size() / 2];
-}
+// Budgets no step meets and every step meets, on any machine.
+constexpr float kNoStepMeets = 1e-6f, kEveryStepMeets = 1e6f;  // ms
 
 // One step under a budget: a frame over it returns CLOTH_ERROR_OVER_BUDGET,
 // one within it CLOTH_OK, and the profile agrees. Returns whether it overran.
@@ -76,7 +69,7 @@ int overruns(Scene& scene, int frames) {
     return count;
 }
 
-TEST(Budget, ATightBudgetLowersIterationsAndOverrunsDropALooseOneRaisesThemAgain) {
+TEST(Budget, ATightBudgetLowersIterationsAndReportsEveryOverrunALooseOneRaisesThemAgain) {
     Scene scene(four_flags(16));
     ASSERT_TRUE(scene.ok()) << scene.error();
     cloth_quality_policy policy = cloth_default_quality_policy();
@@ -91,24 +84,20 @@ TEST(Budget, ATightBudgetLowersIterationsAndOverrunsDropALooseOneRaisesThemAgain
     const cloth_id fixed = scene.cloths().back();
     cloth_solver_settings one_sweep = cloth_default_solver_settings();
     one_sweep.kind = CLOTH_SOLVER_JACOBI;
-    ASSERT_EQ(cloth_set_solver(fixed, &one_sweep), CLOTH_OK);  // cheap, so the others can meet the budget
+    ASSERT_EQ(cloth_set_solver(fixed, &one_sweep), CLOTH_OK);
 
-    // 16 sweeps cost about (16 + 3) / (1 + 3) = 4.75 times one sweep per
-    // substep; a budget of 40% of the measured cost lies between them.
-    const double full_ms = median_step_ms(scene, 15);
-    ASSERT_EQ(cloth_world_set_frame_budget(scene.world(), static_cast<float>(full_ms * 0.4)), CLOTH_OK);
-    EXPECT_TRUE(step_under_budget(scene)) << "at full quality a frame overruns 40% of its cost";
-    for (int i = 0; i < 60; ++i) step_under_budget(scene);
-    const uint32_t lowered = iterations_of(scene.cloths()[0]);
-    EXPECT_LT(lowered, 16u) << "iterations went down";
-    EXPECT_GE(lowered, 1u);
+    // Every frame over: down to the floor (8 sweeps) at once, and below it,
+    // one sweep a frame, once kLoadOverruns frames have run over.
+    ASSERT_EQ(cloth_world_set_frame_budget(scene.world(), kNoStepMeets), CLOTH_OK);
+    for (int i = 0; i < 60; ++i) EXPECT_TRUE(step_under_budget(scene)) << "frame " << i;
+    for (size_t c = 0; c + 1 < scene.cloths().size(); ++c) {
+        EXPECT_EQ(iterations_of(scene.cloths()[c]), 1u) << "cloth " << c << " went down to its minimum";
+    }
     EXPECT_EQ(iterations_of(fixed), 1u) << "a cloth without a policy keeps its settings";
-    EXPECT_LT(overruns(scene, 30), 20)
-        << "fewer frames over than at full quality, where every frame is (machine noise permitting)";
-    EXPECT_GT(profile_of(scene.world()).overrun_frames, 0u);
+    EXPECT_EQ(profile_of(scene.world()).overrun_frames, 60u);
 
-    // A loose budget: the policy raises them back to the maximum.
-    ASSERT_EQ(cloth_world_set_frame_budget(scene.world(), static_cast<float>(full_ms * 20.0)), CLOTH_OK);
+    // Every frame within: back up to the maximum, and no frame over.
+    ASSERT_EQ(cloth_world_set_frame_budget(scene.world(), kEveryStepMeets), CLOTH_OK);
     for (int i = 0; i < 200 && iterations_of(scene.cloths()[0]) < 16; ++i) step_under_budget(scene);
     EXPECT_EQ(iterations_of(scene.cloths()[0]), 16u) << "iterations went back up";
     EXPECT_EQ(overruns(scene, 5), 0);
@@ -154,37 +143,33 @@ TEST(Budget, TheDefaultSolverGivesUpQualityUnderATightBudgetAndTakesItBackUnderA
     const cloth_world_id world = scene.world();
     ASSERT_EQ(cloth_world_set_profiling(world, 1u << 16), CLOTH_OK);  // task records: substeps run
 
-    // The fourth cloth keeps the default's own choice, so the other three
-    // must give up most of theirs to bring the step to 80 % of its cost.
-    const double full_ms = median_step_ms(scene, 15);
+    // The fourth cloth keeps the default's own choice.
+    for (int i = 0; i < 15; ++i) ASSERT_EQ(scene.step(kDt), CLOTH_OK);
     const uint32_t own = last_iterations(free_running), own_substeps = last_substeps(world, free_running);
     ASSERT_GT(own, 1u) << "the default iterates more than once here";
     ASSERT_GT(own_substeps, 1u) << "and runs more than one substep";
     ASSERT_EQ(last_iterations(capped), own) << "no budget, no cap";
-    ASSERT_EQ(cloth_world_set_frame_budget(world, static_cast<float>(full_ms * 0.8)), CLOTH_OK);
-    EXPECT_TRUE(step_under_budget(scene)) << "at full quality a frame overruns 80% of its cost";
+    ASSERT_EQ(cloth_world_set_frame_budget(world, kNoStepMeets), CLOTH_OK);
     for (int i = 0; i < 60; ++i) {
-        step_under_budget(scene);
+        EXPECT_TRUE(step_under_budget(scene)) << "frame " << i;
         const uint32_t iterations = last_iterations(capped), substeps = last_substeps(world, capped);
         if (substeps > 1) {
             EXPECT_GE(2 * iterations, own) << "frame " << i << ": iterations at half their own or more while "
                                            << substeps << " substeps run";
         }
     }
-    EXPECT_TRUE(last_iterations(capped) < own || last_substeps(world, capped) < own_substeps)
-        << "the policy capped the default's quality";
+    EXPECT_EQ(last_iterations(capped), 1u) << "the policy capped the default's quality down to its minimum";
+    EXPECT_EQ(last_substeps(world, capped), 1u);
     EXPECT_EQ(last_iterations(free_running), own) << "a cloth without a policy keeps the default's choice";
     EXPECT_EQ(last_substeps(world, free_running), own_substeps);
-    EXPECT_LT(overruns(scene, 30), 20)
-        << "fewer frames over than at full quality, where every frame is (machine noise permitting)";
 
-    ASSERT_EQ(cloth_world_set_frame_budget(world, static_cast<float>(full_ms * 20.0)), CLOTH_OK);
+    ASSERT_EQ(cloth_world_set_frame_budget(world, kEveryStepMeets), CLOTH_OK);
     const auto at_own = [&] {
         return last_iterations(capped) == own && last_substeps(world, capped) == own_substeps;
     };
     for (int i = 0; i < 300 && !at_own(); ++i) step_under_budget(scene);
     EXPECT_TRUE(at_own()) << "the caps came off";
-    for (int i = 0; i < 30; ++i) step_under_budget(scene);
+    for (int i = 0; i < 30; ++i) EXPECT_FALSE(step_under_budget(scene));
     EXPECT_EQ(last_iterations(capped), own) << "and the policy raises nothing past the default's own choice";
     EXPECT_EQ(last_substeps(world, capped), own_substeps);
 }
@@ -295,55 +280,6 @@ TEST(Budget, ABlowOutIsReportedWithItsOwnCodeAndLosesNothing) {
     }
     ASSERT_EQ(cloth_world_set_frame_budget(budgeted.world(), 0.0f), CLOTH_OK);
     EXPECT_EQ(budgeted.step(kDt), CLOTH_OK) << "no budget, no overrun";
-}
-
-// The ladder: iterations down to half the top's, then a substep with the
-// iterations back at the top's, ...; at the fewest substeps down to the
-// minimum; up retraces it rung by rung.
-TEST(QualityLadder, GivesUpIterationsToHalfBeforeEachSubstepAndRetracesItsStepsUp) {
-    const cloth::QualityLadder ladder{{5, 3}, 1, 1};
-    EXPECT_EQ(ladder.floor(), 3u);
-    const std::vector<std::pair<uint32_t, uint32_t>> expected = {
-        {5, 3}, {4, 3}, {3, 3}, {5, 2}, {4, 2}, {3, 2}, {5, 1}, {4, 1}, {3, 1}, {2, 1}, {1, 1}};
-    cloth::QualityRung rung = ladder.top;
-    std::vector<std::pair<uint32_t, uint32_t>> down = {{rung.iterations, rung.substeps}};
-    while (ladder.down(rung)) down.emplace_back(rung.iterations, rung.substeps);
-    EXPECT_EQ(down, expected);
-    std::vector<std::pair<uint32_t, uint32_t>> up = {{rung.iterations, rung.substeps}};
-    while (ladder.up(rung)) up.emplace_back(rung.iterations, rung.substeps);
-    const std::vector<std::pair<uint32_t, uint32_t>> reversed(expected.rbegin(), expected.rend());
-    EXPECT_EQ(up, reversed);
-    // Settings made outside the ladder are read as its nearest rung.
-    const cloth::QualityRung between = ladder.rung_of(1, 3), past = ladder.rung_of(9, 9);
-    EXPECT_EQ(std::make_pair(between.iterations, between.substeps), std::make_pair(3u, 3u));
-    EXPECT_EQ(std::make_pair(past.iterations, past.substeps), std::make_pair(5u, 3u));
-    // The floor's last rung and those below it.
-    EXPECT_TRUE(ladder.at_or_below_floor({3, 1}));
-    EXPECT_TRUE(ladder.at_or_below_floor({1, 1}));
-    EXPECT_FALSE(ladder.at_or_below_floor({4, 1}));
-    EXPECT_FALSE(ladder.at_or_below_floor({3, 2}));
-    // Bounds above the top (a policy minimum over the default's own choice)
-    // leave one rung.
-    const cloth::QualityLadder tight{{2, 1}, 4, 2};
-    cloth::QualityRung only = tight.top;
-    EXPECT_FALSE(tight.down(only));
-    EXPECT_FALSE(tight.up(only));
-}
-
-// The cost memory: a moving average per rung, forgotten after a while.
-TEST(QualityCosts, AveragesWhatARungCostAndForgetsRungsNotRunForLong) {
-    cloth::QualityCosts costs;
-    const cloth::QualityRung a{5, 2}, b{3, 1};
-    EXPECT_LT(costs.cost_ns(a, 0), 0.0) << "unknown";
-    costs.record(a, 1000.0, 1);
-    costs.record(a, 2000.0, 2);
-    EXPECT_DOUBLE_EQ(costs.cost_ns(a, 2), 1000.0 + cloth::QualityCosts::kWeight * 1000.0);
-    costs.record(b, 500.0, 3);
-    EXPECT_DOUBLE_EQ(costs.cost_ns(b, 3), 500.0);
-    EXPECT_LT(costs.cost_ns(a, 2 + cloth::QualityCosts::kForgetFrames), 0.0) << "forgotten";
-    // More rungs than it keeps: the one run longest ago goes.
-    for (uint32_t i = 0; i < cloth::QualityCosts::kRungs; ++i) costs.record({10 + i, 1}, 1.0, 10 + i);
-    EXPECT_LT(costs.cost_ns(a, 20), 0.0);
 }
 
 }  // namespace

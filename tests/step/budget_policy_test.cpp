@@ -1,0 +1,285 @@
+// The frame-budget policy against a model of what frames cost: each frame
+// of a rung costs exactly `per_substep + iterations * per_iteration` a
+// substep, so every decision is reproducible and the facts the policy
+// promises are checked exactly, not through this machine's timing (the
+// same policy against measured times: budget_test.cpp).
+//
+//   - under a budget the top rung cannot meet, a cloth comes down its
+//     ladder and, once settled, no frame runs over;
+//   - it stops at the floor (half its top's iterations) until a load keeps
+//     the frames over budget (BudgetPolicy::kLoadOverruns of the last
+//     kLoadWindow), and goes below it one rung a frame;
+//   - a spike (one costly frame) moves it as far as its rung's usual cost
+//     says, not its own;
+//   - the default solver's iterations stay at half its own choice or more
+//     while more than one substep runs, and its caps come off under a
+//     loose budget, never past its own choice;
+//   - a cloth without an enabled policy is never changed.
+//
+// And the ladder and the cost memory the policy reads, alone.
+#include "step/budget_policy.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "test_support.h"
+
+namespace cloth {
+namespace {
+
+using cloth::testing::make_grid;
+using cloth::testing::uniform_material;
+
+constexpr float kDt = 1.0f / 60.0f;
+const Vec3 kGravity(0.0f, -9.81f, 0.0f);
+
+// What a frame costs at the rung it ran, in task nanoseconds.
+struct CostModel {
+    double per_substep_ns = 100e3;
+    double per_iteration_ns = 40e3;  // a solve iteration, each substep
+    int64_t cost_ns(QualityRung ran) const {
+        return static_cast<int64_t>(ran.substeps * (per_substep_ns + ran.iterations * per_iteration_ns));
+    }
+    int64_t solve_ns(QualityRung ran) const {
+        return static_cast<int64_t>(ran.substeps * ran.iterations * per_iteration_ns);
+    }
+};
+
+// Cloths stepped for real (their default solver chooses from their state)
+// on one thread, each frame costed by the model and handed to the policy
+// as World::step does.
+class ModelWorld {
+  public:
+    ClothInstance& add(const SolverSettings& solver, float stiffness) {
+        auto cloth = std::make_unique<ClothInstance>(cloth::testing::heap(), make_grid(8, 8),
+                                                     uniform_material(stiffness, 0.2f, 0.2f), solver,
+                                                     cloth::testing::still_air());
+        cloth->pin(0);
+        cloth->pin(7);
+        SleepSettings awake;
+        awake.enabled = false;  // every cloth runs every frame, as the policy expects of its list
+        cloth->set_sleep(awake);
+        cloths_.push_back(std::move(cloth));
+        return *cloths_.back();
+    }
+    // One frame; returns whether it ran over `budget_ms`. `spike` multiplies
+    // this frame's cost.
+    bool frame(double budget_ms, double spike = 1.0) {
+        std::vector<BudgetCloth> costs;
+        int64_t total_ns = 0;
+        for (auto& cloth : cloths_) {
+            EXPECT_TRUE(cloth->step(kDt, kGravity).ok());
+            const QualityRung ran = cloth->ran_rung();
+            const int64_t cost = static_cast<int64_t>(spike * static_cast<double>(model.cost_ns(ran)));
+            costs.push_back({cloth.get(), cost, static_cast<int64_t>(spike * model.solve_ns(ran))});
+            total_ns += cost;
+        }
+        const double step_ms = static_cast<double>(total_ns) * 1e-6;
+        policy_.after_frame(budget_ms, step_ms, ++frame_, costs.data(), static_cast<uint32_t>(costs.size()));
+        return step_ms > budget_ms;
+    }
+    int overruns(double budget_ms, int frames) {
+        int count = 0;
+        for (int i = 0; i < frames; ++i) count += frame(budget_ms) ? 1 : 0;
+        return count;
+    }
+    // The step's cost at every cloth's current rung (the last frame's).
+    double step_ms() const {
+        double ns = 0;
+        for (const auto& cloth : cloths_) ns += static_cast<double>(model.cost_ns(cloth->ran_rung()));
+        return ns * 1e-6;
+    }
+    CostModel model;
+
+  private:
+    std::vector<std::unique_ptr<ClothInstance>> cloths_;
+    BudgetPolicy policy_;
+    uint64_t frame_ = 0;
+};
+
+SolverSettings jacobi(uint32_t iterations) {
+    SolverSettings s;
+    s.kind = CLOTH_SOLVER_JACOBI;
+    s.iterations = iterations;
+    s.substeps = 1;
+    return s;
+}
+
+QualityPolicy sweeps_policy() {
+    QualityPolicy p;
+    p.enabled = true;
+    p.min_iterations = 1;
+    p.max_iterations = 16;
+    p.max_substeps = 1;
+    return p;
+}
+
+TEST(BudgetPolicyModel, ATightBudgetSettlesWithNoFrameOverAndALooseOneRestoresTheTop) {
+    ModelWorld world;
+    std::vector<ClothInstance*> follow;
+    for (int c = 0; c < 3; ++c) {
+        ClothInstance& cloth = world.add(jacobi(16), 300.0f);
+        cloth.set_quality_policy(sweeps_policy());
+        follow.push_back(&cloth);
+    }
+    ClothInstance& fixed = world.add(jacobi(1), 300.0f);  // no policy
+
+    world.frame(1e9);
+    const double full_ms = world.step_ms();
+    // 40% of the top: below what even the floor (8 sweeps) costs, so the
+    // cloths must go below it, which takes a load of kLoadOverruns frames.
+    const double budget = 0.4 * full_ms;
+    int first_frames_over = 0;
+    for (uint32_t i = 0; i < BudgetPolicy::kLoadWindow; ++i) first_frames_over += world.frame(budget) ? 1 : 0;
+    EXPECT_GE(first_frames_over, static_cast<int>(BudgetPolicy::kLoadOverruns))
+        << "the floor alone cannot meet this budget";
+    for (int i = 0; i < 60; ++i) world.frame(budget);
+    EXPECT_EQ(world.overruns(budget, 60), 0) << "settled: no frame over budget";
+    for (ClothInstance* cloth : follow) {
+        EXPECT_LT(cloth->solver().iterations, 8u) << "below the floor, under a load";
+        EXPECT_GE(cloth->solver().iterations, 1u);
+    }
+    EXPECT_EQ(fixed.solver().iterations, 1u) << "a cloth without a policy keeps its settings";
+    EXPECT_LE(world.step_ms(), budget);
+
+    for (int i = 0; i < 300; ++i) world.frame(100 * full_ms);
+    for (ClothInstance* cloth : follow) EXPECT_EQ(cloth->solver().iterations, 16u) << "back to the top";
+    EXPECT_EQ(world.overruns(100 * full_ms, 5), 0);
+}
+
+TEST(BudgetPolicyModel, AtTheFloorOnlyALoadTakesAClothLowerAndThenOneRungAFrame) {
+    ModelWorld world;
+    ClothInstance& cloth = world.add(jacobi(16), 300.0f);
+    cloth.set_quality_policy(sweeps_policy());
+    const QualityLadder ladder = cloth.quality_ladder();
+    ASSERT_EQ(ladder.floor(), 8u);
+
+    // A budget nothing meets: the first frame takes the cloth to the
+    // floor, and it stays there until kLoadOverruns frames have run over.
+    for (uint32_t i = 1; i < BudgetPolicy::kLoadOverruns; ++i) {
+        EXPECT_TRUE(world.frame(1e-9));
+        EXPECT_EQ(cloth.solver().iterations, 8u) << "frame " << i << ": at the floor";
+    }
+    uint32_t last = cloth.solver().iterations;
+    for (int i = 0; i < 10; ++i) {
+        EXPECT_TRUE(world.frame(1e-9));
+        const uint32_t now = cloth.solver().iterations;
+        EXPECT_EQ(now, last > 1 ? last - 1 : 1u) << "below the floor: one rung a frame";
+        last = now;
+    }
+}
+
+TEST(BudgetPolicyModel, ASpikeMovesAClothOnlyAsFarAsItsRungsUsualCostSays) {
+    ModelWorld world;
+    ClothInstance& cloth = world.add(jacobi(16), 300.0f);
+    cloth.set_quality_policy(sweeps_policy());
+    world.frame(1e9);
+    const double budget = 1.2 * world.step_ms();
+    for (int i = 0; i < 20; ++i) EXPECT_FALSE(world.frame(budget));
+    EXPECT_EQ(cloth.solver().iterations, 16u) << "within budget: at the top";
+    EXPECT_TRUE(world.frame(budget, 10.0)) << "a frame ten times its usual cost";
+    // Judged by the usual cost, 16 sweeps (740 us) are just over kLowerTo of
+    // the budget (0.75 * 1.2 * 740 = 666 us): 14 sweeps (660 us) meet it.
+    // Judged by the spike, nothing above the floor (8 sweeps) would.
+    EXPECT_EQ(cloth.solver().iterations, 14u);
+}
+
+// A stiff cloth at 60 Hz: the default solver chooses several iterations
+// and substeps by itself.
+TEST(BudgetPolicyModel, TheDefaultKeepsHalfItsIterationsWhileSubstepsCanGoAndGetsItsOwnChoiceBack) {
+    ModelWorld world;
+    SolverSettings automatic;
+    automatic.kind = CLOTH_SOLVER_DEFAULT;
+    ClothInstance& capped = world.add(automatic, 20000.0f);
+    ClothInstance& free_running = world.add(automatic, 20000.0f);  // no policy
+    QualityPolicy policy;
+    policy.enabled = true;
+    capped.set_quality_policy(policy);
+
+    world.frame(1e9);
+    const QualityRung own = free_running.ran_rung();
+    ASSERT_GT(own.iterations, 1u) << "the default iterates more than once here";
+    ASSERT_GT(own.substeps, 1u) << "and runs more than one substep";
+    ASSERT_EQ(capped.ran_rung().iterations, own.iterations) << "no budget, no cap";
+
+    // The free-running cloth alone costs half the step: at 80% of it the
+    // capped one must come down to its fewest substeps.
+    const double budget = 0.8 * world.step_ms();
+    bool capped_below_own = false;
+    for (int i = 0; i < 60; ++i) {
+        world.frame(budget);
+        const QualityRung ran = capped.ran_rung();
+        if (ran.substeps > 1) {
+            EXPECT_GE(2 * ran.iterations, own.iterations)
+                << "frame " << i << ": iterations at half their own or more while " << ran.substeps
+                << " substeps run";
+        }
+        capped_below_own |= ran.substeps < own.substeps;
+    }
+    EXPECT_TRUE(capped_below_own) << "the policy took substeps away";
+    EXPECT_EQ(free_running.ran_rung().iterations, own.iterations)
+        << "a cloth without a policy keeps the default's choice";
+    EXPECT_EQ(free_running.ran_rung().substeps, own.substeps);
+    EXPECT_EQ(world.overruns(budget, 30), 0) << "settled: no frame over budget";
+
+    const double loose = 100 * budget;
+    for (int i = 0; i < 300; ++i) world.frame(loose);
+    EXPECT_EQ(capped.ran_rung().iterations, own.iterations) << "the caps came off";
+    EXPECT_EQ(capped.ran_rung().substeps, own.substeps);
+    EXPECT_FALSE(capped.quality_can_rise()) << "and nothing is raised past the default's own choice";
+}
+
+// The ladder: iterations down to half the top's, then a substep with the
+// iterations back at the top's, ...; at the fewest substeps down to the
+// minimum; up retraces it rung by rung.
+TEST(QualityLadder, GivesUpIterationsToHalfBeforeEachSubstepAndRetracesItsStepsUp) {
+    const QualityLadder ladder{{5, 3}, 1, 1};
+    EXPECT_EQ(ladder.floor(), 3u);
+    const std::vector<std::pair<uint32_t, uint32_t>> expected = {
+        {5, 3}, {4, 3}, {3, 3}, {5, 2}, {4, 2}, {3, 2}, {5, 1}, {4, 1}, {3, 1}, {2, 1}, {1, 1}};
+    QualityRung rung = ladder.top;
+    std::vector<std::pair<uint32_t, uint32_t>> down = {{rung.iterations, rung.substeps}};
+    while (ladder.down(rung)) down.emplace_back(rung.iterations, rung.substeps);
+    EXPECT_EQ(down, expected);
+    std::vector<std::pair<uint32_t, uint32_t>> up = {{rung.iterations, rung.substeps}};
+    while (ladder.up(rung)) up.emplace_back(rung.iterations, rung.substeps);
+    const std::vector<std::pair<uint32_t, uint32_t>> reversed(expected.rbegin(), expected.rend());
+    EXPECT_EQ(up, reversed);
+    // Settings made outside the ladder are read as its nearest rung.
+    const QualityRung between = ladder.rung_of(1, 3), past = ladder.rung_of(9, 9);
+    EXPECT_EQ(std::make_pair(between.iterations, between.substeps), std::make_pair(3u, 3u));
+    EXPECT_EQ(std::make_pair(past.iterations, past.substeps), std::make_pair(5u, 3u));
+    // The floor's last rung and those below it.
+    EXPECT_TRUE(ladder.at_or_below_floor({3, 1}));
+    EXPECT_TRUE(ladder.at_or_below_floor({1, 1}));
+    EXPECT_FALSE(ladder.at_or_below_floor({4, 1}));
+    EXPECT_FALSE(ladder.at_or_below_floor({3, 2}));
+    // Bounds above the top (a policy minimum over the default's own choice)
+    // leave one rung.
+    const QualityLadder tight{{2, 1}, 4, 2};
+    QualityRung only = tight.top;
+    EXPECT_FALSE(tight.down(only));
+    EXPECT_FALSE(tight.up(only));
+}
+
+// The cost memory: a moving average per rung, forgotten after a while.
+TEST(QualityCosts, AveragesWhatARungCostAndForgetsRungsNotRunForLong) {
+    QualityCosts costs;
+    const QualityRung a{5, 2}, b{3, 1};
+    EXPECT_LT(costs.cost_ns(a, 0), 0.0) << "unknown";
+    costs.record(a, 1000.0, 1);
+    costs.record(a, 2000.0, 2);
+    EXPECT_DOUBLE_EQ(costs.cost_ns(a, 2), 1000.0 + QualityCosts::kWeight * 1000.0);
+    costs.record(b, 500.0, 3);
+    EXPECT_DOUBLE_EQ(costs.cost_ns(b, 3), 500.0);
+    EXPECT_LT(costs.cost_ns(a, 2 + QualityCosts::kForgetFrames), 0.0) << "forgotten";
+    // More rungs than it keeps: the one run longest ago goes.
+    for (uint32_t i = 0; i < QualityCosts::kRungs; ++i) costs.record({10 + i, 1}, 1.0, 10 + i);
+    EXPECT_LT(costs.cost_ns(a, 20), 0.0);
+}
+
+}  // namespace
+}  // namespace cloth
