@@ -130,6 +130,9 @@ namespace {
 // The loops of the grid path, every array a __restrict parameter so that GCC
 // vectorizes them (as in spring_terms_grid.cpp).
 // Returns the springs over the limit and over `promise` (a stretch).
+// kShares: also write each spring's first-end share (the masses and pins
+// it depends on do not change within a substep: its first pass does).
+template <bool kShares>
 CLOTH_HOT_LOOP StretchCount family_terms_kernel(size_t begin, size_t last, size_t offset, float stretch_limit,
                                                 float promise, float weight, const float* __restrict mask,
                                                 const float* __restrict rest, const float* __restrict mass,
@@ -147,13 +150,16 @@ CLOTH_HOT_LOOP StretchCount family_terms_kernel(size_t begin, size_t last, size_
         // mask and rest length are zero); length > 0 wherever excess > 0.
         const float c =
             excess > 0.0f ? weight * mask[p] * kRelaxation * excess / std::max(length, 1e-30f) : 0.0f;
-        const float wp = (1.0f - pinned[p]) / mass[p], wq = (1.0f - pinned[q]) / mass[q];
-        const float sum = wp + wq;
         tx[p] = c * dx;
         ty[p] = c * dy;
         tz[p] = c * dz;
-        const float raw = sum > 0.0f ? wp / std::max(sum, 1e-30f) : 0.0f;
-        share[p] = wp > 0.0f && wq > 0.0f ? std::min(std::max(raw, kLeastShare), 1.0f - kLeastShare) : raw;
+        if (kShares) {
+            const float wp = (1.0f - pinned[p]) / mass[p], wq = (1.0f - pinned[q]) / mass[q];
+            const float sum = wp + wq;
+            const float raw = sum > 0.0f ? wp / std::max(sum, 1e-30f) : 0.0f;
+            share[p] =
+                wp > 0.0f && wq > 0.0f ? std::min(std::max(raw, kLeastShare), 1.0f - kLeastShare) : raw;
+        }
         over_limit += c != 0.0f;
         over_promise += mask[p] > 0.0f && length > promise * rest[p];
     }
@@ -179,7 +185,7 @@ CLOTH_HOT_LOOP void family_corrections_kernel(size_t begin, size_t end, const fl
 }  // namespace
 
 StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin,
-                                     uint32_t end, GridStrainTerms& terms) {
+                                     uint32_t end, bool shares, GridStrainTerms& terms) {
     const Fabric& f = *pass.fabric;
     const uint32_t n = f.particle_count();
     StretchCount count;
@@ -188,7 +194,8 @@ StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa&
         const uint32_t last = std::min(end, n > family.offset ? n - family.offset : 0u);
         if (begin >= last) continue;
         const size_t base = k * terms.stride + terms.lead;
-        const StretchCount found = family_terms_kernel(
+        const auto kernel = shares ? family_terms_kernel<true> : family_terms_kernel<false>;
+        const StretchCount found = kernel(
             begin, last, family.offset, 1.0f + pass.max_strain, 1.0f + pass.max_strain + kStrainPromiseSlack,
             terms.weight[k], family.mask.data(), family.rest_length.data(), pass.mass, pass.pinned,
             x.x.data(), x.y.data(), x.z.data(), terms.x.data() + base, terms.y.data() + base,
@@ -299,7 +306,9 @@ void StrainLimiter::run(const GroupTask& task) {
             strain_limit_apply(*correction_, h_, omega_, task.begin, task.end, *x_, *v_, *previous_);
             return;
         }
-        const StretchCount count = strain_limit_grid_terms(pass_, *x_, task.begin, task.end, *grid_);
+        const bool first_pass = round_ == first_pass_round_;
+        const StretchCount count =
+            strain_limit_grid_terms(pass_, *x_, task.begin, task.end, first_pass, *grid_);
         if (counts_) counts_[task.group] = count;
     } else if (applying()) {
         strain_limit_apply(*correction_, h_, omega_, task.begin, task.end, *x_, *v_, *previous_);

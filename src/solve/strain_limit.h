@@ -94,9 +94,11 @@ struct GridStrainTerms {
     HostVector<float> x, y, z, share;  // family k's entry for p at k * stride + lead + p
 };
 
-// Grid fabrics: the terms of springs whose first particle is in [begin, end)...
+// Grid fabrics: the terms of springs whose first particle is in [begin, end),
+// and with `shares` their first ends' shares (which follow from the masses
+// and pins alone: a substep's first pass writes them, its others keep them)...
 StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin,
-                                     uint32_t end, GridStrainTerms& terms);
+                                     uint32_t end, bool shares, GridStrainTerms& terms);
 // ... then correction_i = sum over families of share * t at i minus
 // (1 - share) * t at i - offset, zero for pinned particles, [begin, end).
 void strain_limit_grid_corrections(const StrainLimitPass& pass, const GridStrainTerms& terms, uint32_t begin,
