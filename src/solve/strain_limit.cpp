@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "base/lanes.h"
 
@@ -12,6 +13,10 @@ namespace cloth {
 // with the full share; 1/2 was measured to hold strain better than 1 (a
 // 128x128 cloth falling flat: 0.33 against 0.85 after 200 frames).
 constexpr float kRelaxation = 0.5f;
+
+// Springs a grid pass tests at a time for being within the limit (one AVX
+// register of them), skipping the exact terms of a run that is.
+constexpr size_t kSkipRun = 8;
 
 namespace {
 
@@ -81,7 +86,8 @@ GridStrainTerms::GridStrainTerms(const HostMemory* memory)
       x(HostAllocator<float>(memory)),
       y(HostAllocator<float>(memory)),
       z(HostAllocator<float>(memory)),
-      share(HostAllocator<float>(memory)) {}
+      share(HostAllocator<float>(memory)),
+      maybe_over(HostAllocator<uint8_t>(memory)) {}
 
 void GridStrainTerms::resize(const Fabric& fabric) {
     const uint32_t n = fabric.particle_count();
@@ -123,23 +129,36 @@ void GridStrainTerms::resize(const Fabric& fabric) {
     }
     stride = lead + n;
     for (HostVector<float>* a : {&x, &y, &z, &share}) a->assign(size_t{stride} * families.size(), 0.0f);
+    maybe_over.assign(n, 0);
 }
 
 namespace {
 
 // The loops of the grid path, every array a __restrict parameter so that GCC
 // vectorizes them (as in spring_terms_grid.cpp).
-// Returns the springs over the limit and over `promise` (a stretch).
-// kShares: also write each spring's first-end share (the masses and pins
-// it depends on do not change within a substep: its first pass does).
-template <bool kShares>
+
+// Each spring's first-end share w_p / (w_p + w_q), kept within
+// [kLeastShare, 1 - kLeastShare] when both ends are free.
+CLOTH_HOT_LOOP void family_shares_kernel(size_t begin, size_t last, size_t offset,
+                                         const float* __restrict mass, const float* __restrict pinned,
+                                         float* __restrict share) {
+    for (size_t p = begin; p < last; ++p) {
+        const size_t q = p + offset;
+        const float wp = (1.0f - pinned[p]) / mass[p], wq = (1.0f - pinned[q]) / mass[q];
+        const float sum = wp + wq;
+        const float raw = sum > 0.0f ? wp / std::max(sum, 1e-30f) : 0.0f;
+        share[p] = wp > 0.0f && wq > 0.0f ? std::min(std::max(raw, kLeastShare), 1.0f - kLeastShare) : raw;
+    }
+}
+
+// The terms of springs [begin, last). Returns the springs over the limit
+// and over `promise` (a stretch).
 CLOTH_HOT_LOOP StretchCount family_terms_kernel(size_t begin, size_t last, size_t offset, float stretch_limit,
                                                 float promise, float weight, const float* __restrict mask,
-                                                const float* __restrict rest, const float* __restrict mass,
-                                                const float* __restrict pinned, const float* __restrict px,
+                                                const float* __restrict rest, const float* __restrict px,
                                                 const float* __restrict py, const float* __restrict pz,
                                                 float* __restrict tx, float* __restrict ty,
-                                                float* __restrict tz, float* __restrict share) {
+                                                float* __restrict tz) {
     uint32_t over_limit = 0, over_promise = 0;
     for (size_t p = begin; p < last; ++p) {
         const size_t q = p + offset;
@@ -153,17 +172,32 @@ CLOTH_HOT_LOOP StretchCount family_terms_kernel(size_t begin, size_t last, size_
         tx[p] = c * dx;
         ty[p] = c * dy;
         tz[p] = c * dz;
-        if (kShares) {
-            const float wp = (1.0f - pinned[p]) / mass[p], wq = (1.0f - pinned[q]) / mass[q];
-            const float sum = wp + wq;
-            const float raw = sum > 0.0f ? wp / std::max(sum, 1e-30f) : 0.0f;
-            share[p] =
-                wp > 0.0f && wq > 0.0f ? std::min(std::max(raw, kLeastShare), 1.0f - kLeastShare) : raw;
-        }
         over_limit += c != 0.0f;
         over_promise += mask[p] > 0.0f && length > promise * rest[p];
     }
     return {over_limit, over_promise};
+}
+
+// Zero terms for springs [begin, last), and maybe[p] = 1 where spring p
+// may be over the limit: its squared length at least kSurelyUnder times
+// the squared allowed length. Below that the square root is surely within
+// the allowed length, so family_terms_kernel would write zero terms and
+// count nothing.
+constexpr float kSurelyUnder = 1.0f - 1e-5f;
+CLOTH_HOT_LOOP void maybe_over_kernel(size_t begin, size_t last, size_t offset, float stretch_limit,
+                                      const float* __restrict mask, const float* __restrict rest,
+                                      const float* __restrict px, const float* __restrict py,
+                                      const float* __restrict pz, float* __restrict tx, float* __restrict ty,
+                                      float* __restrict tz, uint8_t* __restrict maybe) {
+    for (size_t p = begin; p < last; ++p) {
+        const size_t q = p + offset;
+        const float dx = px[q] - px[p], dy = py[q] - py[p], dz = pz[q] - pz[p];
+        const float allowed = stretch_limit * rest[p];
+        maybe[p] = mask[p] > 0.0f && dx * dx + dy * dy + dz * dz >= kSurelyUnder * (allowed * allowed);
+        tx[p] = 0.0f;
+        ty[p] = 0.0f;
+        tz[p] = 0.0f;
+    }
 }
 
 // c_i += own share of t at i - (1 - their share) of t at i - offset
@@ -188,20 +222,41 @@ StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa&
                                      uint32_t end, bool shares, GridStrainTerms& terms) {
     const Fabric& f = *pass.fabric;
     const uint32_t n = f.particle_count();
+    const float stretch_limit = 1.0f + pass.max_strain, promise = stretch_limit + kStrainPromiseSlack;
     StretchCount count;
     for (size_t k = 0; k < terms.families.size(); ++k) {
         const SpringFamily& family = *terms.families[k];
         const uint32_t last = std::min(end, n > family.offset ? n - family.offset : 0u);
         if (begin >= last) continue;
         const size_t base = k * terms.stride + terms.lead;
-        const auto kernel = shares ? family_terms_kernel<true> : family_terms_kernel<false>;
-        const StretchCount found = kernel(
-            begin, last, family.offset, 1.0f + pass.max_strain, 1.0f + pass.max_strain + kStrainPromiseSlack,
-            terms.weight[k], family.mask.data(), family.rest_length.data(), pass.mass, pass.pinned,
-            x.x.data(), x.y.data(), x.z.data(), terms.x.data() + base, terms.y.data() + base,
-            terms.z.data() + base, terms.share.data() + base);
-        count.over_limit += found.over_limit;
-        count.over_promise += found.over_promise;
+        float* tx = terms.x.data() + base;
+        float* ty = terms.y.data() + base;
+        float* tz = terms.z.data() + base;
+        if (shares)
+            family_shares_kernel(begin, last, family.offset, pass.mass, pass.pinned,
+                                 terms.share.data() + base);
+        // Most of a cloth is within the limit after a pass or two (6 % of
+        // the vehicle flag's runs of eight springs had one over it): only
+        // runs with a spring that may be over get the exact terms, with
+        // their square roots and divisions.
+        uint8_t* maybe = terms.maybe_over.data();
+        maybe_over_kernel(begin, last, family.offset, stretch_limit, family.mask.data(),
+                          family.rest_length.data(), x.x.data(), x.y.data(), x.z.data(), tx, ty, tz, maybe);
+        for (size_t run = begin; run < last; run += kSkipRun) {
+            const size_t run_end = std::min<size_t>(last, run + kSkipRun);
+            uint64_t any = 0;
+            if (run_end - run == kSkipRun) {
+                std::memcpy(&any, maybe + run, sizeof any);
+            } else {
+                for (size_t p = run; p < run_end; ++p) any |= maybe[p];
+            }
+            if (any == 0) continue;
+            const StretchCount found = family_terms_kernel(
+                run, run_end, family.offset, stretch_limit, promise, terms.weight[k], family.mask.data(),
+                family.rest_length.data(), x.x.data(), x.y.data(), x.z.data(), tx, ty, tz);
+            count.over_limit += found.over_limit;
+            count.over_promise += found.over_promise;
+        }
     }
     return count;
 }

@@ -92,6 +92,7 @@ struct GridStrainTerms {
     HostVector<float> weight;                  // per family: 1, or kStrainReachWeight
     uint32_t lead = 0, stride = 0;
     HostVector<float> x, y, z, share;  // family k's entry for p at k * stride + lead + p
+    HostVector<uint8_t> maybe_over;    // per particle, scratch of each family's pass in turn
 };
 
 // Grid fabrics: the terms of springs whose first particle is in [begin, end),
