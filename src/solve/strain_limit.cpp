@@ -14,11 +14,32 @@ namespace cloth {
 // 128x128 cloth falling flat: 0.33 against 0.85 after 200 frames).
 constexpr float kRelaxation = 0.5f;
 
-// Springs a grid pass tests at a time for being within the limit (one AVX
-// register of them), skipping the exact terms of a run that is.
-constexpr size_t kSkipRun = 8;
+// Particles a pass with StrainLimitPass::maybe_over tests at a time (one
+// AVX register), and the squared length below which a spring is surely
+// within the limit: at most kSurelyUnder times the squared allowed length,
+// its rounded square root is within the allowed length, so the exact
+// pass would correct nothing there and count nothing.
+constexpr uint32_t kSkipRun = 8;
+constexpr float kSurelyUnder = 1.0f - 1e-5f;
 
 namespace {
+
+// Calls exact(run_begin, run_end) for the runs of kSkipRun particles of
+// [begin, end) with maybe[i] set for one of them.
+template <class Exact>
+void for_each_maybe_run(const uint8_t* maybe, uint32_t begin, uint32_t end, Exact exact) {
+    for (uint32_t run = begin; run < end; run += kSkipRun) {
+        const uint32_t run_end = std::min(end, run + kSkipRun);
+        uint64_t any = 0;
+        if (run_end - run == kSkipRun) {
+            static_assert(kSkipRun == sizeof any, "one run is one 64-bit word of flags");
+            std::memcpy(&any, maybe + run, sizeof any);
+        } else {
+            for (uint32_t i = run; i < run_end; ++i) any |= maybe[i];
+        }
+        if (any != 0) exact(run, run_end);
+    }
+}
 
 // One incidence slot of particles [begin, end) (slot of i at base + i):
 // correction_i += the slot's spring's correction, counted in `count`.
@@ -59,6 +80,21 @@ CLOTH_HOT_LOOP void slot_corrections_kernel(uint32_t begin, uint32_t end, int64_
     over_promise += promise_count;
 }
 
+// maybe[i] = 1 where particle i's slot spring may be over the limit
+// (padding, of infinite rest length, never is).
+CLOTH_HOT_LOOP void slot_maybe_over_kernel(uint32_t begin, uint32_t end, int64_t base, float stretch_limit,
+                                           const uint32_t* __restrict other, const float* __restrict rest,
+                                           const float* __restrict px, const float* __restrict py,
+                                           const float* __restrict pz, uint8_t* __restrict maybe) {
+    for (uint32_t i = begin; i < end; ++i) {
+        const int64_t k = base + i;
+        const uint32_t j = other[k];
+        const float dx = px[j] - px[i], dy = py[j] - py[i], dz = pz[j] - pz[i];
+        const float allowed = stretch_limit * rest[k];
+        maybe[i] = dx * dx + dy * dy + dz * dz >= kSurelyUnder * (allowed * allowed);
+    }
+}
+
 }  // namespace
 
 StretchCount strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin,
@@ -71,10 +107,19 @@ StretchCount strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa
     StretchCount count;
     f.limited_slots.for_each_slot(
         f.particle_count(), begin, end, [&](uint32_t lo, uint32_t hi, int64_t base, uint32_t) {
-            slot_corrections_kernel(lo, hi, base, stretch_limit, promise, f.limited_slots.other.data(),
-                                    f.limited_slot_rest.data(), pass.mass, pass.pinned, x.x.data(),
-                                    x.y.data(), x.z.data(), correction.x.data(), correction.y.data(),
-                                    correction.z.data(), count.over_limit, count.over_promise);
+            // A skipped spring would add zero: each particle's sums are the same.
+            const auto exact = [&](uint32_t run, uint32_t run_end) {
+                slot_corrections_kernel(run, run_end, base, stretch_limit, promise,
+                                        f.limited_slots.other.data(), f.limited_slot_rest.data(), pass.mass,
+                                        pass.pinned, x.x.data(), x.y.data(), x.z.data(), correction.x.data(),
+                                        correction.y.data(), correction.z.data(), count.over_limit,
+                                        count.over_promise);
+            };
+            if (pass.maybe_over == nullptr) return exact(lo, hi);
+            slot_maybe_over_kernel(lo, hi, base, stretch_limit, f.limited_slots.other.data(),
+                                   f.limited_slot_rest.data(), x.x.data(), x.y.data(), x.z.data(),
+                                   pass.maybe_over);
+            for_each_maybe_run(pass.maybe_over, lo, hi, exact);
         });
     return count;
 }
@@ -86,8 +131,7 @@ GridStrainTerms::GridStrainTerms(const HostMemory* memory)
       x(HostAllocator<float>(memory)),
       y(HostAllocator<float>(memory)),
       z(HostAllocator<float>(memory)),
-      share(HostAllocator<float>(memory)),
-      maybe_over(HostAllocator<uint8_t>(memory)) {}
+      share(HostAllocator<float>(memory)) {}
 
 void GridStrainTerms::resize(const Fabric& fabric) {
     const uint32_t n = fabric.particle_count();
@@ -129,7 +173,6 @@ void GridStrainTerms::resize(const Fabric& fabric) {
     }
     stride = lead + n;
     for (HostVector<float>* a : {&x, &y, &z, &share}) a->assign(size_t{stride} * families.size(), 0.0f);
-    maybe_over.assign(n, 0);
 }
 
 namespace {
@@ -179,11 +222,7 @@ CLOTH_HOT_LOOP StretchCount family_terms_kernel(size_t begin, size_t last, size_
 }
 
 // Zero terms for springs [begin, last), and maybe[p] = 1 where spring p
-// may be over the limit: its squared length at least kSurelyUnder times
-// the squared allowed length. Below that the square root is surely within
-// the allowed length, so family_terms_kernel would write zero terms and
-// count nothing.
-constexpr float kSurelyUnder = 1.0f - 1e-5f;
+// may be over the limit.
 CLOTH_HOT_LOOP void maybe_over_kernel(size_t begin, size_t last, size_t offset, float stretch_limit,
                                       const float* __restrict mask, const float* __restrict rest,
                                       const float* __restrict px, const float* __restrict py,
@@ -235,28 +274,21 @@ StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa&
         if (shares)
             family_shares_kernel(begin, last, family.offset, pass.mass, pass.pinned,
                                  terms.share.data() + base);
-        // Most of a cloth is within the limit after a pass or two (6 % of
-        // the vehicle flag's runs of eight springs had one over it): only
-        // runs with a spring that may be over get the exact terms, with
-        // their square roots and divisions.
-        uint8_t* maybe = terms.maybe_over.data();
-        maybe_over_kernel(begin, last, family.offset, stretch_limit, family.mask.data(),
-                          family.rest_length.data(), x.x.data(), x.y.data(), x.z.data(), tx, ty, tz, maybe);
-        for (size_t run = begin; run < last; run += kSkipRun) {
-            const size_t run_end = std::min<size_t>(last, run + kSkipRun);
-            uint64_t any = 0;
-            if (run_end - run == kSkipRun) {
-                std::memcpy(&any, maybe + run, sizeof any);
-            } else {
-                for (size_t p = run; p < run_end; ++p) any |= maybe[p];
-            }
-            if (any == 0) continue;
+        const auto exact = [&](uint32_t run, uint32_t run_end) {
             const StretchCount found = family_terms_kernel(
                 run, run_end, family.offset, stretch_limit, promise, terms.weight[k], family.mask.data(),
                 family.rest_length.data(), x.x.data(), x.y.data(), x.z.data(), tx, ty, tz);
             count.over_limit += found.over_limit;
             count.over_promise += found.over_promise;
+        };
+        if (pass.maybe_over == nullptr) {
+            exact(begin, last);
+            continue;
         }
+        maybe_over_kernel(begin, last, family.offset, stretch_limit, family.mask.data(),
+                          family.rest_length.data(), x.x.data(), x.y.data(), x.z.data(), tx, ty, tz,
+                          pass.maybe_over);
+        for_each_maybe_run(pass.maybe_over, begin, last, exact);
     }
     return count;
 }

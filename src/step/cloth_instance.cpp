@@ -41,6 +41,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       grid_strain_terms_(memory),
       tethers_(memory),
       stretch_counts_(HostAllocator<StretchCount>(memory)),
+      strain_maybe_over_(HostAllocator<uint8_t>(memory)),
       group_finite_(HostAllocator<uint8_t>(memory)),
       group_speed_squared_(HostAllocator<float>(memory)),
       contact_(memory),
@@ -65,6 +66,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     group_speed_squared_.assign(group_count_, 0.0f);
     group_contacts_.assign(group_count_, 0);
     stretch_counts_.assign(group_count_, StretchCount{});
+    strain_maybe_over_.assign(n, 0);
     set_material(material);
     multigrid_.plan(f, *springs_);
     if (!f.grid_families.empty()) grid_strain_terms_.resize(f);

@@ -330,6 +330,7 @@ class ClothInstance {
     GridStrainTerms grid_strain_terms_;        // the strain limiter's per-family terms (grid fabrics)
     Tethers tethers_;                          // the strain limiter's long-range attachments
     HostVector<StretchCount> stretch_counts_;  // the strain limiter's counts, one per group
+    HostVector<uint8_t> strain_maybe_over_;    // its scratch, one per particle (StrainLimitPass)
     bool tethers_follow_pins_ = false;         // planned for the current pin set
     // The last substep's strain limiter ended past its promise, so the next
     // runs backward Euler (solver_default.h): as the last successful frame

@@ -380,6 +380,59 @@ TEST(StrainLimitPasses, AMeshPassGivesTheBitsOfAWalkOverEachParticlesSprings) {
     }
 }
 
+// With StrainLimitPass::maybe_over a pass skips the exact corrections of
+// runs of particles whose springs are surely within the limit: a cloth
+// with some springs over it gets the same corrections and counts, bit for
+// bit, as from the exact pass everywhere, on the grid's family loops and on
+// a mesh's slots, split over two ranges as two workers would run them.
+TEST(StrainLimitPasses, SkippingRunsWithinTheLimitGivesTheBitsOfTheExactPass) {
+    for (const auto& fabric :
+         {cloth::testing::make_grid(20, 17), cloth::testing::make_mesh_from_grid(20, 17)}) {
+        const bool grid = !fabric->grid_families.empty();
+        const cloth::Material material = cloth::testing::uniform_material(500.0f, 0.3f, 1.0f);
+        cloth::ClothInstance cloth(cloth::testing::heap(), fabric, material, cloth::SolverSettings{},
+                                   cloth::testing::still_air());
+        cloth::testing::perturb(cloth, 0.004f);  // springs of 0.053 m: a few past the 5 % limit
+        const uint32_t n = cloth.particle_count();
+        std::vector<float> mass(n, 0.01f), pinned(n, 0.0f);
+        pinned[0] = pinned[5] = 1.0f;
+        mass[3] = 0.05f;
+        std::vector<uint8_t> scratch(n);
+        const auto corrections = [&](uint8_t* maybe_over, cloth::Vec3Soa& out) {
+            const cloth::StrainLimitPass pass{fabric.get(), mass.data(), pinned.data(), 0.05f, maybe_over};
+            out.resize(n);
+            cloth::StretchCount count;
+            cloth::GridStrainTerms terms(cloth::testing::heap());
+            if (grid) terms.resize(*fabric);
+            for (const auto& range : {std::make_pair(0u, 150u), std::make_pair(150u, n)}) {
+                const cloth::StretchCount found =
+                    grid ? cloth::strain_limit_grid_terms(pass, cloth.positions(), range.first, range.second,
+                                                          true, terms)
+                         : cloth::strain_limit_corrections(pass, cloth.positions(), range.first, range.second,
+                                                           out);
+                count.over_limit += found.over_limit;
+                count.over_promise += found.over_promise;
+            }
+            if (grid) {
+                cloth::strain_limit_grid_corrections(pass, terms, 0, 150, out);
+                cloth::strain_limit_grid_corrections(pass, terms, 150, n, out);
+            }
+            return count;
+        };
+        cloth::Vec3Soa exact(cloth::testing::heap()), skipping(cloth::testing::heap());
+        const cloth::StretchCount everywhere = corrections(nullptr, exact);
+        const cloth::StretchCount skipped = corrections(scratch.data(), skipping);
+        ASSERT_GT(everywhere.over_limit, 0u) << (grid ? "grid" : "mesh");
+        ASSERT_LT(everywhere.over_limit, fabric->spring_count() / 4) << "most runs can be skipped";
+        EXPECT_EQ(skipped.over_limit, everywhere.over_limit);
+        EXPECT_EQ(skipped.over_promise, everywhere.over_promise);
+        for (uint32_t i = 0; i < n; ++i) {
+            const Vec3 u = exact.get(i), v = skipping.get(i);
+            EXPECT_EQ(std::memcmp(&u, &v, sizeof u), 0) << (grid ? "grid" : "mesh") << ", particle " << i;
+        }
+    }
+}
+
 // Local passes move tension one spring per pass; the Chebyshev schedule
 // carries it further in as many passes, on the grid's family loops and on
 // a mesh's incidence lists alike, and a pinned particle stays put.
