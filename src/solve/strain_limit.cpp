@@ -24,10 +24,12 @@ constexpr float kSurelyUnder = 1.0f - 1e-5f;
 
 namespace {
 
-// Calls exact(run_begin, run_end) for the runs of kSkipRun particles of
-// [begin, end) with maybe[i] set for one of them.
+// Calls exact(span_begin, span_end) for each span of consecutive runs of
+// kSkipRun particles of [begin, end) with maybe[i] set for one of the
+// run's particles.
 template <class Exact>
-void for_each_maybe_run(const uint8_t* maybe, uint32_t begin, uint32_t end, Exact exact) {
+void for_each_maybe_span(const uint8_t* maybe, uint32_t begin, uint32_t end, Exact exact) {
+    uint32_t span = begin;  // the current span of runs with a flag set: [span, run)
     for (uint32_t run = begin; run < end; run += kSkipRun) {
         const uint32_t run_end = std::min(end, run + kSkipRun);
         uint64_t any = 0;
@@ -37,8 +39,11 @@ void for_each_maybe_run(const uint8_t* maybe, uint32_t begin, uint32_t end, Exac
         } else {
             for (uint32_t i = run; i < run_end; ++i) any |= maybe[i];
         }
-        if (any != 0) exact(run, run_end);
+        if (any != 0) continue;
+        if (span < run) exact(span, run);
+        span = run_end;
     }
+    if (span < end) exact(span, end);
 }
 
 // One incidence slot of particles [begin, end) (slot of i at base + i):
@@ -119,7 +124,7 @@ StretchCount strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa
             slot_maybe_over_kernel(lo, hi, base, stretch_limit, f.limited_slots.other.data(),
                                    f.limited_slot_rest.data(), x.x.data(), x.y.data(), x.z.data(),
                                    pass.maybe_over);
-            for_each_maybe_run(pass.maybe_over, lo, hi, exact);
+            for_each_maybe_span(pass.maybe_over, lo, hi, exact);
         });
     return count;
 }
@@ -288,7 +293,7 @@ StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa&
         maybe_over_kernel(begin, last, family.offset, stretch_limit, family.mask.data(),
                           family.rest_length.data(), x.x.data(), x.y.data(), x.z.data(), tx, ty, tz,
                           pass.maybe_over);
-        for_each_maybe_run(pass.maybe_over, begin, last, exact);
+        for_each_maybe_span(pass.maybe_over, begin, last, exact);
     }
     return count;
 }
