@@ -167,8 +167,14 @@ struct CollisionParams {
 // length h (start and end positions, x - h v and x) and their longest path,
 // as collide_particles forms them: one pass, shared by every collider.
 struct RangeBounds {
+    // Every start and end point (lo, hi), the start points alone and the
+    // end points alone: a range carried along with a moving collider (a
+    // flag beside its pole) sweeps a long box in the world, but its start
+    // and end boxes, each taken into the collider's frame at its own time,
+    // lie close together.
     Vec3 lo = Vec3::Constant(std::numeric_limits<float>::infinity());
     Vec3 hi = Vec3::Constant(-std::numeric_limits<float>::infinity());
+    Vec3 start_lo = lo, start_hi = hi, end_lo = lo, end_hi = hi;
     float travel = 0;
     bool any = false;  // a free particle in the range
 
@@ -177,6 +183,10 @@ struct RangeBounds {
     void merge(const RangeBounds& other) {
         lo = lo.cwiseMin(other.lo);
         hi = hi.cwiseMax(other.hi);
+        start_lo = start_lo.cwiseMin(other.start_lo);
+        start_hi = start_hi.cwiseMax(other.start_hi);
+        end_lo = end_lo.cwiseMin(other.end_lo);
+        end_hi = end_hi.cwiseMax(other.end_hi);
         travel = std::max(travel, other.travel);
         any = any || other.any;
     }
