@@ -7,6 +7,7 @@
 // reads a zero spring for p < offset_f instead of needing a test. The per-spring loop is vectorized by the
 // compiler; the force and diagonal gather sums all families in registers, eight particles at a time
 // (lanes.h); the products gather goes family by family over L1-sized chunks, which vectorizes best.
+#include <cassert>
 #include <type_traits>
 
 #include "base/lanes.h"
@@ -246,12 +247,41 @@ class GridSprings final : public SpringTerms {
 
     void sum_blocks(const float* pinned, const uint32_t* start, const uint32_t* spring, uint32_t begin,
                     uint32_t end, Sym3* out) const override {
+        // Each family's arrays and offset read once, not per spring (a
+        // gather of the multigrid's coarse operators, every substep).
+        constexpr uint32_t kMaxFamilies = 8;
+        const uint32_t families = static_cast<uint32_t>(terms_.size());
+        assert(families <= kMaxFamilies);
+        const float* xx[kMaxFamilies]{};
+        const float* xy[kMaxFamilies]{};
+        const float* xz[kMaxFamilies]{};
+        const float* yy[kMaxFamilies]{};
+        const float* yz[kMaxFamilies]{};
+        const float* zz[kMaxFamilies]{};
+        uint32_t offset[kMaxFamilies]{};
+        for (uint32_t f = 0; f < families && f < kMaxFamilies; ++f) {
+            const Sym3Soa& b = terms_[f].block;
+            xx[f] = b.xx.data() + max_offset_;
+            xy[f] = b.xy.data() + max_offset_;
+            xz[f] = b.xz.data() + max_offset_;
+            yy[f] = b.yy.data() + max_offset_;
+            yz[f] = b.yz.data() + max_offset_;
+            zz[f] = b.zz.data() + max_offset_;
+            offset[f] = offsets_[f];
+        }
+        const uint8_t* family_of = spring_family_.data();
+        const uint32_t* particle_of = spring_particle_.data();
         for (uint32_t t = begin; t < end; ++t) {
             Sym3 sum{};
             for (uint32_t k = start[t]; k < start[t + 1]; ++k) {
-                const uint32_t f = spring_family_[spring[k]], p = spring_particle_[spring[k]];
-                if (pinned[p] == 0.0f && pinned[p + offsets_[f]] == 0.0f)
-                    sum += terms_[f].block.get(max_offset_ + p);
+                const uint32_t f = family_of[spring[k]], p = particle_of[spring[k]];
+                if (pinned[p] != 0.0f || pinned[p + offset[f]] != 0.0f) continue;
+                sum.xx += xx[f][p];
+                sum.xy += xy[f][p];
+                sum.xz += xz[f][p];
+                sum.yy += yy[f][p];
+                sum.yz += yz[f][p];
+                sum.zz += zz[f][p];
             }
             out[t] = sum;
         }

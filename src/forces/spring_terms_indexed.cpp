@@ -186,13 +186,23 @@ class IndexedSprings final : public SpringTerms {
 
     void sum_blocks(const float* pinned, const uint32_t* start, const uint32_t* spring, uint32_t begin,
                     uint32_t end, Sym3* out) const override {
+        // The arrays read once, not per spring (a gather of the
+        // multigrid's coarse operators, every substep).
+        const uint32_t* first = fabric_->spring_first.data();
+        const uint32_t* second = fabric_->spring_second.data();
+        const float *xx = block_.xx.data(), *xy = block_.xy.data(), *xz = block_.xz.data();
+        const float *yy = block_.yy.data(), *yz = block_.yz.data(), *zz = block_.zz.data();
         for (uint32_t t = begin; t < end; ++t) {
             Sym3 sum{};
             for (uint32_t k = start[t]; k < start[t + 1]; ++k) {
                 const uint32_t s = spring[k];
-                if (pinned[fabric_->spring_first[s]] == 0.0f && pinned[fabric_->spring_second[s]] == 0.0f) {
-                    sum += block_.get(s);
-                }
+                if (pinned[first[s]] != 0.0f || pinned[second[s]] != 0.0f) continue;
+                sum.xx += xx[s];
+                sum.xy += xy[s];
+                sum.xz += xz[s];
+                sum.yy += yy[s];
+                sum.yz += yz[s];
+                sum.zz += zz[s];
             }
             out[t] = sum;
         }
