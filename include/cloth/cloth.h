@@ -1087,7 +1087,9 @@ CLOTH_API cloth_result cloth_world_set_zone_callbacks(cloth_world_id world, clot
  * again after several frames well under it (below 70%), within the
  * policy's bounds, as far as the measured cost of their recent frames
  * predicts. Lowering goes down a ladder from the top (the policy's maximum,
- * or what a CLOTH_SOLVER_DEFAULT cloth chooses by itself each step): the
+ * or what a CLOTH_SOLVER_DEFAULT cloth chooses by itself each step within
+ * the policy's maximum: an enabled policy bounds the default's own choice
+ * even with no budget set, so max_substeps 1 runs it in one substep): the
  * iterations to half the top's, then one substep fewer with the iterations
  * back at the top's, and so on; raising retraces it, never past the top.
  * At the policy's fewest substeps the iterations go below half only once

@@ -68,7 +68,8 @@ struct Options {
     float stiffness = 1000.0f;
     float damping = -1.0f;  // < 0: the solver kind's own (see solver_plan)
     double budget_ms = 2.0;
-    bool quality_policy = false;  // hand the budget to the library (cloth_set_quality_policy)
+    bool quality_policy = false;       // hand the budget to the library (cloth_set_quality_policy)
+    uint32_t policy_max_substeps = 0;  // 0: the policy's default
     uint32_t threads = 1;
     std::string trace;
     std::string trace_frames;  // "FIRST:LAST"; empty: the second around the jump
@@ -221,6 +222,9 @@ int main(int argc, char** argv) {
     app.add_flag("--quality-policy", o.quality_policy,
                  "give the budget to the cloth world with the flag's quality policy on: the library lowers "
                  "iterations and substeps in frames over it");
+    app.add_option("--policy-max-substeps", o.policy_max_substeps,
+                   "the quality policy's most substeps (0: its default)")
+        ->check(CLI::Range(0, 64));
     app.add_option("--threads", o.threads, "cloth worker threads (1: the calling thread only)")
         ->check(CLI::Range(1, 256));
     app.add_option("--trace", o.trace, "Chrome trace-event JSON of a window of the run (empty: none)")
@@ -276,6 +280,7 @@ int main(int argc, char** argv) {
     if (o.quality_policy) {
         cloth_quality_policy policy = cloth_default_quality_policy();
         policy.enabled = 1;
+        if (o.policy_max_substeps > 0) policy.max_substeps = o.policy_max_substeps;
         if (cloth_world_set_frame_budget(flag.world(), static_cast<float>(o.budget_ms)) != CLOTH_OK ||
             cloth_set_quality_policy(flag.cloth(), &policy) != CLOTH_OK) {
             std::fprintf(stderr, "quality policy: %s\n", cloth_get_last_error());

@@ -1,8 +1,88 @@
 #include "collide/carrier.h"
 
 #include <cmath>
+#include <limits>
+
+#include "base/lanes.h"
 
 namespace cloth {
+
+namespace {
+
+// What begin_step adds to the free particles' velocities, as rotation
+// matrices and vectors (a 3x3 product per rotation instead of a quaternion
+// product's two cross products), so the loop below vectorizes.
+struct CarriedMotion {
+    Vec3 origin;
+    Mat3 turn, previous_turn_inverse;
+    Vec3 turn_vector, previous_turn_vector, previous_linear, linear, linear_change;
+    float keep_angular, keep_centrifugal, max_speed, inverse_dt;
+};
+
+// One free particle's velocity change: the carrier's rigid velocity at its
+// point this frame (B) and the previous one (A), split into tangential and
+// centripetal parts, each kept by its share, then the speed relative to
+// the carrier clamped. Pinned particles keep theirs.
+// Raw __restrict parameters: GCC does not vectorize through restrict locals.
+CLOTH_HOT_LOOP void carry_velocities(const CarriedMotion& m, const float* __restrict pinned, uint32_t begin,
+                                     uint32_t end, const float* __restrict px, const float* __restrict py,
+                                     const float* __restrict pz, float* __restrict vx, float* __restrict vy,
+                                     float* __restrict vz) {
+    // Every constant in a local: loads through `m` inside the loop could
+    // alias the stores, and GCC would not vectorize it.
+    const float b00 = m.turn(0, 0), b01 = m.turn(0, 1), b02 = m.turn(0, 2), b10 = m.turn(1, 0),
+                b11 = m.turn(1, 1), b12 = m.turn(1, 2), b20 = m.turn(2, 0), b21 = m.turn(2, 1),
+                b22 = m.turn(2, 2);
+    const Mat3& ai = m.previous_turn_inverse;
+    const float a00 = ai(0, 0), a01 = ai(0, 1), a02 = ai(0, 2), a10 = ai(1, 0), a11 = ai(1, 1),
+                a12 = ai(1, 2), a20 = ai(2, 0), a21 = ai(2, 1), a22 = ai(2, 2);
+    const float tbx = m.turn_vector.x(), tby = m.turn_vector.y(), tbz = m.turn_vector.z();
+    const float tax = m.previous_turn_vector.x(), tay = m.previous_turn_vector.y(),
+                taz = m.previous_turn_vector.z();
+    const float ox = m.origin.x(), oy = m.origin.y(), oz = m.origin.z();
+    const float plx = m.previous_linear.x(), ply = m.previous_linear.y(), plz = m.previous_linear.z();
+    const float lx = m.linear.x(), ly = m.linear.y(), lz = m.linear.z();
+    const float lcx = m.linear_change.x(), lcy = m.linear_change.y(), lcz = m.linear_change.z();
+    const float idt = m.inverse_dt, ka = m.keep_angular, kc = m.keep_centrifugal;
+    // No clamp: a limit no speed reaches.
+    const float max_speed = m.max_speed > 0 ? m.max_speed : std::numeric_limits<float>::infinity();
+    for (uint32_t i = begin; i < end; ++i) {
+        const float rx = px[i] - ox, ry = py[i] - oy, rz = pz[i] - oz;
+        const float bx = b00 * rx + b01 * ry + b02 * rz, by = b10 * rx + b11 * ry + b12 * rz,
+                    bz = b20 * rx + b21 * ry + b22 * rz;
+        const float ax = a00 * rx + a01 * ry + a02 * rz, ay = a10 * rx + a11 * ry + a12 * rz,
+                    az = a20 * rx + a21 * ry + a22 * rz;
+        const float rot_bx = (bx - rx) * idt, rot_by = (by - ry) * idt, rot_bz = (bz - rz) * idt;
+        const float rot_ax = (rx - ax) * idt, rot_ay = (ry - ay) * idt, rot_az = (rz - az) * idt;
+        const float tan_bx = (tby * rz - tbz * ry) * idt, tan_by = (tbz * rx - tbx * rz) * idt,
+                    tan_bz = (tbx * ry - tby * rx) * idt;
+        const float tan_ax = (tay * rz - taz * ry) * idt, tan_ay = (taz * rx - tax * rz) * idt,
+                    tan_az = (tax * ry - tay * rx) * idt;
+        const float v0x = vx[i], v0y = vy[i], v0z = vz[i];
+        const float relx = v0x - plx - rot_ax, rely = v0y - ply - rot_ay, relz = v0z - plz - rot_az;
+        const float trx = b00 * relx + b01 * rely + b02 * relz, try_ = b10 * relx + b11 * rely + b12 * relz,
+                    trz = b20 * relx + b21 * rely + b22 * relz;
+        float wx = v0x + lcx, wy = v0y + lcy, wz = v0z + lcz;
+        wx += (tan_bx - tan_ax + (trx - relx)) * ka;
+        wy += (tan_by - tan_ay + (try_ - rely)) * ka;
+        wz += (tan_bz - tan_az + (trz - relz)) * ka;
+        wx += ((rot_bx - tan_bx) - (rot_ax - tan_ax)) * kc;
+        wy += ((rot_by - tan_by) - (rot_ay - tan_ay)) * kc;
+        wz += ((rot_bz - tan_bz) - (rot_az - tan_az)) * kc;
+        const float cx = lx + rot_bx, cy = ly + rot_by, cz = lz + rot_bz;
+        const float nx = wx - cx, ny = wy - cy, nz = wz - cz;
+        const float speed = std::sqrt(nx * nx + ny * ny + nz * nz);
+        const float scale = max_speed / speed;
+        wx = speed > max_speed ? cx + nx * scale : wx;
+        wy = speed > max_speed ? cy + ny * scale : wy;
+        wz = speed > max_speed ? cz + nz * scale : wz;
+        vx[i] = pinned[i] == 0.0f ? wx : v0x;
+        vy[i] = pinned[i] == 0.0f ? wy : v0y;
+        vz[i] = pinned[i] == 0.0f ? wz : v0z;
+    }
+}
+
+}  // namespace
 
 void Carrier::set(uint32_t body_slot, const Body& body, const CarrierParams& params, const Vec3Soa& x) {
     reference_.resize(x.size());  // may throw; nothing changed then
@@ -64,36 +144,20 @@ void Carrier::begin_step(const Body& body, const Pose* jumped_from, float dt, co
     const Quat previous_turn_inverse =
         previous_angle > 0 ? Quat(Eigen::AngleAxisf(-previous_angle, previous_turn_vector / previous_angle))
                            : Quat::Identity();
-    const float keep_linear = 1.0f - params_.linear_inertia;
-    const float keep_angular = 1.0f - params_.angular_inertia;
-    const float keep_centrifugal = 1.0f - params_.centrifugal_inertia;
-    const float max_speed = params_.max_relative_speed;
-    const Vec3 linear_change = (linear - previous_linear_) * keep_linear;
-    const float inverse_dt = 1.0f / dt;
-
-    for (uint32_t i = 0; i < n; ++i) {
-        if (pinned[i] != 0.0f) continue;
-        const Vec3 r = x.get(i) - from.position;
-        // Rotation part of the carrier's rigid velocity at this point, this
-        // frame (B) and the previous one (A), split into tangential and
-        // centripetal parts.
-        const Vec3 rotation_b = (turn * r - r) * inverse_dt;
-        const Vec3 tangential_b = turn_vector.cross(r) * inverse_dt;
-        const Vec3 rotation_a = (r - previous_turn_inverse * r) * inverse_dt;
-        const Vec3 tangential_a = previous_turn_vector.cross(r) * inverse_dt;
-        Vec3 velocity = v.get(i);
-        const Vec3 relative = velocity - previous_linear_ - rotation_a;
-        velocity += linear_change;
-        velocity += (tangential_b - tangential_a + (turn * relative - relative)) * keep_angular;
-        velocity += ((rotation_b - tangential_b) - (rotation_a - tangential_a)) * keep_centrifugal;
-        if (max_speed > 0) {
-            const Vec3 carried = linear + rotation_b;
-            const Vec3 relative_now = velocity - carried;
-            const float speed = relative_now.norm();
-            if (speed > max_speed) velocity = carried + relative_now * (max_speed / speed);
-        }
-        v.set(i, velocity);
-    }
+    CarriedMotion m;
+    m.origin = from.position;
+    m.turn = turn.toRotationMatrix();
+    m.previous_turn_inverse = previous_turn_inverse.toRotationMatrix();
+    m.turn_vector = turn_vector;
+    m.previous_turn_vector = previous_turn_vector;
+    m.previous_linear = previous_linear_;
+    m.linear = linear;
+    m.linear_change = (linear - previous_linear_) * (1.0f - params_.linear_inertia);
+    m.keep_angular = 1.0f - params_.angular_inertia;
+    m.keep_centrifugal = 1.0f - params_.centrifugal_inertia;
+    m.max_speed = params_.max_relative_speed;
+    m.inverse_dt = 1.0f / dt;
+    carry_velocities(m, pinned, 0, n, x.x.data(), x.y.data(), x.z.data(), v.x.data(), v.y.data(), v.z.data());
     previous_linear_ = linear;
     previous_angular_ = angular;
 }

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "base/lanes.h"
+
 namespace cloth {
 
 namespace {
@@ -220,27 +222,101 @@ MovingCollider::MovingCollider(const Shape* shape, const Pose& start, const Pose
       bound_half_chord(0.5f * (bound_end - bound_start).norm()),
       is_static(start.position == end.position && start.rotation.coeffs() == end.rotation.coeffs()) {}
 
+namespace {
+
+// The minima and maxima of eight points at a time in lanes, then across
+// the lanes: min and max are exact, so the same bits as one at a time.
+template <class T>
+CLOTH_LANES_INLINE T lanes_min(T a, T b) {
+    return b < a ? b : a;
+}
+template <class T>
+CLOTH_LANES_INLINE T lanes_max(T a, T b) {
+    return a < b ? b : a;
+}
+
+struct BoundsAccumulator {
+    float start_lo[3], start_hi[3], end_lo[3], end_hi[3], travel_squared, any;
+};
+
+// Raw __restrict parameters: GCC does not vectorize through restrict locals.
+CLOTH_HOT_LOOP void bounds_kernel(float h, const float* __restrict kinematic, uint32_t begin, uint32_t end,
+                                  const float* __restrict px, const float* __restrict py,
+                                  const float* __restrict pz, const float* __restrict vx,
+                                  const float* __restrict vy, const float* __restrict vz,
+                                  BoundsAccumulator& out) {
+    using V = VectorLanes::type;
+    const float inf = std::numeric_limits<float>::infinity();
+    // Per lane: the start and end minima (0-2, 3-5), maxima (6-8, 9-11),
+    // the longest squared path (12) and whether a particle is free (13).
+    float one[14];
+    V eight[14];
+    for (int k = 0; k < 14; ++k) {
+        const float init = k < 6 ? inf : k < 12 ? -inf : 0.0f;
+        one[k] = init;
+        eight[k] = V{} + init;
+    }
+    const float* x[3] = {px, py, pz};
+    const float* v[3] = {vx, vy, vz};
+    const auto accumulate = [&](auto lanes, uint32_t i, auto* acc) CLOTH_LANES_INLINE_LAMBDA {
+        using L = decltype(lanes);
+        using T = typename L::type;
+        const auto free = L::load(&kinematic[i]) == 0.0f;
+        T path = T{};
+        for (int a = 0; a < 3; ++a) {
+            const T x_end = L::load(&x[a][i]);
+            const T x_start = x_end - L::load(&v[a][i]) * h;
+            acc[a] = free ? lanes_min(acc[a], x_start) : acc[a];
+            acc[3 + a] = free ? lanes_min(acc[3 + a], x_end) : acc[3 + a];
+            acc[6 + a] = free ? lanes_max(acc[6 + a], x_start) : acc[6 + a];
+            acc[9 + a] = free ? lanes_max(acc[9 + a], x_end) : acc[9 + a];
+            const T d = x_end - x_start;
+            path = path + d * d;
+        }
+        acc[12] = free ? lanes_max(acc[12], path) : acc[12];
+        acc[13] = free ? T{} + 1.0f : acc[13];
+    };
+    for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) CLOTH_LANES_INLINE_LAMBDA {
+        if constexpr (decltype(lanes)::width == 1) {
+            accumulate(lanes, i, one);
+        } else {
+            accumulate(lanes, i, eight);
+        }
+    });
+    for (int k = 0; k < 14; ++k) {
+        for (uint32_t lane = 0; lane < VectorLanes::width; ++lane) {
+            one[k] = (k < 6) ? lanes_min(one[k], eight[k][lane]) : lanes_max(one[k], eight[k][lane]);
+        }
+    }
+    for (int a = 0; a < 3; ++a) {
+        out.start_lo[a] = one[a];
+        out.end_lo[a] = one[3 + a];
+        out.start_hi[a] = one[6 + a];
+        out.end_hi[a] = one[9 + a];
+    }
+    out.travel_squared = one[12];
+    out.any = one[13];
+}
+
+}  // namespace
+
 RangeBounds range_bounds(float h, const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x,
                          const Vec3Soa& v) {
+    BoundsAccumulator acc;
+    bounds_kernel(h, kinematic, begin, end, x.x.data(), x.y.data(), x.z.data(), v.x.data(), v.y.data(),
+                  v.z.data(), acc);
     RangeBounds b;
-    float travel_squared = 0;
-    for (uint32_t i = begin; i < end; ++i) {
-        if (kinematic[i] != 0.0f) continue;
-        const Vec3 x_end = x.get(i);
-        const Vec3 x_start = x_end - v.get(i) * h;
-        b.start_lo = b.start_lo.cwiseMin(x_start);
-        b.start_hi = b.start_hi.cwiseMax(x_start);
-        b.end_lo = b.end_lo.cwiseMin(x_end);
-        b.end_hi = b.end_hi.cwiseMax(x_end);
-        travel_squared = std::max(travel_squared, (x_end - x_start).squaredNorm());
-        b.any = true;
-    }
+    b.start_lo = Vec3(acc.start_lo[0], acc.start_lo[1], acc.start_lo[2]);
+    b.start_hi = Vec3(acc.start_hi[0], acc.start_hi[1], acc.start_hi[2]);
+    b.end_lo = Vec3(acc.end_lo[0], acc.end_lo[1], acc.end_lo[2]);
+    b.end_hi = Vec3(acc.end_hi[0], acc.end_hi[1], acc.end_hi[2]);
+    b.any = acc.any > 0;
     // The same minima and maxima as over every point at once.
     b.lo = b.start_lo.cwiseMin(b.end_lo);
     b.hi = b.start_hi.cwiseMax(b.end_hi);
     // sqrt is monotonic and correctly rounded: this is the largest of the
     // particles' own path lengths, bit for bit.
-    b.travel = std::sqrt(travel_squared);
+    b.travel = std::sqrt(acc.travel_squared);
     return b;
 }
 

@@ -4,7 +4,7 @@
 //
 // Quality is a ladder of (iterations, substeps) rungs (quality_ladder.h):
 // from the top (the policy's maximum, or what CLOTH_SOLVER_DEFAULT chooses
-// by itself) the iterations fall to half the top's, then a substep goes
+// by itself within that maximum) the iterations fall to half the top's, then a substep goes
 // and the iterations come back, and so on. Measured on the vehicle flag's
 // course (docs/vehicle_flag.md, the default's own 5 iterations at 2
 // substeps: max strain 0.106): below about half its iterations a solve

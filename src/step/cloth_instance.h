@@ -269,8 +269,8 @@ class ClothInstance {
     Material material_;
     SolverSettings solver_;
     SolverSettings frame_solver_;  // what this frame runs: solver_ with CLOTH_SOLVER_DEFAULT resolved
-    // What CLOTH_SOLVER_DEFAULT chose by itself this frame, before a quality
-    // policy's caps (quality_settings).
+    // What CLOTH_SOLVER_DEFAULT chose by itself this frame, within a quality
+    // policy's maxima and before its caps (quality_settings).
     uint32_t frame_own_iterations_ = 0, frame_own_substeps_ = 0;
     AeroParams aero_;
 

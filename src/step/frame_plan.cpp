@@ -111,8 +111,13 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
             : 0.0f;
     frame_solver_ = resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty());
     substep_strained_ = strained_;
-    // The default's own choice, then a quality policy's caps on it
-    // (quality_settings): the host's budget wins.
+    // The default's own choice within a quality policy's maxima (the
+    // host's bounds), then the policy's caps on it (quality_settings): the
+    // host's budget wins.
+    if (quality_.enabled && solver_.kind == CLOTH_SOLVER_DEFAULT) {
+        frame_solver_.iterations = std::min(frame_solver_.iterations, quality_.max_iterations);
+        frame_solver_.substeps = std::min(frame_solver_.substeps, quality_.max_substeps);
+    }
     frame_own_iterations_ = frame_solver_.iterations;
     frame_own_substeps_ = frame_solver_.substeps;
     if (solver_.default_iteration_cap > 0)

@@ -174,6 +174,42 @@ TEST(Budget, TheDefaultSolverGivesUpQualityUnderATightBudgetAndTakesItBackUnderA
     EXPECT_EQ(last_substeps(world, capped), own_substeps);
 }
 
+// The policy's maxima bound the default's own choice, budget or not: a
+// host that gives a cloth one substep gets one substep.
+TEST(Budget, APolicysMaximaBoundTheDefaultSolversOwnChoice) {
+    SceneConfig config = four_flags(1);
+    config.solver.kind = CLOTH_SOLVER_DEFAULT;
+    Scene scene(config);
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    const cloth_id bounded = scene.cloths()[0], free_running = scene.cloths().back();
+    const cloth_world_id world = scene.world();
+    ASSERT_EQ(cloth_world_set_profiling(world, 1u << 16), CLOTH_OK);
+    for (int i = 0; i < 5; ++i) ASSERT_EQ(scene.step(kDt), CLOTH_OK);
+    const uint32_t own = last_iterations(free_running), own_substeps = last_substeps(world, free_running);
+    ASSERT_GT(own, 2u) << "the default iterates more than twice here";
+    ASSERT_GT(own_substeps, 1u) << "and runs more than one substep";
+
+    cloth_quality_policy policy = cloth_default_quality_policy();
+    policy.enabled = true;
+    policy.max_iterations = 2;
+    policy.max_substeps = 1;
+    ASSERT_EQ(cloth_set_quality_policy(bounded, &policy), CLOTH_OK);
+    for (int i = 0; i < 5; ++i) {
+        ASSERT_EQ(scene.step(kDt), CLOTH_OK);
+        EXPECT_EQ(last_iterations(bounded), 2u) << "frame " << i;
+        EXPECT_EQ(last_substeps(world, bounded), 1u) << "frame " << i;
+        EXPECT_EQ(last_iterations(free_running), own)
+            << "a cloth without a policy keeps the default's choice";
+        EXPECT_EQ(last_substeps(world, free_running), own_substeps);
+    }
+
+    policy.enabled = false;
+    ASSERT_EQ(cloth_set_quality_policy(bounded, &policy), CLOTH_OK);
+    ASSERT_EQ(scene.step(kDt), CLOTH_OK);
+    EXPECT_EQ(last_iterations(bounded), own) << "a disabled policy bounds nothing";
+    EXPECT_EQ(last_substeps(world, bounded), own_substeps);
+}
+
 TEST(Budget, PolicyBoundsAreValidatedAndEnablingClampsTheSolver) {
     Scene scene(four_flags(20));
     ASSERT_TRUE(scene.ok());
