@@ -283,10 +283,17 @@ CLOTH_HOT_LOOP void bounds_kernel(float h, const float* __restrict kinematic, ui
             accumulate(lanes, i, eight);
         }
     });
+    // Across the lanes in three halvings (ranges are chunks of
+    // kCollisionChunk = 8 particles: one vector step, then this).
     for (int k = 0; k < 14; ++k) {
-        for (uint32_t lane = 0; lane < VectorLanes::width; ++lane) {
-            one[k] = (k < 6) ? lanes_min(one[k], eight[k][lane]) : lanes_max(one[k], eight[k][lane]);
-        }
+        V e = eight[k];
+        const auto fold = [&](V other) CLOTH_LANES_INLINE_LAMBDA {
+            e = k < 6 ? lanes_min(e, other) : lanes_max(e, other);
+        };
+        fold(__builtin_shufflevector(e, e, 4, 5, 6, 7, 0, 1, 2, 3));
+        fold(__builtin_shufflevector(e, e, 2, 3, 0, 1, 6, 7, 4, 5));
+        fold(__builtin_shufflevector(e, e, 1, 0, 3, 2, 5, 4, 7, 6));
+        one[k] = k < 6 ? lanes_min(one[k], e[0]) : lanes_max(one[k], e[0]);
     }
     for (int a = 0; a < 3; ++a) {
         out.start_lo[a] = one[a];
