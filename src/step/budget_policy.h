@@ -10,8 +10,8 @@
 // substeps: max strain 0.106): below about half its iterations a solve
 // stops holding the strain limit (3 iterations at 2 substeps 0.114, 1
 // iteration 0.150), while a substep costs more than the iterations it
-// would run (5 iterations at 1 substep hold 0.117 for 0.57 ms a frame, 1
-// iteration at 2 substeps 0.150 for 0.71 ms).
+// would run (5 iterations at 1 substep reach 0.114-0.130 over perturbed
+// runs for 0.57 ms a frame, 1 iteration at 2 substeps 0.150 for 0.71 ms).
 //
 // A rung's cost is what the cloth's frames cost there lately
 // (QualityCosts), or at a rung it has not run a model of its last frame:
