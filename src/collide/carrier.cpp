@@ -60,12 +60,13 @@ CLOTH_HOT_LOOP void carry_velocities(const CarriedMotion& m, const float* __rest
                     tan_az = (tax * ry - tay * rx) * idt;
         const float v0x = vx[i], v0y = vy[i], v0z = vz[i];
         const float relx = v0x - plx - rot_ax, rely = v0y - ply - rot_ay, relz = v0z - plz - rot_az;
-        const float trx = b00 * relx + b01 * rely + b02 * relz, try_ = b10 * relx + b11 * rely + b12 * relz,
-                    trz = b20 * relx + b21 * rely + b22 * relz;
+        const float turned_x = b00 * relx + b01 * rely + b02 * relz,
+                    turned_y = b10 * relx + b11 * rely + b12 * relz,
+                    turned_z = b20 * relx + b21 * rely + b22 * relz;
         float wx = v0x + lcx, wy = v0y + lcy, wz = v0z + lcz;
-        wx += (tan_bx - tan_ax + (trx - relx)) * ka;
-        wy += (tan_by - tan_ay + (try_ - rely)) * ka;
-        wz += (tan_bz - tan_az + (trz - relz)) * ka;
+        wx += (tan_bx - tan_ax + (turned_x - relx)) * ka;
+        wy += (tan_by - tan_ay + (turned_y - rely)) * ka;
+        wz += (tan_bz - tan_az + (turned_z - relz)) * ka;
         wx += ((rot_bx - tan_bx) - (rot_ax - tan_ax)) * kc;
         wy += ((rot_by - tan_by) - (rot_ay - tan_ay)) * kc;
         wz += ((rot_bz - tan_bz) - (rot_az - tan_az)) * kc;
