@@ -225,7 +225,8 @@ MovingCollider::MovingCollider(const Shape* shape, const Pose& start, const Pose
 namespace {
 
 // The minima and maxima of eight points at a time in lanes, then across
-// the lanes: min and max are exact, so the same bits as one at a time.
+// the lanes: min and max are exact, so the same values as one at a time
+// (a zero's sign may differ, which no bound test sees).
 template <class T>
 CLOTH_LANES_INLINE T lanes_min(T a, T b) {
     return b < a ? b : a;
