@@ -236,30 +236,38 @@ CLOTH_LANES_INLINE T lanes_max(T a, T b) {
     return a < b ? b : a;
 }
 
-struct BoundsAccumulator {
-    float start_lo[3], start_hi[3], end_lo[3], end_hi[3], travel_squared, any;
+// A range's extent, one particle at a time (T = float) or per lane (T =
+// eight floats): the start points' and end points' minima and maxima
+// (x, y, z of the start, then of the end), the longest squared path, and
+// whether a free particle was seen (1) or not (0).
+template <class T>
+struct Extent {
+    T lo[6], hi[6], path, any;
+
+    CLOTH_LANES_INLINE static Extent empty() {
+        const float inf = std::numeric_limits<float>::infinity();
+        Extent e;
+        for (int k = 0; k < 6; ++k) {
+            e.lo[k] = T{} + inf;
+            e.hi[k] = T{} - inf;
+        }
+        e.path = e.any = T{};
+        return e;
+    }
 };
 
 // Raw __restrict parameters: GCC does not vectorize through restrict locals.
-CLOTH_HOT_LOOP void bounds_kernel(float h, const float* __restrict kinematic, uint32_t begin, uint32_t end,
-                                  const float* __restrict px, const float* __restrict py,
-                                  const float* __restrict pz, const float* __restrict vx,
-                                  const float* __restrict vy, const float* __restrict vz,
-                                  BoundsAccumulator& out) {
+CLOTH_HOT_LOOP Extent<float> bounds_kernel(float h, const float* __restrict kinematic, uint32_t begin,
+                                           uint32_t end, const float* __restrict px,
+                                           const float* __restrict py, const float* __restrict pz,
+                                           const float* __restrict vx, const float* __restrict vy,
+                                           const float* __restrict vz) {
     using V = VectorLanes::type;
-    const float inf = std::numeric_limits<float>::infinity();
-    // Per lane: the start and end minima (0-2, 3-5), maxima (6-8, 9-11),
-    // the longest squared path (12) and whether a particle is free (13).
-    float one[14];
-    V eight[14];
-    for (int k = 0; k < 14; ++k) {
-        const float init = k < 6 ? inf : k < 12 ? -inf : 0.0f;
-        one[k] = init;
-        eight[k] = V{} + init;
-    }
+    Extent<float> one = Extent<float>::empty();
+    Extent<V> eight = Extent<V>::empty();
     const float* x[3] = {px, py, pz};
     const float* v[3] = {vx, vy, vz};
-    const auto accumulate = [&](auto lanes, uint32_t i, auto* acc) CLOTH_LANES_INLINE_LAMBDA {
+    const auto accumulate = [&](auto lanes, uint32_t i, auto& e) CLOTH_LANES_INLINE_LAMBDA {
         using L = decltype(lanes);
         using T = typename L::type;
         const auto free = L::load(&kinematic[i]) == 0.0f;
@@ -267,15 +275,15 @@ CLOTH_HOT_LOOP void bounds_kernel(float h, const float* __restrict kinematic, ui
         for (int a = 0; a < 3; ++a) {
             const T x_end = L::load(&x[a][i]);
             const T x_start = x_end - L::load(&v[a][i]) * h;
-            acc[a] = free ? lanes_min(acc[a], x_start) : acc[a];
-            acc[3 + a] = free ? lanes_min(acc[3 + a], x_end) : acc[3 + a];
-            acc[6 + a] = free ? lanes_max(acc[6 + a], x_start) : acc[6 + a];
-            acc[9 + a] = free ? lanes_max(acc[9 + a], x_end) : acc[9 + a];
+            e.lo[a] = free ? lanes_min(e.lo[a], x_start) : e.lo[a];
+            e.lo[3 + a] = free ? lanes_min(e.lo[3 + a], x_end) : e.lo[3 + a];
+            e.hi[a] = free ? lanes_max(e.hi[a], x_start) : e.hi[a];
+            e.hi[3 + a] = free ? lanes_max(e.hi[3 + a], x_end) : e.hi[3 + a];
             const T d = x_end - x_start;
             path = path + d * d;
         }
-        acc[12] = free ? lanes_max(acc[12], path) : acc[12];
-        acc[13] = free ? T{} + 1.0f : acc[13];
+        e.path = free ? lanes_max(e.path, path) : e.path;
+        e.any = free ? T{} + 1.0f : e.any;
     };
     for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) CLOTH_LANES_INLINE_LAMBDA {
         if constexpr (decltype(lanes)::width == 1) {
@@ -286,45 +294,42 @@ CLOTH_HOT_LOOP void bounds_kernel(float h, const float* __restrict kinematic, ui
     });
     // Across the lanes in three halvings (ranges are chunks of
     // kCollisionChunk = 8 particles: one vector step, then this).
-    for (int k = 0; k < 14; ++k) {
-        V e = eight[k];
-        const auto fold = [&](V other) CLOTH_LANES_INLINE_LAMBDA {
-            e = k < 6 ? lanes_min(e, other) : lanes_max(e, other);
+    const auto fold = [](V e, bool minimum) CLOTH_LANES_INLINE_LAMBDA {
+        const auto pick = [minimum](V a, V b) CLOTH_LANES_INLINE_LAMBDA {
+            return minimum ? lanes_min(a, b) : lanes_max(a, b);
         };
-        fold(__builtin_shufflevector(e, e, 4, 5, 6, 7, 0, 1, 2, 3));
-        fold(__builtin_shufflevector(e, e, 2, 3, 0, 1, 6, 7, 4, 5));
-        fold(__builtin_shufflevector(e, e, 1, 0, 3, 2, 5, 4, 7, 6));
-        one[k] = k < 6 ? lanes_min(one[k], e[0]) : lanes_max(one[k], e[0]);
+        e = pick(e, __builtin_shufflevector(e, e, 4, 5, 6, 7, 0, 1, 2, 3));
+        e = pick(e, __builtin_shufflevector(e, e, 2, 3, 0, 1, 6, 7, 4, 5));
+        e = pick(e, __builtin_shufflevector(e, e, 1, 0, 3, 2, 5, 4, 7, 6));
+        return e[0];
+    };
+    for (int k = 0; k < 6; ++k) {
+        one.lo[k] = lanes_min(one.lo[k], fold(eight.lo[k], true));
+        one.hi[k] = lanes_max(one.hi[k], fold(eight.hi[k], false));
     }
-    for (int a = 0; a < 3; ++a) {
-        out.start_lo[a] = one[a];
-        out.end_lo[a] = one[3 + a];
-        out.start_hi[a] = one[6 + a];
-        out.end_hi[a] = one[9 + a];
-    }
-    out.travel_squared = one[12];
-    out.any = one[13];
+    one.path = lanes_max(one.path, fold(eight.path, false));
+    one.any = lanes_max(one.any, fold(eight.any, false));
+    return one;
 }
 
 }  // namespace
 
 RangeBounds range_bounds(float h, const float* kinematic, uint32_t begin, uint32_t end, const Vec3Soa& x,
                          const Vec3Soa& v) {
-    BoundsAccumulator acc;
-    bounds_kernel(h, kinematic, begin, end, x.x.data(), x.y.data(), x.z.data(), v.x.data(), v.y.data(),
-                  v.z.data(), acc);
+    const Extent<float> e = bounds_kernel(h, kinematic, begin, end, x.x.data(), x.y.data(), x.z.data(),
+                                          v.x.data(), v.y.data(), v.z.data());
     RangeBounds b;
-    b.start_lo = Vec3(acc.start_lo[0], acc.start_lo[1], acc.start_lo[2]);
-    b.start_hi = Vec3(acc.start_hi[0], acc.start_hi[1], acc.start_hi[2]);
-    b.end_lo = Vec3(acc.end_lo[0], acc.end_lo[1], acc.end_lo[2]);
-    b.end_hi = Vec3(acc.end_hi[0], acc.end_hi[1], acc.end_hi[2]);
-    b.any = acc.any > 0;
+    b.start_lo = Vec3(e.lo[0], e.lo[1], e.lo[2]);
+    b.end_lo = Vec3(e.lo[3], e.lo[4], e.lo[5]);
+    b.start_hi = Vec3(e.hi[0], e.hi[1], e.hi[2]);
+    b.end_hi = Vec3(e.hi[3], e.hi[4], e.hi[5]);
+    b.any = e.any > 0;
     // The same minima and maxima as over every point at once.
     b.lo = b.start_lo.cwiseMin(b.end_lo);
     b.hi = b.start_hi.cwiseMax(b.end_hi);
     // sqrt is monotonic and correctly rounded: this is the largest of the
     // particles' own path lengths, bit for bit.
-    b.travel = std::sqrt(acc.travel_squared);
+    b.travel = std::sqrt(e.path);
     return b;
 }
 
