@@ -740,8 +740,10 @@ CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
 /// 3.5 ms for 128x128 with its top row pinned; on a mesh a search along
 /// the springs, about 2 ms for 4,096 particles and 10 ms for 16,384);
 /// then (Provot 1995)
-/// structural and shear springs still longer than the limit are pulled
-/// back in parallel passes (on a grid, in the same passes, each particle
+/// structural and shear springs still longer than the limit, and
+/// structural springs shorter than (1 - max_strain) times their rest
+/// length (cloth buckles rather than shortens), are brought back in
+/// parallel passes (on a grid, in the same passes, each particle
 /// and the one four places on along its row and column are held within
 /// the limit of their rest distance, which carries the pull across the
 /// cloth in fewer passes), moving positions and velocities together

@@ -31,6 +31,7 @@ Fabric::Fabric(const HostMemory* memory)
       triangle_slots(memory),
       limited_slots(memory),
       limited_slot_rest(HostAllocator<float>(memory)),
+      limited_slot_structural_rest(HostAllocator<float>(memory)),
       grid_families(HostAllocator<SpringFamily>(memory)),
       grid_triangle_shapes(HostAllocator<uint32_t>(memory)),
       grid_cell_mask(HostAllocator<float>(memory)),
@@ -182,10 +183,13 @@ Status finish_fabric(const std::vector<SpringSpec>& springs, Fabric& f) {
     build_spring_slots(
         f, limited_offset, [&](uint32_t e) { return limited[limited_incidence[e]]; }, f.limited_slots);
     f.limited_slot_rest.resize(f.limited_slots.item.size());
+    f.limited_slot_structural_rest.resize(f.limited_slots.item.size());
     for (size_t slot = 0; slot < f.limited_slot_rest.size(); ++slot) {
         const uint32_t spring = f.limited_slots.item[slot];
         f.limited_slot_rest[slot] =
             spring < count ? f.spring_rest_length[spring] : std::numeric_limits<float>::infinity();
+        f.limited_slot_structural_rest[slot] =
+            spring < count && f.spring_kind[spring] == kStructural ? f.spring_rest_length[spring] : 0.0f;
     }
     build_incidence(
         n, t_count, 3,

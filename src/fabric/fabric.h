@@ -119,6 +119,9 @@ struct Fabric {
     // for padding, which is never over the limit).
     PaddedSlots limited_slots;  // item, other and sign as in spring_slots
     HostVector<float> limited_slot_rest;
+    // The rest length where the slot's spring is structural (the limiter
+    // bounds its compression too), else 0.
+    HostVector<float> limited_slot_structural_rest;
 
     // Grid fabrics only (empty otherwise): the same springs as families,
     // and the triangles as two shapes per cell. Shape k of the cell whose

@@ -52,34 +52,40 @@ void for_each_maybe_span(const uint8_t* maybe, uint32_t begin, uint32_t end, Exa
 // springs (limited_slots), so GCC vectorizes it; padding has an infinite
 // rest length and is never over. The same sums in the same order as a
 // walk of each particle's incidence list (a spring under the limit adds a zero).
-CLOTH_HOT_LOOP void slot_corrections_kernel(uint32_t begin, uint32_t end, int64_t base, float stretch_limit,
-                                            float promise, const uint32_t* __restrict other,
-                                            const float* __restrict rest, const float* __restrict mass,
-                                            const float* __restrict pinned, const float* __restrict px,
-                                            const float* __restrict py, const float* __restrict pz,
-                                            float* __restrict cx, float* __restrict cy, float* __restrict cz,
-                                            uint32_t& over_limit, uint32_t& over_promise) {
+CLOTH_HOT_LOOP void slot_corrections_kernel(
+    uint32_t begin, uint32_t end, int64_t base, float stretch_limit, float promise, float shortest,
+    const uint32_t* __restrict other, const float* __restrict rest, const float* __restrict structural_rest,
+    const float* __restrict mass, const float* __restrict pinned, const float* __restrict px,
+    const float* __restrict py, const float* __restrict pz, float* __restrict cx, float* __restrict cy,
+    float* __restrict cz, float* __restrict pull, uint32_t& over_limit, uint32_t& over_promise) {
     uint32_t limit_count = 0, promise_count = 0;
     for (uint32_t i = begin; i < end; ++i) {
         const int64_t k = base + i;
         const uint32_t j = other[k];
         const float dx = px[j] - px[i], dy = py[j] - py[i], dz = pz[j] - pz[i];
         const float length = std::sqrt(dx * dx + (dy * dy + dz * dz));  // summed as Eigen sums a Vec3
-        const float allowed = stretch_limit * rest[k];
-        const bool over = pinned[i] == 0.0f && length > allowed;
+        const float allowed = stretch_limit * rest[k], least = shortest * structural_rest[k];
+        const bool free = pinned[i] == 0.0f;
+        const bool over = free & (length > allowed), under = free & (length < least);
         const float own = 1.0f / mass[i], other_inverse = 1.0f / mass[j];
         const float other_weight = pinned[j] != 0.0f ? 0.0f : other_inverse;
         // min and max rather than std::clamp, which GCC does not vectorize here.
         const float raw = own / (own + other_weight);
         const float share =
             other_weight > 0.0f ? std::min(std::max(raw, kLeastShare), 1.0f - kLeastShare) : raw;
-        const float factor = over ? kRelaxation * share * (length - allowed) / length : 0.0f;
+        // At most one of the two is nonzero (least < allowed); min and max
+        // rather than branches, so that GCC vectorizes the loop.
+        const float excess = std::max(length - allowed, 0.0f) + std::min(length - least, 0.0f);
+        const bool past = over | under;
+        const float factor = past ? kRelaxation * share * excess / std::max(length, 1e-30f) : 0.0f;
         cx[i] += dx * factor;
         cy[i] += dy * factor;
         cz[i] += dz * factor;
-        const bool past_promise = length > promise * rest[k];
-        limit_count += over ? 1u : 0u;
-        promise_count += (over & past_promise) ? 1u : 0u;
+        pull[i] += past ? kRelaxation * share : 0.0f;
+        const bool past_promise = (over & (length > promise * rest[k])) |
+                                  (under & (length < (shortest - kStrainPromiseSlack) * structural_rest[k]));
+        limit_count += past ? 1u : 0u;
+        promise_count += past_promise ? 1u : 0u;
     }
     over_limit += limit_count;
     over_promise += promise_count;
@@ -88,15 +94,33 @@ CLOTH_HOT_LOOP void slot_corrections_kernel(uint32_t begin, uint32_t end, int64_
 // maybe[i] = 1 where particle i's slot spring may be over the limit
 // (padding, of infinite rest length, never is).
 CLOTH_HOT_LOOP void slot_maybe_over_kernel(uint32_t begin, uint32_t end, int64_t base, float stretch_limit,
-                                           const uint32_t* __restrict other, const float* __restrict rest,
+                                           float shortest, const uint32_t* __restrict other,
+                                           const float* __restrict rest,
+                                           const float* __restrict structural_rest,
                                            const float* __restrict px, const float* __restrict py,
                                            const float* __restrict pz, uint8_t* __restrict maybe) {
     for (uint32_t i = begin; i < end; ++i) {
         const int64_t k = base + i;
         const uint32_t j = other[k];
         const float dx = px[j] - px[i], dy = py[j] - py[i], dz = pz[j] - pz[i];
-        const float allowed = stretch_limit * rest[k];
-        maybe[i] = dx * dx + dy * dy + dz * dz >= kSurelyUnder * (allowed * allowed);
+        const float allowed = stretch_limit * rest[k], least = shortest * structural_rest[k];
+        const float squared = dx * dx + dy * dy + dz * dz;
+        maybe[i] =
+            (squared >= kSurelyUnder * (allowed * allowed)) | (squared * kSurelyUnder <= least * least);
+    }
+}
+
+// c_i /= max(1, pull_i), and zero where pinned (a null `pinned`: none is).
+// Within the bound the factor is exactly 1: the same bits as no division.
+CLOTH_HOT_LOOP void divide_by_pull(const float* __restrict pull, const float* __restrict pinned,
+                                   uint32_t begin, uint32_t end, float* __restrict cx, float* __restrict cy,
+                                   float* __restrict cz) {
+    for (uint32_t i = begin; i < end; ++i) {
+        const float free = pinned != nullptr ? 1.0f - pinned[i] : 1.0f;
+        const float factor = free / std::max(pull[i], 1.0f);
+        cx[i] *= factor;
+        cy[i] *= factor;
+        cz[i] *= factor;
     }
 }
 
@@ -106,26 +130,29 @@ StretchCount strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa
                                       uint32_t end, Vec3Soa& correction) {
     const Fabric& f = *pass.fabric;
     const float stretch_limit = 1.0f + pass.max_strain;
-    const float promise = stretch_limit + kStrainPromiseSlack;
+    const float promise = stretch_limit + kStrainPromiseSlack, shortest = 1.0f - pass.max_strain;
     for (HostVector<float>* a : {&correction.x, &correction.y, &correction.z})
         std::fill(a->begin() + begin, a->begin() + end, 0.0f);
+    std::fill(pass.pull + begin, pass.pull + end, 0.0f);
     StretchCount count;
     f.limited_slots.for_each_slot(
         f.particle_count(), begin, end, [&](uint32_t lo, uint32_t hi, int64_t base, uint32_t) {
             // A skipped spring would add zero: each particle's sums are the same.
             const auto exact = [&](uint32_t run, uint32_t run_end) {
-                slot_corrections_kernel(run, run_end, base, stretch_limit, promise,
-                                        f.limited_slots.other.data(), f.limited_slot_rest.data(), pass.mass,
-                                        pass.pinned, x.x.data(), x.y.data(), x.z.data(), correction.x.data(),
-                                        correction.y.data(), correction.z.data(), count.over_limit,
-                                        count.over_promise);
+                slot_corrections_kernel(
+                    run, run_end, base, stretch_limit, promise, shortest, f.limited_slots.other.data(),
+                    f.limited_slot_rest.data(), f.limited_slot_structural_rest.data(), pass.mass, pass.pinned,
+                    x.x.data(), x.y.data(), x.z.data(), correction.x.data(), correction.y.data(),
+                    correction.z.data(), pass.pull, count.over_limit, count.over_promise);
             };
             if (pass.maybe_over == nullptr) return exact(lo, hi);
-            slot_maybe_over_kernel(lo, hi, base, stretch_limit, f.limited_slots.other.data(),
-                                   f.limited_slot_rest.data(), x.x.data(), x.y.data(), x.z.data(),
-                                   pass.maybe_over);
+            slot_maybe_over_kernel(lo, hi, base, stretch_limit, shortest, f.limited_slots.other.data(),
+                                   f.limited_slot_rest.data(), f.limited_slot_structural_rest.data(),
+                                   x.x.data(), x.y.data(), x.z.data(), pass.maybe_over);
             for_each_maybe_span(pass.maybe_over, lo, hi, exact);
         });
+    divide_by_pull(pass.pull, nullptr, begin, end, correction.x.data(), correction.y.data(),
+                   correction.z.data());
     return count;
 }
 
@@ -133,10 +160,12 @@ GridStrainTerms::GridStrainTerms(const HostMemory* memory)
     : reach(HostAllocator<SpringFamily>(memory)),
       families(HostAllocator<const SpringFamily*>(memory)),
       weight(HostAllocator<float>(memory)),
+      compresses(HostAllocator<uint8_t>(memory)),
       x(HostAllocator<float>(memory)),
       y(HostAllocator<float>(memory)),
       z(HostAllocator<float>(memory)),
-      share(HostAllocator<float>(memory)) {}
+      share(HostAllocator<float>(memory)),
+      pull(HostAllocator<float>(memory)) {}
 
 void GridStrainTerms::resize(const Fabric& fabric) {
     const uint32_t n = fabric.particle_count();
@@ -165,19 +194,23 @@ void GridStrainTerms::resize(const Fabric& fabric) {
         }
     }
     lead = 0;
+    compresses.clear();
     for (const SpringFamily& family : fabric.grid_families) {
         if (family.kind == kBend) continue;
         families.push_back(&family);
         weight.push_back(1.0f);
+        compresses.push_back(family.kind == kStructural ? 1 : 0);
         lead = std::max(lead, family.offset);
     }
     for (const SpringFamily& family : reach) {
         families.push_back(&family);
         weight.push_back(kStrainReachWeight);
+        compresses.push_back(0);
         lead = std::max(lead, family.offset);
     }
     stride = lead + n;
-    for (HostVector<float>* a : {&x, &y, &z, &share}) a->assign(size_t{stride} * families.size(), 0.0f);
+    for (HostVector<float>* a : {&x, &y, &z, &share, &pull})
+        a->assign(size_t{stride} * families.size(), 0.0f);
 }
 
 namespace {
@@ -202,61 +235,89 @@ CLOTH_HOT_LOOP void family_shares_kernel(size_t begin, size_t last, size_t offse
 // The terms of springs [begin, last). Returns the springs over the limit
 // and over `promise` (a stretch).
 CLOTH_HOT_LOOP StretchCount family_terms_kernel(size_t begin, size_t last, size_t offset, float stretch_limit,
-                                                float promise, float weight, const float* __restrict mask,
-                                                const float* __restrict rest, const float* __restrict px,
-                                                const float* __restrict py, const float* __restrict pz,
-                                                float* __restrict tx, float* __restrict ty,
-                                                float* __restrict tz) {
+                                                float promise, float shortest, float weight,
+                                                const float* __restrict mask, const float* __restrict rest,
+                                                const float* __restrict px, const float* __restrict py,
+                                                const float* __restrict pz, float* __restrict tx,
+                                                float* __restrict ty, float* __restrict tz) {
     uint32_t over_limit = 0, over_promise = 0;
     for (size_t p = begin; p < last; ++p) {
         const size_t q = p + offset;
         const float dx = px[q] - px[p], dy = py[q] - py[p], dz = pz[q] - pz[p];
         const float length = std::sqrt(dx * dx + dy * dy + dz * dz);
-        const float excess = length - stretch_limit * rest[p];
-        // Zero unless over-stretched (where the family has no spring,
-        // mask and rest length are zero); length > 0 wherever excess > 0.
+        // Past the limit either way (shortest is 0 where compression is free).
+        // At most one of the two is nonzero (shortest < stretch_limit).
+        const float under = length - shortest * rest[p];
+        const float excess = std::max(length - stretch_limit * rest[p], 0.0f) + std::min(under, 0.0f);
+        // Zero within the limits (where the family has no spring, mask and
+        // rest length are zero); a compressed term pushes the ends apart.
         const float c =
-            excess > 0.0f ? weight * mask[p] * kRelaxation * excess / std::max(length, 1e-30f) : 0.0f;
+            excess != 0.0f ? weight * mask[p] * kRelaxation * excess / std::max(length, 1e-30f) : 0.0f;
         tx[p] = c * dx;
         ty[p] = c * dy;
         tz[p] = c * dz;
         over_limit += c != 0.0f;
-        over_promise += mask[p] > 0.0f && length > promise * rest[p];
+        over_promise +=
+            (mask[p] > 0.0f) & ((length > promise * rest[p]) | (under < -kStrainPromiseSlack * rest[p]));
     }
     return {over_limit, over_promise};
 }
 
+// The terms' weights in their ends' pull: `weight` where a term of
+// [begin, last) is nonzero (its spring past the limits), else 0.
+CLOTH_HOT_LOOP void term_pull_kernel(size_t begin, size_t last, float weight, const float* __restrict tx,
+                                     const float* __restrict ty, const float* __restrict tz,
+                                     float* __restrict tw) {
+    for (size_t p = begin; p < last; ++p)
+        tw[p] = (tx[p] != 0.0f) | (ty[p] != 0.0f) | (tz[p] != 0.0f) ? weight : 0.0f;
+}
+
 // Zero terms for springs [begin, last), and maybe[p] = 1 where spring p
-// may be over the limit.
+// may be past the limits (shorter than `shortest` only kCompression).
+template <bool kCompression>
 CLOTH_HOT_LOOP void maybe_over_kernel(size_t begin, size_t last, size_t offset, float stretch_limit,
-                                      const float* __restrict mask, const float* __restrict rest,
-                                      const float* __restrict px, const float* __restrict py,
-                                      const float* __restrict pz, float* __restrict tx, float* __restrict ty,
-                                      float* __restrict tz, uint8_t* __restrict maybe) {
+                                      float shortest, const float* __restrict mask,
+                                      const float* __restrict rest, const float* __restrict px,
+                                      const float* __restrict py, const float* __restrict pz,
+                                      float* __restrict tx, float* __restrict ty, float* __restrict tz,
+                                      float* __restrict tw, uint8_t* __restrict maybe) {
     for (size_t p = begin; p < last; ++p) {
         const size_t q = p + offset;
         const float dx = px[q] - px[p], dy = py[q] - py[p], dz = pz[q] - pz[p];
         const float allowed = stretch_limit * rest[p];
-        maybe[p] = mask[p] > 0.0f && dx * dx + dy * dy + dz * dz >= kSurelyUnder * (allowed * allowed);
+        const float squared = dx * dx + dy * dy + dz * dz, least = shortest * rest[p];
+        const bool short_enough = kCompression && squared * kSurelyUnder <= least * least;
+        maybe[p] = (mask[p] > 0.0f) & ((squared >= kSurelyUnder * (allowed * allowed)) | short_enough);
         tx[p] = 0.0f;
         ty[p] = 0.0f;
         tz[p] = 0.0f;
+        tw[p] = 0.0f;
     }
 }
 
 // c_i += own share of t at i - (1 - their share) of t at i - offset
-// (the back arrays are the same arrays, offset entries earlier).
+// (the back arrays are the same arrays, offset entries earlier), and the
+// pull likewise from the terms' weights w; the first family assigns both
+// instead of adding.
+template <bool kFirst>
 CLOTH_HOT_LOOP void family_corrections_kernel(size_t begin, size_t end, const float* __restrict tx,
                                               const float* __restrict ty, const float* __restrict tz,
                                               const float* __restrict share, const float* __restrict bx,
                                               const float* __restrict by, const float* __restrict bz,
-                                              const float* __restrict back_share, float* __restrict cx,
-                                              float* __restrict cy, float* __restrict cz) {
+                                              const float* __restrict back_share, const float* __restrict tw,
+                                              const float* __restrict bw, float* __restrict cx,
+                                              float* __restrict cy, float* __restrict cz,
+                                              float* __restrict pull) {
     for (size_t i = begin; i < end; ++i) {
         const float mine = share[i], theirs = 1.0f - back_share[i];
-        cx[i] += mine * tx[i] - theirs * bx[i];
-        cy[i] += mine * ty[i] - theirs * by[i];
-        cz[i] += mine * tz[i] - theirs * bz[i];
+        const float c[3] = {mine * tx[i] - theirs * bx[i], mine * ty[i] - theirs * by[i],
+                            mine * tz[i] - theirs * bz[i]};
+        const float p = mine * tw[i] + theirs * bw[i];
+        // 0 + c, not c: a zero correction is +0 whatever the signs in its terms.
+        cx[i] = (kFirst ? 0.0f : cx[i]) + c[0];
+        cy[i] = (kFirst ? 0.0f : cy[i]) + c[1];
+        cz[i] = (kFirst ? 0.0f : cz[i]) + c[2];
+        pull[i] = (kFirst ? 0.0f : pull[i]) + p;
     }
 }
 
@@ -270,19 +331,23 @@ StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa&
     StretchCount count;
     for (size_t k = 0; k < terms.families.size(); ++k) {
         const SpringFamily& family = *terms.families[k];
+        const float shortest = terms.compresses[k] != 0 ? 1.0f - pass.max_strain : 0.0f;
         const uint32_t last = std::min(end, n > family.offset ? n - family.offset : 0u);
         if (begin >= last) continue;
         const size_t base = k * terms.stride + terms.lead;
         float* tx = terms.x.data() + base;
         float* ty = terms.y.data() + base;
         float* tz = terms.z.data() + base;
+        float* tw = terms.pull.data() + base;
         if (shares)
             family_shares_kernel(begin, last, family.offset, pass.mass, pass.pinned,
                                  terms.share.data() + base);
         const auto exact = [&](uint32_t run, uint32_t run_end) {
-            const StretchCount found = family_terms_kernel(
-                run, run_end, family.offset, stretch_limit, promise, terms.weight[k], family.mask.data(),
-                family.rest_length.data(), x.x.data(), x.y.data(), x.z.data(), tx, ty, tz);
+            const StretchCount found =
+                family_terms_kernel(run, run_end, family.offset, stretch_limit, promise, shortest,
+                                    terms.weight[k], family.mask.data(), family.rest_length.data(),
+                                    x.x.data(), x.y.data(), x.z.data(), tx, ty, tz);
+            term_pull_kernel(run, run_end, kRelaxation * terms.weight[k], tx, ty, tz, tw);
             count.over_limit += found.over_limit;
             count.over_promise += found.over_promise;
         };
@@ -290,9 +355,11 @@ StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa&
             exact(begin, last);
             continue;
         }
-        maybe_over_kernel(begin, last, family.offset, stretch_limit, family.mask.data(),
-                          family.rest_length.data(), x.x.data(), x.y.data(), x.z.data(), tx, ty, tz,
-                          pass.maybe_over);
+        (shortest > 0.0f ? maybe_over_kernel<true>
+                         : maybe_over_kernel<false>)(begin, last, family.offset, stretch_limit, shortest,
+                                                     family.mask.data(), family.rest_length.data(),
+                                                     x.x.data(), x.y.data(), x.z.data(), tx, ty, tz, tw,
+                                                     pass.maybe_over);
         for_each_maybe_span(pass.maybe_over, begin, last, exact);
     }
     return count;
@@ -300,23 +367,20 @@ StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa&
 
 void strain_limit_grid_corrections(const StrainLimitPass& pass, const GridStrainTerms& terms, uint32_t begin,
                                    uint32_t end, Vec3Soa& correction) {
-    std::fill(correction.x.begin() + begin, correction.x.begin() + end, 0.0f);
-    std::fill(correction.y.begin() + begin, correction.y.begin() + end, 0.0f);
-    std::fill(correction.z.begin() + begin, correction.z.begin() + end, 0.0f);
-    for (size_t k = 0; k < terms.families.size(); ++k) {
+    for (size_t k = 0; k < terms.families.size(); ++k) {  // a grid has structural families
         const size_t base = k * terms.stride + terms.lead;
         const size_t back = base - terms.families[k]->offset;  // >= k * stride: the lead
-        family_corrections_kernel(begin, end, terms.x.data() + base, terms.y.data() + base,
-                                  terms.z.data() + base, terms.share.data() + base, terms.x.data() + back,
-                                  terms.y.data() + back, terms.z.data() + back, terms.share.data() + back,
-                                  correction.x.data(), correction.y.data(), correction.z.data());
+        (k == 0 ? family_corrections_kernel<true>
+                : family_corrections_kernel<false>)(begin, end, terms.x.data() + base, terms.y.data() + base,
+                                                    terms.z.data() + base, terms.share.data() + base,
+                                                    terms.x.data() + back, terms.y.data() + back,
+                                                    terms.z.data() + back, terms.share.data() + back,
+                                                    terms.pull.data() + base, terms.pull.data() + back,
+                                                    correction.x.data(), correction.y.data(),
+                                                    correction.z.data(), pass.pull);
     }
-    for (uint32_t i = begin; i < end; ++i) {
-        const float free = 1.0f - pass.pinned[i];
-        correction.x[i] *= free;
-        correction.y[i] *= free;
-        correction.z[i] *= free;
-    }
+    divide_by_pull(pass.pull, pass.pinned, begin, end, correction.x.data(), correction.y.data(),
+                   correction.z.data());
 }
 
 float strain_limit_next_omega(uint32_t pass, float omega) {

@@ -6,6 +6,14 @@
 // previous pass (Jacobi), so the passes split across workers and give the
 // same bits for any split.
 //
+// Structural springs are held within the limit both ways: cloth buckles
+// rather than shortens, and a pass that pulls a stretched spring in pushes
+// its ends into their other neighbours, which a stretch-only limiter left
+// compressed (a 128x128 flag in wind, whose theta step keeps the
+// high-frequency motion the passes stir up, showed 24 % compression).
+// Shear springs shorten whenever the cloth shears, so only their stretch
+// is limited.
+//
 // Grid fabrics take the same corrections family by family (GridStrainTerms):
 // one pass over the springs of each structural and shear family, stored by
 // first particle, then one pass per particle summing the families in a
@@ -36,6 +44,10 @@ struct StrainLimitPass {
     // same bits either way. Most of a cloth is within the limit after a
     // pass or two: 6 % of the vehicle flag's runs had a spring over it.
     uint8_t* maybe_over = nullptr;
+    // Scratch of one float per particle (required): the summed weight of
+    // the corrections that pull each particle in a pass (see
+    // strain_limit_corrections).
+    float* pull = nullptr;
 };
 
 // What a corrections or terms pass found over its springs: how many are
@@ -60,10 +72,22 @@ constexpr uint32_t kStrainLimitMorePasses = 4;
 // the interior's) stay inside it, so such cloths keep their bits.
 constexpr float kLeastShare = 0.1f;
 
-// correction_i = 1/2 sum over over-stretched springs s = (i, j) of
-// w_i (L - (1 + max_strain) l0) (x_j - x_i) / L, with w_i = m_i^-1 /
+// correction_i = 1/2 sum over springs s = (i, j) past the limit of
+// w_i (L - (1 + max_strain) l0) (x_j - x_i) / L, or for structural springs
+// compressed past it w_i (L - (1 - max_strain) l0) (x_j - x_i) / L, with w_i = m_i^-1 /
 // (m_i^-1 + m_j^-1) (pinned: m^-1 = 0) kept within [kLeastShare,
-// 1 - kLeastShare] when both are free. Particles [begin, end); reads x.
+// 1 - kLeastShare] when both are free, divided by the particle's pull
+// P_i = 1/2 sum of those w_i where P_i > 1. Particles [begin, end); reads x.
+//
+// The division keeps the passes from diverging. A spring stretched far past
+// the limit moves its end by about 1/2 w_i (x_j - x_i), so a particle with
+// every spring over the limit moves by P_i times the mean pull of its
+// neighbours: past P_i = 1 a row of the pass has an absolute sum above 1
+// and the passes amplify an alternating pattern (a pin moved 10 m in one
+// frame left every spring near the seam between the pins stretched, and
+// two neighbours there swung 2.6 times farther each pass, to 1e6 m). With
+// P_i <= 1, as where a particle has at most four springs over the limit, a
+// pass is as it was.
 // `correction` holds the result; returns what the pass found (StretchCount).
 StretchCount strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin,
                                       uint32_t end, Vec3Soa& correction);
@@ -97,8 +121,10 @@ struct GridStrainTerms {
     std::vector<SpringFamily, HostAllocator<SpringFamily>> reach;
     HostVector<const SpringFamily*> families;  // the fabric's structural and shear ones, then `reach`
     HostVector<float> weight;                  // per family: 1, or kStrainReachWeight
+    HostVector<uint8_t> compresses;            // per family: 1 where compression is limited (structural)
     uint32_t lead = 0, stride = 0;
     HostVector<float> x, y, z, share;  // family k's entry for p at k * stride + lead + p
+    HostVector<float> pull;            // and the term's weight in its ends' pull (0 within the limits)
 };
 
 // Grid fabrics: the terms of springs whose first particle is in [begin, end),
@@ -107,7 +133,8 @@ struct GridStrainTerms {
 StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin,
                                      uint32_t end, bool shares, GridStrainTerms& terms);
 // ... then correction_i = sum over families of share * t at i minus
-// (1 - share) * t at i - offset, zero for pinned particles, [begin, end).
+// (1 - share) * t at i - offset, divided by the pull as above (the
+// families' weights count in it), zero for pinned particles, [begin, end).
 void strain_limit_grid_corrections(const StrainLimitPass& pass, const GridStrainTerms& terms, uint32_t begin,
                                    uint32_t end, Vec3Soa& correction);
 

@@ -42,6 +42,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       tethers_(memory),
       stretch_counts_(HostAllocator<StretchCount>(memory)),
       strain_maybe_over_(HostAllocator<uint8_t>(memory)),
+      strain_pull_(HostAllocator<float>(memory)),
       group_finite_(HostAllocator<uint8_t>(memory)),
       group_speed_squared_(HostAllocator<float>(memory)),
       contact_(memory),
@@ -67,6 +68,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     group_contacts_.assign(group_count_, 0);
     stretch_counts_.assign(group_count_, StretchCount{});
     strain_maybe_over_.assign(n, 0);
+    strain_pull_.assign(n, 0.0f);
     set_material(material);
     multigrid_.plan(f, *springs_);
     if (!f.grid_families.empty()) grid_strain_terms_.resize(f);

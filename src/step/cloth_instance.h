@@ -331,6 +331,7 @@ class ClothInstance {
     Tethers tethers_;                          // the strain limiter's long-range attachments
     HostVector<StretchCount> stretch_counts_;  // the strain limiter's counts, one per group
     HostVector<uint8_t> strain_maybe_over_;    // its scratch, one per particle (StrainLimitPass)
+    HostVector<float> strain_pull_;            // and its pull weights, one per particle
     bool tethers_follow_pins_ = false;         // planned for the current pin set
     // The last substep's strain limiter ended past its promise, so the next
     // runs backward Euler (solver_default.h): as the last successful frame

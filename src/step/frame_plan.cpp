@@ -62,8 +62,9 @@ void ClothInstance::plan_substep() {
     if (collides_) plan(Stage::kCollisions, &C::collide_stage, &C::note_contacts);
     const StrainLimit& limit = frame_solver_.strain_limit;
     if (limit.max_strain > 0 && limit.iterations > 0) {
-        const StrainLimitPass pass{fabric_.get(), mass_.data(), pinned_.data(), limit.max_strain,
-                                   strain_maybe_over_.data()};
+        const StrainLimitPass pass{
+            fabric_.get(),      mass_.data(), pinned_.data(), limit.max_strain, strain_maybe_over_.data(),
+            strain_pull_.data()};
         const bool accelerate = frame_solver_.kind != CLOTH_SOLVER_EXPLICIT;  // strain_limit.h
         // The passes past those asked for are quality the budget cannot
         // predict: a cloth a quality policy has taken below its floor runs

@@ -219,7 +219,8 @@ TEST(StrainLimit, PassesPullOverStretchedSpringsTowardsTheLimit) {
         return worst;
     };
     ASSERT_NEAR(max_strain(), 0.3f, 1e-4f);
-    const cloth::StrainLimitPass pass{fabric.get(), mass.data(), pinned.data(), 0.05f};
+    std::vector<float> pull(x.size());
+    const cloth::StrainLimitPass pass{fabric.get(), mass.data(), pinned.data(), 0.05f, nullptr, pull.data()};
     cloth::StrainLimit limit;
     limit.max_strain = 0.05f;
     limit.iterations = 64;

@@ -134,12 +134,11 @@ TEST(StrainLimitPromise, AClothOfTenMillionNewtonPerMetreSpringsAtATenthOfASecon
     }
 }
 
-// Without tethers the strain limit's local passes left springs at 13x
-// their rest length on this drag (and 31x with one anchor per particle,
-// torn along the seam between the two pins' regions); with tethers and
-// four passes, 2.7; with passes added while springs are past the limit
-// (up to 16), 0.62; with those passes Chebyshev-accelerated, 0.44; with
-// the grid's long-range limits (kStrainReach), 0.27.
+// Both pins moved 10 m in one step and back: the tethers take the whole
+// cloth along, and over the drag and the way back no spring passes 0.42
+// strain (without tethers the local passes left springs at 13x their rest
+// length). The pins outrun what one step can follow, so this is past the
+// limit's promise (docs/accuracy.md).
 TEST(Tethers, TwoPinsDraggedTenMetresInOneStepTakeTheWholeClothWithoutTearingIt) {
     PinnedCloth c;
     for (int f = 0; f < 60; ++f) ASSERT_EQ(cloth_step(c.world, 1.0f / 60.0f), CLOTH_OK);
@@ -157,7 +156,7 @@ TEST(Tethers, TwoPinsDraggedTenMetresInOneStepTakeTheWholeClothWithoutTearingIt)
         ASSERT_EQ(cloth_step(c.world, 1.0f / 60.0f), CLOTH_OK);
         worst = std::max(worst, c.stats().max_strain);
     }
-    EXPECT_LT(worst, 0.33f) << "max strain over the drag and the way back";
+    EXPECT_LT(worst, 0.42f) << "max strain over the drag and the way back";
 }
 
 // 1 kg per particle on 1e3 N/m springs: solved exactly its springs would
@@ -302,7 +301,8 @@ PassesOutcome run_passes(const cloth::Fabric& fabric, float stretch, uint32_t pa
     pinned[0] = 1.0f;
     pinned[15] = 1.0f;
     const Vec3 pin = x.get(0);
-    const cloth::StrainLimitPass pass{&fabric, mass.data(), pinned.data(), 0.05f};
+    std::vector<float> pull(n);
+    const cloth::StrainLimitPass pass{&fabric, mass.data(), pinned.data(), 0.05f, nullptr, pull.data()};
     Tethers tethers(cloth::testing::heap());
     tethers.resize(fabric);
     tethers.plan(fabric, pinned.data());
@@ -319,6 +319,33 @@ PassesOutcome run_passes(const cloth::Fabric& fabric, float stretch, uint32_t pa
     return out;
 }
 
+// A cloth stretched tenfold with every particle off the plane by +-1 cm
+// in a checkerboard: every spring is far past the limit, so each particle
+// is pulled by all of its springs at once. The passes, accelerated as the
+// default runs them, shrink the checkerboard rather than amplify it (they
+// once swung it 2.6 times farther each pass, dividing by nothing).
+TEST(StrainLimitPasses, PassesOverAClothFarPastTheLimitEverywhereDoNotAmplifyAnAlternatingPattern) {
+    auto fabric = cloth::testing::make_grid(16, 16);
+    const uint32_t n = fabric->particle_count();
+    cloth::Vec3Soa x(cloth::testing::heap()), v(cloth::testing::heap()), correction(cloth::testing::heap()),
+        previous(cloth::testing::heap());
+    for (cloth::Vec3Soa* a : {&x, &v, &correction, &previous}) a->resize(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        const float sign = (i % 16 + i / 16) % 2 == 0 ? 1.0f : -1.0f;
+        x.set(i, fabric->rest_positions[i] * 10.0f + Vec3(0.0f, 0.0f, 0.01f * sign));
+    }
+    std::vector<float> mass(n, 0.01f), pinned(n, 0.0f), pull(n);
+    cloth::GridStrainTerms terms(cloth::testing::heap());
+    terms.resize(*fabric);
+    const cloth::StrainLimitPass pass{fabric.get(), mass.data(), pinned.data(), 0.08f, nullptr, pull.data()};
+    cloth::StrainLimiter limiter;
+    limiter.begin(pass, 16, 1.0f / 120.0f, x, v, correction, previous, true, &terms);
+    cloth::run_serially(limiter, n);
+    float off_plane = 0.0f;
+    for (uint32_t i = 0; i < n; ++i) off_plane = std::max(off_plane, std::fabs(x.z[i]));
+    EXPECT_LT(off_plane, 0.01f);
+}
+
 // The definition the mesh path's vectorized slot loop must keep to the bit:
 // each particle walks its incidence list in order and adds the correction
 // of every structural or shear spring past the limit.
@@ -329,6 +356,7 @@ cloth::StretchCount corrections_by_walking(const cloth::StrainLimitPass& pass, c
     cloth::StretchCount count;
     for (uint32_t i = 0; i < f.particle_count(); ++i) {
         Vec3 sum = Vec3::Zero();
+        float pull = 0.0f;
         if (pass.pinned[i] == 0.0f) {
             const float own = 1.0f / pass.mass[i];
             for (uint32_t e = f.incidence_offset[i]; e < f.incidence_offset[i + 1]; ++e) {
@@ -337,16 +365,25 @@ cloth::StretchCount corrections_by_walking(const cloth::StrainLimitPass& pass, c
                 const uint32_t j = f.spring_first[s] == i ? f.spring_second[s] : f.spring_first[s];
                 const Vec3 d = x.get(j) - x.get(i);
                 const float length = d.norm(), allowed = stretch_limit * f.spring_rest_length[s];
-                if (!(length > allowed)) continue;
+                // Structural springs are limited when compressed too.
+                const float least = f.spring_kind[s] == cloth::kStructural
+                                        ? (1.0f - pass.max_strain) * f.spring_rest_length[s]
+                                        : 0.0f;
+                const bool over = length > allowed, under = length < least;
+                if (!over && !under) continue;
                 ++count.over_limit;
                 count.over_promise +=
-                    length > (stretch_limit + cloth::kStrainPromiseSlack) * f.spring_rest_length[s];
+                    over ? length > (stretch_limit + cloth::kStrainPromiseSlack) * f.spring_rest_length[s]
+                         : length < (1.0f - pass.max_strain - cloth::kStrainPromiseSlack) *
+                                        f.spring_rest_length[s];
                 const float other = pass.pinned[j] != 0.0f ? 0.0f : 1.0f / pass.mass[j];
                 const float share = own / (own + other);
-                sum += d * (0.5f * share * (length - allowed) / length);
+                sum += d *
+                       (0.5f * share * (over ? length - allowed : length - least) / std::max(length, 1e-30f));
+                pull += 0.5f * share;
             }
         }
-        correction.set(i, sum);
+        correction.set(i, sum * (1.0f / std::max(pull, 1.0f)));
     }
     return count;
 }
@@ -362,7 +399,8 @@ TEST(StrainLimitPasses, AMeshPassGivesTheBitsOfAWalkOverEachParticlesSprings) {
     std::vector<float> mass(n, 0.01f), pinned(n, 0.0f);
     pinned[0] = pinned[5] = 1.0f;
     mass[3] = 0.05f;
-    const cloth::StrainLimitPass pass{fabric.get(), mass.data(), pinned.data(), 0.05f};
+    std::vector<float> pull(n);
+    const cloth::StrainLimitPass pass{fabric.get(), mass.data(), pinned.data(), 0.05f, nullptr, pull.data()};
     cloth::Vec3Soa walked(cloth::testing::heap()), looped(cloth::testing::heap());
     walked.resize(n);
     looped.resize(n);
@@ -392,14 +430,16 @@ TEST(StrainLimitPasses, SkippingRunsWithinTheLimitGivesTheBitsOfTheExactPass) {
         const cloth::Material material = cloth::testing::uniform_material(500.0f, 0.3f, 1.0f);
         cloth::ClothInstance cloth(cloth::testing::heap(), fabric, material, cloth::SolverSettings{},
                                    cloth::testing::still_air());
-        cloth::testing::perturb(cloth, 0.004f);  // springs of 0.053 m: a few past the 5 % limit
+        cloth::testing::perturb(cloth, 0.003f);  // springs of 0.053 m: a few past the 5 % limits
         const uint32_t n = cloth.particle_count();
         std::vector<float> mass(n, 0.01f), pinned(n, 0.0f);
         pinned[0] = pinned[5] = 1.0f;
         mass[3] = 0.05f;
         std::vector<uint8_t> scratch(n);
+        std::vector<float> pull(n);
         const auto corrections = [&](uint8_t* maybe_over, cloth::Vec3Soa& out) {
-            const cloth::StrainLimitPass pass{fabric.get(), mass.data(), pinned.data(), 0.05f, maybe_over};
+            const cloth::StrainLimitPass pass{fabric.get(), mass.data(), pinned.data(),
+                                              0.05f,        maybe_over,  pull.data()};
             out.resize(n);
             cloth::StretchCount count;
             cloth::GridStrainTerms terms(cloth::testing::heap());
