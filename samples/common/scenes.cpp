@@ -89,6 +89,21 @@ Scene::Scene(const SceneConfig& config) : kind_(config.kind) {
     }
     particle_count_ = n * n;
     std::vector<float> start(3 * static_cast<size_t>(particle_count_));
+    if (config.out_of_plane > 0) {
+        const float normal[3] = {grid.u[1] * grid.v[2] - grid.u[2] * grid.v[1],
+                                 grid.u[2] * grid.v[0] - grid.u[0] * grid.v[2],
+                                 grid.u[0] * grid.v[1] - grid.u[1] * grid.v[0]};
+        uint32_t seed = 12345;
+        for (uint32_t i = 0; i < particle_count_; ++i) {
+            seed = seed * 1664525u + 1013904223u;  // a fixed sequence, the same on every machine
+            const float offset = config.out_of_plane * (static_cast<float>(seed >> 8) / 8388608.0f - 1.0f);
+            const float s = static_cast<float>(i % n) / static_cast<float>(n - 1);
+            const float t = static_cast<float>(i / n) / static_cast<float>(n - 1);
+            for (int k = 0; k < 3; ++k)
+                start[3 * i + k] = grid.origin[k] + s * grid.u[k] + t * grid.v[k] + offset * normal[k];
+        }
+        desc.initial_positions = start.data();
+    }
     for (uint32_t copy = 0; copy < config.copies; ++copy) {
         cloth_id cloth{};
         if (copy > 0) {

@@ -41,6 +41,11 @@ struct SceneConfig {
     // Cloths of the same fabric in the world, 1.5 m apart along z.
     uint32_t copies = 1;
     float strain_limit = 0;  // > 0: cloth_set_strain_limit with this max strain
+    // > 0: every particle starts off the cloth's plane by a fixed
+    // pseudo-random amount within +-out_of_plane m, so that the cloth is
+    // not exactly flat (an exactly flat cloth hanging in still air never
+    // leaves its plane).
+    float out_of_plane = 0.0f;
     // The same particles and triangles as a mesh fabric (cloth_fabric_create_mesh:
     // index-pair springs, structural and bend, no shear) instead of a grid.
     bool mesh = false;

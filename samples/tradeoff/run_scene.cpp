@@ -25,6 +25,27 @@ const char* kind_name(cloth_solver_kind kind) {
     }
 }
 
+namespace {
+
+// max |L - l0| / l0 over the row and column neighbours of an n x n grid of
+// 1 m sides.
+double grid_abs_strain(const std::vector<float>& x, uint32_t n) {
+    const double rest = 1.0 / (n - 1);
+    double worst = 0;
+    const auto pair = [&](uint32_t a, uint32_t b) {
+        const double dx = x[3 * b] - x[3 * a], dy = x[3 * b + 1] - x[3 * a + 1],
+                     dz = x[3 * b + 2] - x[3 * a + 2];
+        worst = std::max(worst, std::fabs(std::sqrt(dx * dx + dy * dy + dz * dz) - rest) / rest);
+    };
+    for (uint32_t p = 0; p < n * n; ++p) {
+        if (p % n + 1 < n) pair(p, p + 1);
+        if (p + n < n * n) pair(p, p + n);
+    }
+    return worst;
+}
+
+}  // namespace
+
 RunResult run_scene(const cloth_samples::SceneConfig& config, float dt, uint32_t frames) {
     RunResult out;
     cloth_samples::Scene scene(config);
@@ -61,6 +82,9 @@ RunResult run_scene(const cloth_samples::SceneConfig& config, float dt, uint32_t
             break;
         }
         out.max_strain = std::max(out.max_strain, static_cast<double>(s.max_strain));
+        if (!config.mesh)
+            out.max_abs_strain =
+                std::max(out.max_abs_strain, grid_abs_strain(scene.positions(), config.resolution));
         out.mean_strain = std::max(out.mean_strain, static_cast<double>(s.mean_strain));
         out.energy_gain = std::max(out.energy_gain, e - e0);
         if (2 * f < frames) {
@@ -77,7 +101,7 @@ RunResult run_scene(const cloth_samples::SceneConfig& config, float dt, uint32_t
         out.ms_per_frame = ms[ms.size() / 2];
     }
     out.positions = scene.positions();
-    if (!out.ok) out.max_strain = std::max(out.max_strain, 1e9);
+    if (!out.ok) out.max_strain = out.max_abs_strain = std::max(out.max_strain, 1e9);
     return out;
 }
 

@@ -10,10 +10,13 @@
 namespace tradeoff {
 
 struct RunResult {
-    bool ok = true;               // every frame stepped without an error
-    std::string error;            // first error, if any
-    double ms_per_frame = 0;      // median wall time of cloth_step, ms
-    double max_strain = 0;        // max over frames of the structural max strain
+    bool ok = true;           // every frame stepped without an error
+    std::string error;        // first error, if any
+    double ms_per_frame = 0;  // median wall time of cloth_step, ms
+    double max_strain = 0;    // max over frames of the structural max strain
+    // Grids: max over frames of |L - l0| / l0 over row and column
+    // neighbours (compression counts too), read from the positions.
+    double max_abs_strain = 0;
     double mean_strain = 0;       // max over frames of the structural mean |strain|
     double energy_gain = 0;       // max over frames of E(t) - E(0), J (kinetic + gravity + elastic)
     double energy_change = 0;     // E(end) - E(0), J

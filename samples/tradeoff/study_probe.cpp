@@ -59,9 +59,10 @@ int run_probe(const ProbeOptions& o) {
     return r.ok ? 0 : 1;
 }
 
-// Point 2 of the issue: no energy gain beyond the work of gravity (and, in
-// wind, no secular rise: the second half never exceeds the first half's
-// peak by more than kWindRise), max strain under 10 %.
+// The default's promise in the standard scenes: no energy gain beyond the
+// work of gravity (and, in wind, no secular rise: the second half never
+// exceeds the first half's peak by more than kWindRise), and every row and
+// column spring within 10 % of its rest length, stretched or compressed.
 constexpr double kEnergyTolerance = 1e-2;  // J, on a 1 kg cloth
 constexpr double kWindRise = 0.5;          // J
 constexpr double kMaxStrain = 0.10;
@@ -70,42 +71,60 @@ int run_default_matrix(const MatrixOptions& o) {
     std::FILE* csv = o.csv.empty() ? nullptr : std::fopen(o.csv.c_str(), "w");
     if (csv) {
         std::fprintf(csv,
-                     "scene,resolution,stiffness,frames,ms_per_frame,max_strain,mean_strain,energy_gain,"
+                     "scene,resolution,stiffness,frames,ms_per_frame,max_abs_strain,mean_strain,energy_gain,"
                      "energy_change,late_energy_rise,pass,x_jacobi_k1\n");
     }
     std::printf("%-14s %5s %8s %9s %8s %10s %11s %12s %12s %10s %s\n", "scene", "res", "k N/m", "ms/frame",
-                "x JAC k1", "max_strain", "mean_strain", "energy_gain", "E_change", "late_rise", "holds");
+                "x JAC k1", "max_|strain|", "mean_strain", "energy_gain", "E_change", "late_rise", "holds");
     int failures = 0;
+    // The standard scenes, the flag again with damped springs, and the
+    // hanging cloth a tenth of a millimetre out of plane (which lets it
+    // fold out of its plane where a flat one cannot).
+    struct Case {
+        const char* name;
+        SceneKind kind;
+        float damping;       // N s/m, every spring kind
+        float out_of_plane;  // m
+    };
+    const Case cases[] = {{"hanging", SceneKind::kHanging, 0.0f, 0.0f},
+                          {"falling_flat", SceneKind::kFallingFlat, 0.0f, 0.0f},
+                          {"flag_in_wind", SceneKind::kFlagInWind, 0.0f, 0.0f},
+                          {"flag_damped", SceneKind::kFlagInWind, 0.5f, 0.0f},
+                          {"hanging_curved", SceneKind::kHanging, 0.0f, 1e-4f}};
+    size_t count = 0;
     for (uint32_t resolution : o.resolutions) {
         for (float k : {1e3f, 1e4f}) {
-            for (SceneKind kind : {SceneKind::kHanging, SceneKind::kFallingFlat, SceneKind::kFlagInWind}) {
+            for (const Case& c : cases) {
                 SceneConfig config;
-                config.kind = kind;
+                config.kind = c.kind;
+                config.damping = c.damping;
+                config.out_of_plane = c.out_of_plane;
                 config.resolution = resolution;
                 config.stiffness = k;
                 config.still_air = o.still_air;
                 const RunResult r = run_scene(config, 1.0f / 60.0f, o.frames);
                 const double ratio = r.ms_per_frame / jacobi_k1_ms(config, 1.0f / 60.0f);
-                const bool wind = kind == SceneKind::kFlagInWind;
-                const bool pass = r.ok && r.max_strain < kMaxStrain &&
+                const bool wind = c.kind == SceneKind::kFlagInWind && !o.still_air;
+                const bool pass = r.ok && r.max_abs_strain < kMaxStrain &&
                                   (wind ? r.late_energy_rise < kWindRise : r.energy_gain < kEnergyTolerance);
                 failures += pass ? 0 : 1;
-                std::printf("%-14s %5u %8.0f %9.3f %8.1f %10.4f %11.4f %12.4g %12.4g %10.4g %s %s\n",
-                            cloth_samples::scene_name(kind), resolution, double(k), r.ms_per_frame, ratio,
-                            r.max_strain, r.mean_strain, r.energy_gain, r.energy_change, r.late_energy_rise,
-                            pass ? "yes" : "NO", r.error.c_str());
+                ++count;
+                std::printf("%-14s %5u %8.0f %9.3f %8.1f %10.4f %11.4f %12.4g %12.4g %10.4g %s %s\n", c.name,
+                            resolution, double(k), r.ms_per_frame, ratio, r.max_abs_strain, r.mean_strain,
+                            r.energy_gain, r.energy_change, r.late_energy_rise, pass ? "yes" : "NO",
+                            r.error.c_str());
                 std::fflush(stdout);
                 if (csv) {
-                    std::fprintf(csv, "%s,%u,%g,%u,%.4f,%.5f,%.5f,%.5g,%.5g,%.5g,%d,%.2f\n",
-                                 cloth_samples::scene_name(kind), resolution, double(k), r.frames,
-                                 r.ms_per_frame, r.max_strain, r.mean_strain, r.energy_gain, r.energy_change,
-                                 r.late_energy_rise, pass ? 1 : 0, ratio);
+                    std::fprintf(csv, "%s,%u,%g,%u,%.4f,%.5f,%.5f,%.5g,%.5g,%.5g,%d,%.2f\n", c.name,
+                                 resolution, double(k), r.frames, r.ms_per_frame, r.max_abs_strain,
+                                 r.mean_strain, r.energy_gain, r.energy_change, r.late_energy_rise,
+                                 pass ? 1 : 0, ratio);
                 }
             }
         }
     }
     if (csv) std::fclose(csv);
-    std::printf("%d of %zu cases fail\n", failures, o.resolutions.size() * 6);
+    std::printf("%d of %zu cases fail\n", failures, count);
     return failures == 0 ? 0 : 1;
 }
 

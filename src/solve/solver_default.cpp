@@ -40,7 +40,10 @@ SolverSettings resolve_solver(const SolverSettings& requested, float dt, float s
     if (!out.strain_limit.chosen)
         out.strain_limit = StrainLimit{kDefaultStrainLimit, kDefaultStrainLimitPasses};
     const bool limited = out.strain_limit.max_strain > 0 && out.strain_limit.iterations > 0;
-    out.theta = limited ? kDefaultTheta : 1.0f;
+    // The theta step was measured up to the substep gamma above; past it
+    // (the substep cap binds) backward Euler's damping holds the energy.
+    const bool within_gamma = gamma <= gamma_limit * double(out.substeps) * out.substeps;
+    out.theta = limited && within_gamma ? kDefaultTheta : 1.0f;
     return out;
 }
 

@@ -76,7 +76,10 @@ constexpr float kStrainCableStiffness = 100.0f;
 // harder when something yanks it (a pin moved 10 m, a flag's edge at
 // 30 m/s), so a substep after one whose strain limiter ended past its
 // promise runs backward Euler (step/frame_plan.cpp), as does every substep
-// of a cloth without a strain limit (nothing watches its strain).
+// of a cloth without a strain limit (nothing watches its strain) and of a
+// step whose substep gamma stays past kDefaultMultigridSubstepGamma at
+// kDefaultMaxSubsteps (stiff cloth at long steps, where the theta step
+// gained energy: 41 J on a 128x128, 1e7 N/m cloth falling flat at 1/10 s).
 constexpr float kDefaultTheta = 0.7f;
 
 // The settings a step of `dt` runs with: `requested` itself unless its kind

@@ -61,3 +61,23 @@ TEST(StabilityMap, TheLowestAndHighestGammaCellsDocumentedAsHoldingHold) {
 }
 
 }  // namespace
+
+// The default at the stiff end: 1 kg cloths of 1e7 N/m springs at a tenth
+// of a second a step, where its sixteen substeps cannot bring a substep's
+// gamma within the theta step's measured range, falling flat and hanging
+// for 50 frames: no energy gained beyond 1e-3 J (the theta step gained
+// 0.06 J falling flat at 32x32 and 41 J at 128x128, which tradeoff probe
+// measures; here 32x32, for the test's time).
+TEST(StabilityMap, TheDefaultPastItsSubstepCapGainsNoEnergy) {
+    for (const auto kind : {cloth_samples::SceneKind::kFallingFlat, cloth_samples::SceneKind::kHanging}) {
+        SCOPED_TRACE(cloth_samples::scene_name(kind));
+        cloth_samples::SceneConfig config;
+        config.kind = kind;
+        config.resolution = 32;
+        config.stiffness = 1e7f;
+        const tradeoff::RunResult r = tradeoff::run_scene(config, 0.1f, 50);
+        ASSERT_TRUE(r.ok) << r.error;
+        EXPECT_LE(r.energy_gain, 1e-3) << "gained energy";
+        EXPECT_LT(r.max_strain, 0.1) << "over-stretched";
+    }
+}
