@@ -678,8 +678,8 @@ typedef enum cloth_solver_kind {
     /// With a strain limit its step takes the forces 0.7 of the way through each substep instead of at
     /// its end (a theta step, which damps the motion less than backward Euler at the same cost), and
     /// takes them at the end (backward Euler) in a substep after one whose strain-limit passes left a
-    /// spring more than 0.01 past the limit, and in every substep when the limit is 0 (off) or the cloth is too
-    /// stiff for its step in 16 substeps
+    /// spring more than 0.01 past the limit, and in every substep when the limit is 0 (off) or the
+    /// cloth is too stiff for its step in 16 substeps
     CLOTH_SOLVER_DEFAULT = 0,
     /// linearized backward Euler, `iterations` Jacobi sweeps (1 = the paper's method)
     CLOTH_SOLVER_JACOBI = 1,
