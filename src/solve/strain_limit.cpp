@@ -269,7 +269,7 @@ CLOTH_HOT_LOOP void term_pull_kernel(size_t begin, size_t last, float weight, co
                                      const float* __restrict ty, const float* __restrict tz,
                                      float* __restrict tw) {
     for (size_t p = begin; p < last; ++p)
-        tw[p] = (tx[p] != 0.0f) | (ty[p] != 0.0f) | (tz[p] != 0.0f) ? weight : 0.0f;
+        tw[p] = ((tx[p] != 0.0f) | (ty[p] != 0.0f) | (tz[p] != 0.0f)) ? weight : 0.0f;
 }
 
 // Zero terms for springs [begin, last), and maybe[p] = 1 where spring p
