@@ -81,13 +81,11 @@ constexpr float kLeastShare = 0.1f;
 //
 // The division keeps the passes from diverging. A spring stretched far past
 // the limit moves its end by about 1/2 w_i (x_j - x_i), so a particle with
-// every spring over the limit moves by P_i times the mean pull of its
-// neighbours: past P_i = 1 a row of the pass has an absolute sum above 1
-// and the passes amplify an alternating pattern (a pin moved 10 m in one
-// frame left every spring near the seam between the pins stretched, and
-// two neighbours there swung 2.6 times farther each pass, to 1e6 m). With
-// P_i <= 1, as where a particle has at most four springs over the limit, a
-// pass is as it was.
+// every spring past the limit moves by P_i times the mean pull of its
+// neighbours: past P_i = 1 the passes amplify an alternating pattern (a
+// pin moved 10 m in one frame took the cloth to 1e6 m within the frame).
+// Where P_i <= 1 (four springs of equal masses past the limit make 1) the
+// division changes no bit.
 // `correction` holds the result; returns what the pass found (StretchCount).
 StretchCount strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin,
                                       uint32_t end, Vec3Soa& correction);
