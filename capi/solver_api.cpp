@@ -63,7 +63,11 @@ CLOTH_API cloth_result cloth_set_strain_limit(cloth_id id, const cloth_strain_li
         if (!limit) return null_error("limit");
         Status s = check_strain_limit(*limit);
         if (!s.ok()) return s;
-        cloth.solver().strain_limit = StrainLimit{limit->max_strain, limit->iterations, true};
+        // Through set_solver, as cloth_set_solver: it wakes the cloth and
+        // clears the budget policy's cost memory.
+        SolverSettings settings = cloth.solver();
+        settings.strain_limit = StrainLimit{limit->max_strain, limit->iterations, true};
+        cloth.set_solver(settings);
         return {};
     });
 }

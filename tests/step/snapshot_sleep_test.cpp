@@ -213,6 +213,24 @@ TEST(Sleep, PinTargetsWindAndGravityWakeTheCloth) {
     ASSERT_EQ(cloth_wake(cloth), CLOTH_OK);
 }
 
+// Solver settings wake a cloth (cloth.h), the strain limit among them:
+// it changes how the next step moves the cloth.
+TEST(Sleep, SolverSettingsAndTheStrainLimitWakeTheCloth) {
+    Scene scene(settling());
+    ASSERT_TRUE(scene.ok());
+    const cloth_id cloth = scene.cloth();
+    step_until_asleep(scene);
+    cloth_strain_limit limit = cloth_default_strain_limit();
+    limit.max_strain = 0.05f;
+    ASSERT_EQ(cloth_set_strain_limit(cloth, &limit), CLOTH_OK);
+    EXPECT_FALSE(sleeping(cloth)) << "a new strain limit wakes it";
+    step_until_asleep(scene);
+    cloth_solver_settings solver{};
+    ASSERT_EQ(cloth_get_solver(cloth, &solver), CLOTH_OK);
+    ASSERT_EQ(cloth_set_solver(cloth, &solver), CLOTH_OK);
+    EXPECT_FALSE(sleeping(cloth)) << "new solver settings wake it";
+}
+
 TEST(Sleep, ADisabledSleepNeverSleeps) {
     Scene scene(settling());
     ASSERT_TRUE(scene.ok());
