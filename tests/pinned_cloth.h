@@ -11,6 +11,15 @@
 
 namespace cloth::testing {
 
+// The cloth's stats now (cloth_get_stats, checked).
+inline cloth_stats stats_of(cloth_id cloth) {
+    cloth_stats s;
+    std::memset(&s, 0, sizeof s);
+    s.struct_size = sizeof s;
+    EXPECT_EQ(cloth_get_stats(cloth, &s), CLOTH_OK);
+    return s;
+}
+
 // A 32 x 32 cloth of the C API's defaults, pinned at its two top corners.
 // `adjust` may change the cloth's description before it is created.
 struct PinnedCloth {
@@ -33,13 +42,7 @@ struct PinnedCloth {
         EXPECT_EQ(cloth_pin(cloth, pins, 2), CLOTH_OK);
     }
     ~PinnedCloth() { cloth_world_destroy(world); }
-    cloth_stats stats() const {
-        cloth_stats s;
-        std::memset(&s, 0, sizeof s);
-        s.struct_size = sizeof s;
-        EXPECT_EQ(cloth_get_stats(cloth, &s), CLOTH_OK);
-        return s;
-    }
+    cloth_stats stats() const { return stats_of(cloth); }
     cloth::Vec3 centroid() const {
         std::vector<float> x(3 * 32 * 32);
         EXPECT_EQ(cloth_read_positions(cloth, x.data(), static_cast<uint32_t>(x.size())), CLOTH_OK);

@@ -25,27 +25,6 @@ const char* kind_name(cloth_solver_kind kind) {
     }
 }
 
-namespace {
-
-// max |L - l0| / l0 over the row and column neighbours of an n x n grid of
-// 1 m sides.
-double grid_abs_strain(const std::vector<float>& x, uint32_t n) {
-    const double rest = 1.0 / (n - 1);
-    double worst = 0;
-    const auto pair = [&](uint32_t a, uint32_t b) {
-        const double dx = x[3 * b] - x[3 * a], dy = x[3 * b + 1] - x[3 * a + 1],
-                     dz = x[3 * b + 2] - x[3 * a + 2];
-        worst = std::max(worst, std::fabs(std::sqrt(dx * dx + dy * dy + dz * dz) - rest) / rest);
-    };
-    for (uint32_t p = 0; p < n * n; ++p) {
-        if (p % n + 1 < n) pair(p, p + 1);
-        if (p + n < n * n) pair(p, p + n);
-    }
-    return worst;
-}
-
-}  // namespace
-
 RunResult run_scene(const cloth_samples::SceneConfig& config, float dt, uint32_t frames) {
     RunResult out;
     cloth_samples::Scene scene(config);
@@ -114,6 +93,21 @@ double jacobi_k1_ms(const cloth_samples::SceneConfig& config, float dt) {
     jacobi.strain_limit = 0;
     constexpr uint32_t kFrames = 60;
     return run_scene(jacobi, dt, kFrames).ms_per_frame;
+}
+
+double grid_abs_strain(const std::vector<float>& x, uint32_t n) {
+    const double rest = 1.0 / (n - 1);
+    double worst = 0;
+    const auto pair = [&](uint32_t a, uint32_t b) {
+        const double dx = x[3 * b] - x[3 * a], dy = x[3 * b + 1] - x[3 * a + 1],
+                     dz = x[3 * b + 2] - x[3 * a + 2];
+        worst = std::max(worst, std::fabs(std::sqrt(dx * dx + dy * dy + dz * dz) - rest) / rest);
+    };
+    for (uint32_t p = 0; p < n * n; ++p) {
+        if (p % n + 1 < n) pair(p, p + 1);
+        if (p + n < n * n) pair(p, p + n);
+    }
+    return worst;
 }
 
 double rms_distance(const std::vector<float>& a, const std::vector<float>& b) {

@@ -35,6 +35,10 @@ RunResult run_scene(const cloth_samples::SceneConfig& config, float dt, uint32_t
 // timed.
 double jacobi_k1_ms(const cloth_samples::SceneConfig& config, float dt);
 
+// max |L - l0| / l0 over the row and column neighbours of an n x n grid
+// of 1 m sides (3 floats per particle): compression counts.
+double grid_abs_strain(const std::vector<float>& x, uint32_t n);
+
 // Root-mean-square distance between two position sets (same particle count).
 double rms_distance(const std::vector<float>& a, const std::vector<float>& b);
 

@@ -7,10 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
 #include "cloth/cloth.h"
+#include "pinned_cloth.h"
+#include "run_scene.h"
 
 namespace {
 
@@ -96,13 +97,7 @@ class JumpScene {
         EXPECT_EQ(cloth_read_positions(cloth, x.data(), static_cast<uint32_t>(x.size())), CLOTH_OK);
         return x;
     }
-    cloth_stats stats() const {
-        cloth_stats s;
-        std::memset(&s, 0, sizeof s);
-        s.struct_size = sizeof s;
-        EXPECT_EQ(cloth_get_stats(jumped_, &s), CLOTH_OK);
-        return s;
-    }
+    cloth_stats stats() const { return cloth::testing::stats_of(jumped_); }
     // The farthest any particle of the jumped cloth is from its twin's
     // (infinity if a coordinate is not finite).
     float distance_to_twin() const {
@@ -195,21 +190,6 @@ TEST(PinJump, ACurvedClothIsBackWithinTheLimitsPromiseWithinThirtyFramesOfThePin
     }
 }
 
-// The largest |L - l0| / l0 over a grid's row and column neighbours.
-float structural_strain(const std::vector<float>& x, uint32_t side) {
-    const float rest = 1.0f / float(side - 1);
-    float worst = 0.0f;
-    for (uint32_t p = 0; p < side * side; ++p) {
-        for (const uint32_t q : {p % side + 1 < side ? p + 1 : p, p + side < side * side ? p + side : p}) {
-            if (q == p) continue;
-            const float dx = x[3 * q] - x[3 * p], dy = x[3 * q + 1] - x[3 * p + 1],
-                        dz = x[3 * q + 2] - x[3 * p + 2];
-            worst = std::max(worst, std::fabs(std::sqrt(dx * dx + dy * dy + dz * dz) - rest) / rest);
-        }
-    }
-    return worst;
-}
-
 // A 128x128 flag with its left column pinned in a cross breeze, undamped,
 // the default solver on two workers: its structural springs once
 // stretched within the promise but were left compressed by 12 % at frame
@@ -248,7 +228,7 @@ TEST(StrainLimitPromise, AWindyFlagOf128By128HoldsItsSpringsWithinTheLimitStretc
     for (int f = 0; f < 110; ++f) {
         ASSERT_EQ(cloth_step(world, 1.0f / 60.0f), CLOTH_OK) << "frame " << f;
         ASSERT_EQ(cloth_read_positions(flag, x.data(), static_cast<uint32_t>(x.size())), CLOTH_OK);
-        const float strain = structural_strain(x, side);
+        const float strain = static_cast<float>(tradeoff::grid_abs_strain(x, side));
         EXPECT_LE(strain, 0.10f) << "frame " << f;
         worst = std::max(worst, strain);
     }
