@@ -2,7 +2,10 @@
 // material and air, stats).
 #include <cloth/cloth.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 
 #include "api_call.h"
 #include "api_validation.h"
@@ -12,6 +15,11 @@ using namespace cloth;
 using namespace cloth::api;
 
 namespace {
+
+// cloth_stats as 1.6 had it: up to the strain-limit fields.
+constexpr size_t kStatsSize16 = offsetof(cloth_stats, strain_limit_excess);
+// The strain limit's promise after every step: within the limit plus this.
+constexpr float kStrainPromiseSlackOfAStep = 0.02f;
 
 Status check_cloth_desc(const cloth_desc& desc, const Fabric& fabric) {
     if (!std::isfinite(desc.area_density))
@@ -203,20 +211,28 @@ CLOTH_API cloth_result cloth_set_wind(cloth_id id, const float wind[3]) {
 CLOTH_API cloth_result cloth_get_stats(cloth_id id, cloth_stats* out) {
     return with_cloth(__func__, id, [&](ClothInstance& cloth, World& world) -> Status {
         if (!out) return null_error("out_stats");
-        if (out->struct_size != sizeof(cloth_stats)) {
-            return Status::error(CLOTH_ERROR_INVALID_DESC, "cloth_stats.struct_size is %u, expected %zu",
-                                 out->struct_size, sizeof(cloth_stats));
+        // 1.6's struct ends where the strain-limit fields begin.
+        const uint32_t size = out->struct_size;
+        if (size != sizeof(cloth_stats) && size != kStatsSize16) {
+            return Status::error(CLOTH_ERROR_INVALID_DESC, "cloth_stats.struct_size is %u, expected %zu or %zu",
+                                 size, sizeof(cloth_stats), kStatsSize16);
         }
         const ClothMeasure m = measure(cloth, world.gravity);
-        out->kinetic_energy = m.kinetic_energy;
-        out->gravity_energy = m.gravity_energy;
-        out->elastic_energy = m.elastic_energy;
-        out->max_strain = m.max_strain;
-        out->mean_strain = m.mean_strain;
-        out->max_speed = m.max_speed;
-        out->last_solver_iterations = cloth.last_solve().iterations;
-        out->last_solver_residual = cloth.last_solve().residual;
-        out->last_step_result = cloth.last_step_result();
+        cloth_stats stats{};
+        stats.struct_size = size;
+        stats.kinetic_energy = m.kinetic_energy;
+        stats.gravity_energy = m.gravity_energy;
+        stats.elastic_energy = m.elastic_energy;
+        stats.max_strain = m.max_strain;
+        stats.mean_strain = m.mean_strain;
+        stats.max_speed = m.max_speed;
+        stats.last_solver_iterations = cloth.last_solve().iterations;
+        stats.last_solver_residual = cloth.last_solve().residual;
+        stats.last_step_result = cloth.last_step_result();
+        const float limit = cloth.ran_strain_limit();
+        stats.strain_limit_excess = limit > 0.0f ? std::max(0.0f, m.max_abs_strain - limit) : 0.0f;
+        stats.strain_limit_unmet = stats.strain_limit_excess > kStrainPromiseSlackOfAStep ? 1 : 0;
+        std::memcpy(out, &stats, size);
         return {};
     });
 }

@@ -138,7 +138,7 @@ extern "C" {
 #define CLOTH_VERSION_MAJOR 1
 /// Minor version of this header: a library of the same major and at least
 /// this minor version has every function and struct of this header.
-#define CLOTH_VERSION_MINOR 6
+#define CLOTH_VERSION_MINOR 7
 /// Patch version of this header (fixes that change no interface).
 #define CLOTH_VERSION_PATCH 0
 
@@ -906,9 +906,21 @@ typedef struct cloth_stats {
     float last_solver_residual;
     /// CLOTH_OK, or what the last cloth_step reported for this cloth
     cloth_result last_step_result;
+    /// how far the structural spring farthest from its rest length is past
+    /// the strain limit the last step ran with: the largest
+    /// |L - l0| / l0 - max_strain, or 0 when every one is within it or no
+    /// limit ran (see cloth_strain_limit). Since 1.7.
+    float strain_limit_excess;
+    /// 1 when strain_limit_excess is above 0.02, the slack the strain limit
+    /// promises after every step: the last step could not meet its
+    /// constraints, because a pin, attachment or collider moved farther than
+    /// the cloth can follow in one step or pins pull it apart. The state is
+    /// finite and the following steps bring the cloth back; else 0. Since 1.7.
+    uint8_t strain_limit_unmet;
 } cloth_stats;
 
-/// Measure the cloth now; the caller sets out_stats->struct_size first.
+/// Measure the cloth now; the caller sets out_stats->struct_size first
+/// (the size of 1.6, without the strain-limit fields, is accepted too).
 CLOTH_API cloth_result cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);
 
 /* ------------------------------------------------------------------ */

@@ -120,6 +120,11 @@ class ClothInstance {
     // the policy's minimum. And the rung this frame ran.
     QualityLadder quality_ladder() const;
     QualityRung ran_rung() const { return {frame_solver_.iterations, frame_solver_.substeps}; }
+    // The strain limit the last step ran with (0: none).
+    float ran_strain_limit() const {
+        const StrainLimit& limit = frame_solver_.strain_limit;
+        return limit.iterations > 0 ? limit.max_strain : 0.0f;
+    }
     QualityCosts& quality_costs() { return quality_costs_; }
     const QualityCosts& quality_costs() const { return quality_costs_; }
     // Whether the policy may raise them: not for a default running its own choice.

@@ -35,6 +35,7 @@ ClothMeasure measure(const ClothInstance& cloth, const Vec3& gravity) {
         const float strain = static_cast<float>(stretch / rest);
         out.max_strain = structural == 0 ? strain : std::max(out.max_strain, strain);
         strain_sum += std::fabs(strain);
+        out.max_abs_strain = std::max(out.max_abs_strain, std::fabs(strain));
         ++structural;
     }
     out.mean_strain = structural ? static_cast<float>(strain_sum / structural) : 0.0f;

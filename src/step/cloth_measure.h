@@ -13,6 +13,7 @@ struct ClothMeasure {
                                 // cables under the model of the cloth's last step
     float max_strain = 0;       // max (L - l0) / l0 over structural springs
     float mean_strain = 0;      // mean |L - l0| / l0 over structural springs
+    float max_abs_strain = 0;   // max |L - l0| / l0 over structural springs
     float max_speed = 0;        // m/s over all particles
 
     double total_energy() const { return kinetic_energy + gravity_energy + elastic_energy; }
