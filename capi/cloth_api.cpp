@@ -214,8 +214,9 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id id, cloth_stats* out) {
         // 1.6's struct ends where the strain-limit fields begin.
         const uint32_t size = out->struct_size;
         if (size != sizeof(cloth_stats) && size != kStatsSize16) {
-            return Status::error(CLOTH_ERROR_INVALID_DESC, "cloth_stats.struct_size is %u, expected %zu or %zu",
-                                 size, sizeof(cloth_stats), kStatsSize16);
+            return Status::error(CLOTH_ERROR_INVALID_DESC,
+                                 "cloth_stats.struct_size is %u, expected %zu or %zu", size,
+                                 sizeof(cloth_stats), kStatsSize16);
         }
         const ClothMeasure m = measure(cloth, world.gravity);
         cloth_stats stats{};

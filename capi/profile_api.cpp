@@ -13,7 +13,8 @@ using namespace cloth::api;
 
 static_assert(static_cast<int>(CLOTH_STAGE_AIR) == static_cast<int>(Stage::kAir) &&
                   static_cast<int>(CLOTH_STAGE_SELF_COLLISION) == static_cast<int>(Stage::kSelfCollision) &&
-                  static_cast<int>(CLOTH_STAGE_SELF_RESPOND) == static_cast<int>(Stage::kSelfRespond),
+                  static_cast<int>(CLOTH_STAGE_SELF_RESPOND) == static_cast<int>(Stage::kSelfRespond) &&
+                  static_cast<int>(CLOTH_STAGE_LIMIT_COLLISIONS) == static_cast<int>(Stage::kLimitCollisions),
               "cloth_stage mirrors cloth::Stage");
 static_assert(kStageCount <= CLOTH_MAX_STAGES, "the profile has room for every stage");
 static_assert(kMaxWorkers <= CLOTH_MAX_WORKERS, "the profile has room for every worker");

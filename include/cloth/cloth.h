@@ -955,8 +955,9 @@ CLOTH_API cloth_result cloth_world_set_worker_spin(cloth_world_id world, uint32_
 /// numbered in the order the stages were added, not in run order; a substep
 /// runs, of those its cloth uses: AIR, FORCES, then EXPLICIT, or ASSEMBLE,
 /// one solve (JACOBI_SWEEP, SERIAL_SOLVE or ITERATIVE_SOLVE, each possibly
-/// several rounds) and INTEGRATE; then COLLISIONS, STRAIN_LIMIT, and
-/// SELF_COLLISION, SELF_SORT, SELF_CONTACTS, SELF_PROJECT, SELF_RESPOND.
+/// several rounds) and INTEGRATE; then COLLISIONS, STRAIN_LIMIT (with
+/// LIMIT_COLLISIONS between its passes), and SELF_COLLISION, SELF_SORT,
+/// SELF_CONTACTS, SELF_PROJECT, SELF_RESPOND.
 typedef enum cloth_stage {
     /// per triangle: wind drag and lift
     CLOTH_STAGE_AIR = 0,
@@ -988,6 +989,10 @@ typedef enum cloth_stage {
     CLOTH_STAGE_ITERATIVE_SOLVE = 13,
     /// strain-limiting passes (when a limit is set)
     CLOTH_STAGE_STRAIN_LIMIT = 14,
+    /// the colliders again inside the strain limit: after its last pass,
+    /// and after each of its passes while the substep touches a collider.
+    /// Since 1.7.
+    CLOTH_STAGE_LIMIT_COLLISIONS = 15,
     /// forces the enum to 32 bits
     CLOTH_STAGE_FORCE_U32 = 0x7FFFFFFF
 } cloth_stage;

@@ -102,7 +102,7 @@ double percentile(std::vector<double> values, double p) {
 
 void print_timing_row(const char* name, const std::vector<double>& ms, double budget_ms) {
     const auto overruns = std::count_if(ms.begin(), ms.end(), [&](double v) { return v > budget_ms; });
-    std::printf("%-14s %9.3f %9.3f %9.3f %9.3f %9ld\n", name, percentile(ms, 0.5), percentile(ms, 0.95),
+    std::printf("%-18s %9.3f %9.3f %9.3f %9.3f %9ld\n", name, percentile(ms, 0.5), percentile(ms, 0.95),
                 percentile(ms, 0.99), percentile(ms, 1.0), static_cast<long>(overruns));
 }
 
@@ -442,7 +442,7 @@ int main(int argc, char** argv) {
         frames_run, frames_run * kDt, driver.top_speed(), driver.longest_airtime(), driver.teleports(),
         driver.done() ? "course complete" : "course cut short by --frames");
     std::printf("\nframe timings, ms (shared machine: noisy); budget %.2f ms\n", o.budget_ms);
-    std::printf("%-14s %9s %9s %9s %9s %9s\n", "stage", "p50", "p95", "p99", "max", "overruns");
+    std::printf("%-18s %9s %9s %9s %9s %9s\n", "stage", "p50", "p95", "p99", "max", "overruns");
     print_timing_row("bullet step", timings.bullet, o.budget_ms);
     for (int stage = 0; stage < CLOTH_MAX_STAGES; ++stage) {
         if (timings.stages[stage].empty()) continue;

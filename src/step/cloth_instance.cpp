@@ -152,8 +152,8 @@ SolverSettings ClothInstance::quality_settings() const {
     if (solver_.kind != CLOTH_SOLVER_DEFAULT) return solver_;
     SolverSettings out = solver_;
     out.iterations =
-        solver_.default_iteration_cap > 0 ? solver_.default_iteration_cap : frame_solver_.iterations;
-    out.substeps = solver_.default_substep_cap > 0 ? solver_.default_substep_cap : frame_solver_.substeps;
+        solver_.default_iteration_cap > 0 ? solver_.default_iteration_cap : frame_.solver.iterations;
+    out.substeps = solver_.default_substep_cap > 0 ? solver_.default_substep_cap : frame_.solver.substeps;
     return out;
 }
 
@@ -164,7 +164,7 @@ void ClothInstance::set_quality_settings(const SolverSettings& settings) {
     }
     // Caps at or above the default's own choice of the last frame change
     // nothing: drop them, so the default follows its own choice again.
-    const bool below = settings.iterations < frame_own_iterations_ || settings.substeps < frame_own_substeps_;
+    const bool below = settings.iterations < frame_.own_iterations || settings.substeps < frame_.own_substeps;
     solver_.default_iteration_cap = below ? settings.iterations : 0;
     solver_.default_substep_cap = below ? settings.substeps : 0;
 }
@@ -177,7 +177,7 @@ void ClothInstance::set_solver(const SolverSettings& settings) {
 
 QualityLadder ClothInstance::quality_ladder() const {
     const QualityRung top = solver_.kind == CLOTH_SOLVER_DEFAULT
-                                ? QualityRung{frame_own_iterations_, frame_own_substeps_}
+                                ? QualityRung{frame_.own_iterations, frame_.own_substeps}
                                 : QualityRung{quality_.max_iterations, quality_.max_substeps};
     return {top, quality_.min_iterations, quality_.min_substeps};
 }
@@ -191,9 +191,9 @@ bool ClothInstance::quality_below_floor() const {
     if (!quality_.enabled) return false;
     const bool lowered =
         solver_.kind == CLOTH_SOLVER_DEFAULT
-            ? frame_solver_.iterations < frame_own_iterations_ || frame_solver_.substeps < frame_own_substeps_
+            ? frame_.solver.iterations < frame_.own_iterations || frame_.solver.substeps < frame_.own_substeps
             : solver_.iterations < quality_.max_iterations || solver_.substeps < quality_.max_substeps;
-    return lowered && frame_solver_.iterations < quality_ladder().floor();
+    return lowered && frame_.solver.iterations < quality_ladder().floor();
 }
 
 // ---------------------------------------------------------------- sleep
@@ -238,16 +238,16 @@ void ClothInstance::update_sleep() {
 }
 
 void ClothInstance::restore_frame_start() {
-    switch (backup_) {
-        case Backup::kCopied:
+    switch (frame_.backup) {
+        case FrameBackup::kCopied:
             x_ = backup_x_;
             v_ = backup_v_;
             return;
-        case Backup::kSwapped:
+        case FrameBackup::kSwapped:
             x_.swap_buffers(backup_x_);
             v_.swap_buffers(backup_v_);
             break;
-        case Backup::kFirstIntegration:
+        case FrameBackup::kFirstIntegration:
             break;
     }
     // Only pinned velocities changed before the first integration.

@@ -26,10 +26,10 @@
 #include "forces/material.h"
 #include "forces/springs.h"
 #include "jobs/task_system.h"
-#include "solve/iterative_solve.h"
 #include "solve/solver_settings.h"
 #include "solve/solvers.h"
 #include "solve/strain_limit.h"
+#include "step/frame_context.h"
 #include "step/quality_ladder.h"
 #include "step/step_stage.h"
 
@@ -80,9 +80,9 @@ class ClothInstance {
     //   }
     //   end_frame()
     void begin_frame(float dt, const Vec3& gravity);
-    bool frame_done() const { return frame_done_; }
+    bool frame_done() const { return frame_.done; }
     Stage stage() const;  // the stage the current round belongs to
-    uint32_t substep() const { return cursor_.substep; }
+    uint32_t substep() const { return frame_.substep; }
     void prepare_stage();
     uint32_t task_count() const;
     void run_task(uint32_t task, uint32_t worker);
@@ -119,10 +119,10 @@ class ClothInstance {
     // the policy's top, or the default's own choice of this frame, down to
     // the policy's minimum. And the rung this frame ran.
     QualityLadder quality_ladder() const;
-    QualityRung ran_rung() const { return {frame_solver_.iterations, frame_solver_.substeps}; }
+    QualityRung ran_rung() const { return {frame_.solver.iterations, frame_.solver.substeps}; }
     // The strain limit the last step ran with (0: none).
     float ran_strain_limit() const {
-        const StrainLimit& limit = frame_solver_.strain_limit;
+        const StrainLimit& limit = frame_.solver.strain_limit;
         return limit.iterations > 0 ? limit.max_strain : 0.0f;
     }
     QualityCosts& quality_costs() { return quality_costs_; }
@@ -195,23 +195,16 @@ class ClothInstance {
     cloth_result last_step_result() const { return last_step_result_; }
 
   private:
-    // ---- The plan of a substep (frame_plan.cpp)
-    // One stage of the plan: `run` does one task of a round; `finish`, when
-    // set, is the serial work after each round's barrier; a stage with
-    // `rounds` is a staged algorithm (base/staged.h) whose rounds repeat the
-    // stage until it is done, otherwise the stage is one round.
-    struct PlannedStage {
-        Stage stage;
-        void (ClothInstance::*run)(const GroupTask& task);
-        void (ClothInstance::*finish)();
-        StagedAlgorithm* rounds;
-    };
-    static constexpr uint32_t kMaxPlannedStages = 12;
-    // Writes this substep's stages into plan_, in run order.
+    // ---- The plan of a substep and the machine that runs it (frame_plan.cpp)
+    // Writes this substep's stages into frame_.plan, in run order.
     void plan_substep();
+    // Set up a staged stage of the substep for its rounds.
+    StagedAlgorithm* begin_iterative_solve();
+    StagedAlgorithm* begin_strain_limit();
+    bool limits_strain() const;
     void plan(Stage stage, void (ClothInstance::*run)(const GroupTask&),
               void (ClothInstance::*finish)() = nullptr, StagedAlgorithm* rounds = nullptr);
-    const PlannedStage& planned() const { return plan_[cursor_.entry]; }
+    const PlannedStage& planned() const { return frame_.plan[frame_.entry]; }
     // Whether the round about to run is the last of the frame (it checks the state).
     bool final_round() const;
     // Box2D-style order check: a stage body runs only as its planned stage.
@@ -243,8 +236,7 @@ class ClothInstance {
     void collide_stage(const GroupTask& task);
     void note_contacts();
     void collide(const GroupTask& task, uint32_t* contacts = nullptr);
-    /// One round of strain limiting, then the colliders again after the last
-    /// round, and after every applying round of a substep with contacts.
+    /// One round of strain limiting, or of the colliders between its passes (limit_rounds.h).
     void limit_strain(const GroupTask& task);
     /// After the strain limiter's last round: whether it ended past its promise.
     void note_strain();
@@ -259,9 +251,9 @@ class ClothInstance {
     // Puts back the state the frame started from (end_frame, on failure).
     void restore_frame_start();
     // Where the integration stage writes: the spare buffers while the
-    // frame-start state is still in x_ and v_ (Backup::kFirstIntegration).
-    Vec3Soa& integration_x() { return backup_ == Backup::kFirstIntegration ? backup_x_ : x_; }
-    Vec3Soa& integration_v() { return backup_ == Backup::kFirstIntegration ? backup_v_ : v_; }
+    // frame-start state is still in x_ and v_ (FrameBackup::kFirstIntegration).
+    Vec3Soa& integration_x() { return frame_.backup == FrameBackup::kFirstIntegration ? backup_x_ : x_; }
+    Vec3Soa& integration_v() { return frame_.backup == FrameBackup::kFirstIntegration ? backup_v_ : v_; }
     GroupTask group_task(uint32_t group) const {
         return GroupTask::of(group, group_count_, particle_count());
     }
@@ -273,10 +265,6 @@ class ClothInstance {
     std::shared_ptr<const Fabric> fabric_;
     Material material_;
     SolverSettings solver_;
-    SolverSettings frame_solver_;  // what this frame runs: solver_ with CLOTH_SOLVER_DEFAULT resolved
-    // What CLOTH_SOLVER_DEFAULT chose by itself this frame, within a quality
-    // policy's maxima and before its caps (quality_settings).
-    uint32_t frame_own_iterations_ = 0, frame_own_substeps_ = 0;
     AeroParams aero_;
 
     // State.
@@ -299,20 +287,7 @@ class ClothInstance {
     SolverWorkspace solver_work_;  // PCG / Chebyshev vectors and block partials, strain-limit scratch
     mutable Vec3Soa normals_;      // per particle, filled by normals()
 
-    // The state a frame started from, for a failed frame to go back to.
-    // Copying x and v every frame costs more than a step's smaller stages,
-    // so the copy is taken only when something rewrites them wholesale
-    // before integration (a carrier) or integrates in place (explicit).
-    // Otherwise the stages before integration change only the velocities
-    // of pinned particles (saved in pin_velocity_start_), the frame's first
-    // integration writes into backup_x_ and backup_v_ and the buffers are
-    // swapped: the frame-start state then sits in backup_x_ and backup_v_.
-    enum class Backup : uint8_t {
-        kCopied,            // backup_x_, backup_v_ hold a copy taken in begin_frame
-        kFirstIntegration,  // x_, v_ still hold it (but pinned v); integration writes to the backups
-        kSwapped,           // backup_x_, backup_v_ hold it (but pinned v)
-    };
-    Backup backup_ = Backup::kCopied;
+    // The spare buffers of the state a frame started from (FrameBackup).
     Vec3Soa backup_x_, backup_v_;
     Vec3Soa pin_velocity_start_;  // per particle, valid for pinned ones: v at the start of the frame
 
@@ -321,38 +296,19 @@ class ClothInstance {
     SolveReport last_solve_;
     cloth_result last_step_result_ = CLOTH_OK;
 
-    // The frame in progress: substep, entry of plan_, round within it.
-    struct Cursor {
-        uint32_t substep = 0;
-        uint32_t entry = 0;
-        uint32_t round = 0;
-    };
-    PlannedStage plan_[kMaxPlannedStages] = {};
-    uint32_t plan_size_ = 0;
-    IterativeSolve iterative_;  // JACOBI, PCG, CHEBYSHEV
-    Multigrid multigrid_;       // PCG's preconditioner when the settings ask for it
-    StrainLimiter strain_limiter_;
+    Multigrid multigrid_;                      // PCG's preconditioner when the settings ask for it
     GridStrainTerms grid_strain_terms_;        // the strain limiter's per-family terms (grid fabrics)
     Tethers tethers_;                          // the strain limiter's long-range attachments
     HostVector<StretchCount> stretch_counts_;  // the strain limiter's counts, one per group
     HostVector<uint8_t> strain_maybe_over_;    // its scratch, one per particle (StrainLimitPass)
     HostVector<float> strain_pull_;            // and its pull weights, one per particle
     bool tethers_follow_pins_ = false;         // planned for the current pin set
-    // The last substep's strain limiter ended past its promise, so the next
-    // runs backward Euler (solver_default.h): as the last successful frame
-    // ended (strained_, saved in snapshots) and in this frame so far.
+    // The last successful frame's last substep ended past the strain
+    // limit's promise, so the next runs backward Euler (solver_default.h);
+    // saved in snapshots.
     bool strained_ = false;
-    bool substep_strained_ = false;
-    float theta_ = 1.0f;  // this substep's (integrate.h)
     uint32_t group_count_ = 0;
-    Cursor cursor_;
-    bool frame_done_ = true;
-    float h_ = 0;
-    uint32_t substeps_ = 1;
-    Vec3 gravity_ = Vec3::Zero();
-    bool frame_converged_ = true;
-    bool frame_out_of_memory_ = false;       // set by the serial solve task
-    const Vec3Soa* solution_ = nullptr;      // the solver's dv, which integration reads
+    FrameContext frame_;                     // the frame in progress, or the last one
     HostVector<uint8_t> group_finite_;       // per group, written by the last stage of a frame
     HostVector<float> group_speed_squared_;  // per group: largest |v|^2, written with group_finite_
 
@@ -364,9 +320,7 @@ class ClothInstance {
     uint32_t rest_frames_ = 0;  // consecutive frames below sleep_.max_speed
 
     ClothContact contact_;                 // colliders, attachments, carrier
-    bool collides_ = false;                // this frame runs the collision stage
     HostVector<uint32_t> group_contacts_;  // per group: contacts of this substep's collision stage
-    bool touching_ = false;                // this substep's collision stage found a contact
 };
 
 }  // namespace cloth

@@ -21,17 +21,17 @@ LinearSystem ClothInstance::system() const {
 }
 
 AssemblyPass ClothInstance::assembly() const {
-    return AssemblyPass{springs_.get(), &external_force_, mass_.data(), pinned_.data(), h_, aero_.linear_drag,
-                        theta_};
+    return AssemblyPass{springs_.get(), &external_force_,  mass_.data(), pinned_.data(),
+                        frame_.h,       aero_.linear_drag, frame_.theta};
 }
 
 SpringModel ClothInstance::spring_model() const {
-    SpringModel model = SpringModel::make(frame_solver_.compression_safe_jacobian);
+    SpringModel model = SpringModel::make(frame_.solver.compression_safe_jacobian);
     // The strain cable (springs.h) with a strain limit and an implicit
     // solver; the explicit integrator, whose step a spring 100 times
     // stiffer would blow up, relies on the projection passes alone.
-    if (frame_solver_.strain_limit.max_strain > 0 && frame_solver_.kind != CLOTH_SOLVER_EXPLICIT) {
-        model.cable_stretch = 1.0f + frame_solver_.strain_limit.max_strain;
+    if (frame_.solver.strain_limit.max_strain > 0 && frame_.solver.kind != CLOTH_SOLVER_EXPLICIT) {
+        model.cable_stretch = 1.0f + frame_.solver.strain_limit.max_strain;
         model.cable_factor = kStrainCableStiffness;
     }
     return model;
@@ -48,7 +48,7 @@ Vec3 ClothInstance::pin_position(uint32_t i, float frame_fraction) const {
 
 void ClothInstance::land_pins(uint32_t begin, uint32_t end, Vec3Soa& x) {
     // Pinned particles land exactly on their substep targets.
-    const float fraction_end = static_cast<float>(cursor_.substep + 1) / static_cast<float>(substeps_);
+    const float fraction_end = static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.substeps);
     auto first = std::lower_bound(pinned_list_.begin(), pinned_list_.end(), begin);
     for (auto it = first; it != pinned_list_.end() && *it < end; ++it) {
         x.set(*it, pin_position(*it, fraction_end));
@@ -59,8 +59,8 @@ void ClothInstance::land_pins(uint32_t begin, uint32_t end, Vec3Soa& x) {
 
 void ClothInstance::move_pins() {
     // Pinned particles move linearly towards their frame-end targets.
-    const float fraction_end = static_cast<float>(cursor_.substep + 1) / static_cast<float>(substeps_);
-    for (uint32_t i : pinned_list_) v_.set(i, (pin_position(i, fraction_end) - x_.get(i)) / h_);
+    const float fraction_end = static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.substeps);
+    for (uint32_t i : pinned_list_) v_.set(i, (pin_position(i, fraction_end) - x_.get(i)) / frame_.h);
 }
 
 void ClothInstance::apply_air(const GroupTask& task) {
@@ -82,7 +82,7 @@ CLOTH_HOT_LOOP void ClothInstance::evaluate_forces(const GroupTask& task) {
         }
     }
     const float linear_drag = aero_.linear_drag;
-    const Vec3 gravity = gravity_;
+    const Vec3 gravity = frame_.gravity;
     for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
         using L = decltype(lanes);
         const typename L::type m = L::load(&mass_[i]), drag = m * linear_drag;
@@ -97,7 +97,7 @@ CLOTH_HOT_LOOP void ClothInstance::evaluate_forces(const GroupTask& task) {
     uint32_t spring_begin, spring_end;
     task.items(springs_->item_count(), spring_begin, spring_end);
     // h = 0: plain forces; the theta step takes them at theta h (integrate.h).
-    const float h = frame_solver_.kind == CLOTH_SOLVER_EXPLICIT ? 0.0f : theta_ * h_;
+    const float h = frame_.solver.kind == CLOTH_SOLVER_EXPLICIT ? 0.0f : frame_.theta * frame_.h;
     springs_->evaluate(x_, v_, h, spring_model(), spring_begin, spring_end);
 }
 
@@ -105,7 +105,7 @@ void ClothInstance::integrate_explicitly(const GroupTask& task) {
     expect_stage(Stage::kExplicit);
     // Plain spring forces (evaluated with h = 0), then symplectic Euler.
     springs_->gather(task.begin, task.end, external_force_, nullptr);
-    integrate_explicit(external_force_, mass_.data(), pinned_.data(), h_, task.begin, task.end, v_, x_);
+    integrate_explicit(external_force_, mass_.data(), pinned_.data(), frame_.h, task.begin, task.end, v_, x_);
     land_pins(task.begin, task.end, x_);
 }
 
@@ -120,23 +120,23 @@ void ClothInstance::assemble_system(const GroupTask& task) {
 void ClothInstance::solve_by_cg(const GroupTask&) {
     expect_stage(Stage::kSerialSolve);
     try {
-        last_solve_ = solve_cg(system(), frame_solver_.cg_tolerance, frame_solver_.cg_max_iterations, dv_);
+        last_solve_ = solve_cg(system(), frame_.solver.cg_tolerance, frame_.solver.cg_max_iterations, dv_);
     } catch (const std::bad_alloc&) {
-        frame_out_of_memory_ = true;  // end_frame restores the cloth
+        frame_.out_of_memory = true;  // end_frame restores the cloth
     }
 }
 
-void ClothInstance::record_cg_result() { frame_converged_ = frame_converged_ && last_solve_.converged; }
+void ClothInstance::record_cg_result() { frame_.converged = frame_.converged && last_solve_.converged; }
 
 void ClothInstance::iterate_solver(const GroupTask& task) {
-    expect_stage(frame_solver_.kind == CLOTH_SOLVER_JACOBI ? Stage::kJacobiSweep : Stage::kIterativeSolve);
-    iterative_.run(task);
+    expect_stage(frame_.solver.kind == CLOTH_SOLVER_JACOBI ? Stage::kJacobiSweep : Stage::kIterativeSolve);
+    frame_.iterative.run(task);
 }
 
 void ClothInstance::record_iterative_result() {
-    if (!iterative_.done()) return;
-    last_solve_ = iterative_.report();
-    solution_ = &iterative_.solution();
+    if (!frame_.iterative.done()) return;
+    last_solve_ = frame_.iterative.report();
+    frame_.solution = &frame_.iterative.solution();
 }
 
 void ClothInstance::integrate_implicitly(const GroupTask& task) {
@@ -144,16 +144,17 @@ void ClothInstance::integrate_implicitly(const GroupTask& task) {
     // dv is zero on pinned particles; they are placed below. Writes to x_, v_
     // or, on the frame's first integration, to the spare buffers.
     Vec3Soa& x_out = integration_x();
-    integrate_implicit(x_, v_, *solution_, h_, theta_, task.begin, task.end, x_out, integration_v());
+    integrate_implicit(x_, v_, *frame_.solution, frame_.h, frame_.theta, task.begin, task.end, x_out,
+                       integration_v());
     land_pins(task.begin, task.end, x_out);
 }
 
 void ClothInstance::adopt_first_integration() {
-    if (backup_ != Backup::kFirstIntegration) return;
+    if (frame_.backup != FrameBackup::kFirstIntegration) return;
     // The new state is in the backups, the frame-start state in x_, v_: swap.
     x_.swap_buffers(backup_x_);
     v_.swap_buffers(backup_v_);
-    backup_ = Backup::kSwapped;
+    frame_.backup = FrameBackup::kSwapped;
 }
 
 void ClothInstance::collide_stage(const GroupTask& task) {
@@ -162,37 +163,29 @@ void ClothInstance::collide_stage(const GroupTask& task) {
 }
 
 void ClothInstance::note_contacts() {
-    touching_ = std::any_of(group_contacts_.begin(), group_contacts_.end(), [](uint32_t n) { return n > 0; });
+    frame_.touching =
+        std::any_of(group_contacts_.begin(), group_contacts_.end(), [](uint32_t n) { return n > 0; });
 }
 
 void ClothInstance::collide(const GroupTask& task, uint32_t* contacts) {
     // Particles against the world's colliders over this substep (colliders.h).
-    const float from = static_cast<float>(cursor_.substep) / static_cast<float>(substeps_);
-    const float to = static_cast<float>(cursor_.substep + 1) / static_cast<float>(substeps_);
-    const uint32_t found = contact_.collide(h_, from, to, pinned_.data(), task.begin, task.end, x_, v_);
+    const float from = static_cast<float>(frame_.substep) / static_cast<float>(frame_.substeps);
+    const float to = static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.substeps);
+    const uint32_t found = contact_.collide(frame_.h, from, to, pinned_.data(), task.begin, task.end, x_, v_);
     if (contacts) *contacts = found;
 }
 
 void ClothInstance::limit_strain(const GroupTask& task) {
     expect_stage(Stage::kStrainLimit);
-    const bool applying = strain_limiter_.applying();
-    strain_limiter_.run(task);
-    // The colliders run again after the limiter's last round, so the
-    // substep ends with every particle out of them. Where the collision
-    // stage found contacts they also run after every applying round, so
-    // the next round sees where the particles really are: limiting after
-    // the colliders alone pulls a spring that wraps a thin collider (the
-    // flag round its pole) through it. Without contacts those runs buy
-    // nothing and cost most of the stage: measured on the vehicle flag's
-    // course, which touches nothing with the default, 0.27 ms a frame
-    // instead of 0.55 ms, the same state; the paper's JACOBI, whose flag
-    // does fall on the pole and the chassis, needs them (strain 0.27 with
-    // them, 1.4 without).
-    if (collides_ && (strain_limiter_.last_round() || (applying && touching_))) collide(task);
+    if (frame_.limit_rounds.colliding()) {
+        collide(task);  // limit_rounds.h: when and why
+    } else {
+        frame_.strain_limiter.run(task);
+    }
 }
 
 void ClothInstance::note_strain() {
-    if (strain_limiter_.done()) substep_strained_ = strain_limiter_.past_promise();
+    if (frame_.strain_limiter.done()) frame_.strained = frame_.strain_limiter.past_promise();
 }
 
 void ClothInstance::resolve_self_contacts(const GroupTask& task) {

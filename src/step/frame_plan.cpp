@@ -33,13 +33,15 @@ using C = ClothInstance;
 
 // ---------------------------------------------------------------- the plan
 
-// One substep, top to bottom (algorithm.md 4; paper section III). Before
-// the first stage, move_pins gives pinned particles their substep velocity.
+// One substep, top to bottom (docs/method.md, "One substep, in order").
+// Before the first stage, move_pins gives pinned particles their substep
+// velocity.
 void ClothInstance::plan_substep() {
-    plan_size_ = 0;
-    solution_ = &dv_;  // where the solver leaves dv (JACOBI: record_iterative_result says)
-    const cloth_solver_kind kind = frame_solver_.kind;
-    theta_ = substep_strained_ ? 1.0f : frame_solver_.theta;
+    frame_.plan_size = 0;
+    frame_.solution = &dv_;  // where the solver leaves dv (JACOBI: record_iterative_result says)
+    frame_.theta = frame_.strained ? 1.0f : frame_.solver.theta;
+    frame_.touching = false;
+    const cloth_solver_kind kind = frame_.solver.kind;
     if (has_air()) plan(Stage::kAir, &C::apply_air);
     plan(Stage::kForces, &C::evaluate_forces);
     if (kind == CLOTH_SOLVER_EXPLICIT) {
@@ -49,43 +51,54 @@ void ClothInstance::plan_substep() {
         if (kind == CLOTH_SOLVER_CG) {
             plan(Stage::kSerialSolve, &C::solve_by_cg, &C::record_cg_result);
         } else {
-            iterative_.begin(kind, frame_solver_.iterations, frame_solver_.cg_tolerance,
-                             {system(), assembly(), &dv_, &solver_work_, &dv_scratch_,
-                              frame_solver_.multigrid ? &multigrid_ : nullptr});
             const Stage stage = kind == CLOTH_SOLVER_JACOBI ? Stage::kJacobiSweep : Stage::kIterativeSolve;
-            plan(stage, &C::iterate_solver, &C::record_iterative_result, &iterative_);
+            plan(stage, &C::iterate_solver, &C::record_iterative_result, begin_iterative_solve());
         }
         plan(Stage::kIntegrate, &C::integrate_implicitly, &C::adopt_first_integration);
     }
     // After integration, where contact plugs in.
-    touching_ = false;
-    if (collides_) plan(Stage::kCollisions, &C::collide_stage, &C::note_contacts);
-    const StrainLimit& limit = frame_solver_.strain_limit;
-    if (limit.max_strain > 0 && limit.iterations > 0) {
-        const StrainLimitPass pass{
-            fabric_.get(),      mass_.data(), pinned_.data(), limit.max_strain, strain_maybe_over_.data(),
-            strain_pull_.data()};
-        const bool accelerate = frame_solver_.kind != CLOTH_SOLVER_EXPLICIT;  // strain_limit.h
-        // The passes past those asked for are quality the budget cannot
-        // predict: a cloth a quality policy has taken below its floor runs
-        // without them, since behind a solve that no longer holds the cloth
-        // they grow, and the frame with them (docs/vehicle_flag.md).
-        const uint32_t most =
-            quality_below_floor() ? limit.iterations : kStrainLimitMorePasses * limit.iterations;
-        strain_limiter_.begin(pass, limit.iterations, h_, x_, v_, solver_work_.r, solver_work_.z, accelerate,
-                              &grid_strain_terms_, &tethers_, stretch_counts_.data(), most);
-        plan(Stage::kStrainLimit, &C::limit_strain, &C::note_strain, &strain_limiter_);
-    }
+    if (frame_.collides) plan(Stage::kCollisions, &C::collide_stage, &C::note_contacts);
+    if (limits_strain()) plan(Stage::kStrainLimit, &C::limit_strain, &C::note_strain, begin_strain_limit());
     if (self_collision_) {
         self_collision_->begin(x_, v_, mass_.data(), pinned_.data());
         plan(Stage::kSelfCollision, &C::resolve_self_contacts, nullptr, self_collision_.get());
     }
 }
 
+StagedAlgorithm* ClothInstance::begin_iterative_solve() {
+    frame_.iterative.begin(frame_.solver.kind, frame_.solver.iterations, frame_.solver.cg_tolerance,
+                           {system(), assembly(), &dv_, &solver_work_, &dv_scratch_,
+                            frame_.solver.multigrid ? &multigrid_ : nullptr});
+    return &frame_.iterative;
+}
+
+bool ClothInstance::limits_strain() const {
+    const StrainLimit& limit = frame_.solver.strain_limit;
+    return limit.max_strain > 0 && limit.iterations > 0;
+}
+
+StagedAlgorithm* ClothInstance::begin_strain_limit() {
+    const StrainLimit& limit = frame_.solver.strain_limit;
+    const StrainLimitPass pass{
+        fabric_.get(),      mass_.data(), pinned_.data(), limit.max_strain, strain_maybe_over_.data(),
+        strain_pull_.data()};
+    const bool accelerate = frame_.solver.kind != CLOTH_SOLVER_EXPLICIT;  // strain_limit.h
+    // The passes past those asked for are quality the budget cannot
+    // predict: a cloth a quality policy has taken below its floor runs
+    // without them, since behind a solve that no longer holds the cloth
+    // they grow, and the frame with them (docs/vehicle_flag.md).
+    const uint32_t most =
+        quality_below_floor() ? limit.iterations : kStrainLimitMorePasses * limit.iterations;
+    frame_.strain_limiter.begin(pass, limit.iterations, frame_.h, x_, v_, solver_work_.r, solver_work_.z,
+                                accelerate, &grid_strain_terms_, &tethers_, stretch_counts_.data(), most);
+    frame_.limit_rounds.begin(&frame_.strain_limiter, frame_.collides, &frame_.touching);
+    return &frame_.limit_rounds;
+}
+
 void ClothInstance::plan(Stage stage, void (C::*run)(const GroupTask&), void (C::*finish)(),
                          StagedAlgorithm* rounds) {
-    assert(plan_size_ < kMaxPlannedStages);
-    plan_[plan_size_++] = PlannedStage{stage, run, finish, rounds};
+    assert(frame_.plan_size < FrameContext::kMaxPlannedStages);
+    frame_.plan[frame_.plan_size++] = PlannedStage{stage, run, finish, rounds};
 }
 
 // ---------------------------------------------------------------- the machine
@@ -110,49 +123,50 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
         solver_.kind == CLOTH_SOLVER_DEFAULT
             ? stiffness_over_mass(material_, mass_.data(), pinned_.data(), particle_count())
             : 0.0f;
-    frame_solver_ = resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty());
-    substep_strained_ = strained_;
+    frame_.solver = resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty());
+    frame_.strained = strained_;
     // The default's own choice within a quality policy's maxima (the
     // host's bounds), then the policy's caps on it (quality_settings): the
     // host's budget wins.
     if (quality_.enabled && solver_.kind == CLOTH_SOLVER_DEFAULT) {
-        frame_solver_.iterations = std::min(frame_solver_.iterations, quality_.max_iterations);
-        frame_solver_.substeps = std::min(frame_solver_.substeps, quality_.max_substeps);
+        frame_.solver.iterations = std::min(frame_.solver.iterations, quality_.max_iterations);
+        frame_.solver.substeps = std::min(frame_.solver.substeps, quality_.max_substeps);
     }
-    frame_own_iterations_ = frame_solver_.iterations;
-    frame_own_substeps_ = frame_solver_.substeps;
+    frame_.own_iterations = frame_.solver.iterations;
+    frame_.own_substeps = frame_.solver.substeps;
     if (solver_.default_iteration_cap > 0)
-        frame_solver_.iterations = std::min(frame_solver_.iterations, solver_.default_iteration_cap);
+        frame_.solver.iterations = std::min(frame_.solver.iterations, solver_.default_iteration_cap);
     if (solver_.default_substep_cap > 0)
-        frame_solver_.substeps = std::min(frame_solver_.substeps, solver_.default_substep_cap);
-    if (contact_.carrier().active() || frame_solver_.kind == CLOTH_SOLVER_EXPLICIT) {
-        backup_ = Backup::kCopied;
+        frame_.solver.substeps = std::min(frame_.solver.substeps, solver_.default_substep_cap);
+    if (contact_.carrier().active() || frame_.solver.kind == CLOTH_SOLVER_EXPLICIT) {
+        frame_.backup = FrameBackup::kCopied;
         backup_x_ = x_;
         backup_v_ = v_;
     } else {
-        backup_ = Backup::kFirstIntegration;
+        frame_.backup = FrameBackup::kFirstIntegration;
         for (uint32_t i : pinned_list_) pin_velocity_start_.set(i, v_.get(i));
     }
     contact_.begin_step(dt, pinned_.data(), x_, v_);  // carrier (no pass without one)
-    collides_ = contact_.collides();
+    frame_.collides = contact_.collides();
     for (uint32_t i : pinned_list_) pin_start_.set(i, x_.get(i));
-    if (frame_solver_.strain_limit.max_strain > 0 && !tethers_follow_pins_) {
+    if (frame_.solver.strain_limit.max_strain > 0 && !tethers_follow_pins_) {
         tethers_.plan(*fabric_, pinned_.data());
         tethers_follow_pins_ = true;
     }
-    substeps_ = frame_solver_.substeps;
-    h_ = dt / static_cast<float>(substeps_);
-    gravity_ = gravity;
-    frame_converged_ = true;
-    frame_out_of_memory_ = false;
+    frame_.substeps = frame_.solver.substeps;
+    frame_.h = dt / static_cast<float>(frame_.substeps);
+    frame_.gravity = gravity;
+    frame_.converged = true;
+    frame_.out_of_memory = false;
     std::fill(group_finite_.begin(), group_finite_.end(), uint8_t{1});
-    cursor_ = Cursor{};
+    frame_.substep = frame_.entry = frame_.round = 0;
     plan_substep();
-    frame_done_ = false;
+    frame_.done = false;
 }
 
 Stage ClothInstance::stage() const {
     const PlannedStage& s = planned();
+    if (s.stage == Stage::kStrainLimit && frame_.limit_rounds.colliding()) return Stage::kLimitCollisions;
     if (s.stage != Stage::kSelfCollision) return s.stage;
     switch (self_collision_->round()) {  // self-collision's rounds have stages of their own
         case SelfCollision::Round::kSort:
@@ -169,7 +183,7 @@ Stage ClothInstance::stage() const {
 }
 
 void ClothInstance::prepare_stage() {
-    if (cursor_.entry == 0 && cursor_.round == 0) move_pins();
+    if (frame_.entry == 0 && frame_.round == 0) move_pins();
 }
 
 uint32_t ClothInstance::task_count() const {
@@ -180,7 +194,7 @@ uint32_t ClothInstance::task_count() const {
 
 bool ClothInstance::final_round() const {
     const PlannedStage& s = planned();
-    return cursor_.substep + 1 == substeps_ && cursor_.entry + 1 == plan_size_ &&
+    return frame_.substep + 1 == frame_.substeps && frame_.entry + 1 == frame_.plan_size &&
            (!s.rounds || s.rounds->last_round());
 }
 
@@ -200,30 +214,30 @@ void ClothInstance::run_task(uint32_t task, uint32_t) {
 }
 
 void ClothInstance::finish_stage() {
-    if (frame_out_of_memory_) {
-        frame_done_ = true;
+    if (frame_.out_of_memory) {
+        frame_.done = true;
         return;
     }
     const PlannedStage& s = planned();
     if (s.rounds) s.rounds->finish_round();
     if (s.finish) (this->*s.finish)();
     if (s.rounds && !s.rounds->done()) {
-        ++cursor_.round;  // the staged algorithm's next round
+        ++frame_.round;  // the staged algorithm's next round
         return;
     }
-    cursor_.round = 0;
-    if (++cursor_.entry < plan_size_) return;
-    if (++cursor_.substep == substeps_) {
-        frame_done_ = true;
+    frame_.round = 0;
+    if (++frame_.entry < frame_.plan_size) return;
+    if (++frame_.substep == frame_.substeps) {
+        frame_.done = true;
         return;
     }
-    cursor_.entry = 0;
+    frame_.entry = 0;
     plan_substep();
 }
 
 Status ClothInstance::end_frame() {
-    frame_done_ = true;
-    if (frame_out_of_memory_) {
+    frame_.done = true;
+    if (frame_.out_of_memory) {
         // Only the CG reference solver allocates during a step.
         restore_frame_start();
         last_step_result_ = CLOTH_ERROR_OUT_OF_MEMORY;
@@ -239,10 +253,10 @@ Status ClothInstance::end_frame() {
             "the step produced a non-finite state; the cloth was restored to its state before "
             "the step (lower dt, raise substeps or iterations, or use a sturdier solver)");
     }
-    last_step_result_ = frame_converged_ ? CLOTH_OK : CLOTH_ERROR_SOLVER_FAILED;
-    strained_ = substep_strained_;
+    last_step_result_ = frame_.converged ? CLOTH_OK : CLOTH_ERROR_SOLVER_FAILED;
+    strained_ = frame_.strained;
     update_sleep();
-    if (!frame_converged_) {
+    if (!frame_.converged) {
         return Status::error(CLOTH_ERROR_SOLVER_FAILED,
                              "conjugate gradient stopped at its iteration limit (residual %g)",
                              static_cast<double>(last_solve_.residual));

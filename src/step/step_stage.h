@@ -25,6 +25,7 @@ enum class Stage : uint8_t {
     kSelfRespond,
     kIterativeSolve,
     kStrainLimit,
+    kLimitCollisions,
     kCount
 };
 
@@ -53,6 +54,8 @@ inline const char* stage_name(Stage stage) {
             return "iterative_solve";
         case Stage::kStrainLimit:
             return "strain_limit";
+        case Stage::kLimitCollisions:
+            return "limit_collisions";
         case Stage::kIntegrate:
             return "integrate";
         case Stage::kExplicit:

@@ -1,0 +1,81 @@
+// What one frame of one cloth carries from begin_frame to end_frame (as
+// Jolt's SoftBodyUpdateContext): the settings it runs, its substeps, the
+// plan of the current substep and where the frame is in it. It outlives
+// the frame as the record of what the last frame ran, which the budget
+// policy and the stats read. The cloth's own state (positions, pins,
+// settings) and its buffers stay in ClothInstance.
+#pragma once
+
+#include <cstdint>
+
+#include "base/math.h"
+#include "base/soa.h"
+#include "base/staged.h"
+#include "solve/iterative_solve.h"
+#include "solve/solver_settings.h"
+#include "solve/strain_limit.h"
+#include "step/limit_rounds.h"
+#include "step/step_stage.h"
+
+namespace cloth {
+
+class ClothInstance;
+
+// Where the state a frame started from is kept, for a failed frame to go
+// back to. Copying x and v every frame costs more than a step's smaller
+// stages, so the copy is taken only when something rewrites them
+// wholesale before integration (a carrier) or integrates in place
+// (explicit). Otherwise the stages before integration change only the
+// velocities of pinned particles (saved apart), the frame's first
+// integration writes into the spare buffers and the buffers are swapped.
+enum class FrameBackup : uint8_t {
+    kCopied,            // the spare buffers hold a copy taken in begin_frame
+    kFirstIntegration,  // x, v still hold it (but pinned v); integration writes to the spares
+    kSwapped,           // the spare buffers hold it (but pinned v)
+};
+
+// One stage of the plan: `run` does one task of a round; `finish`, when
+// set, is the serial work after each round's barrier; a stage with
+// `rounds` is a staged algorithm (base/staged.h) whose rounds repeat the
+// stage until it is done, otherwise the stage is one round.
+struct PlannedStage {
+    Stage stage;
+    void (ClothInstance::*run)(const GroupTask& task);
+    void (ClothInstance::*finish)();
+    StagedAlgorithm* rounds;
+};
+
+struct FrameContext {
+    static constexpr uint32_t kMaxPlannedStages = 12;
+
+    // What this frame runs: the cloth's solver settings with
+    // CLOTH_SOLVER_DEFAULT resolved, and what the default chose by itself,
+    // within a quality policy's maxima and before its caps.
+    SolverSettings solver;
+    uint32_t own_iterations = 0, own_substeps = 0;
+
+    float h = 0;  // substep length, s
+    uint32_t substeps = 1;
+    Vec3 gravity = Vec3::Zero();
+    float theta = 1.0f;     // this substep's (integrate.h)
+    bool strained = false;  // a substep of this frame ended past the strain limit's promise
+    bool collides = false;  // this frame runs the collision stage
+    bool touching = false;  // this substep's collision stage found a contact
+    bool converged = true;
+    bool out_of_memory = false;  // set by the serial solve task
+    FrameBackup backup = FrameBackup::kCopied;
+    const Vec3Soa* solution = nullptr;  // the solver's dv, which integration reads
+
+    // The staged algorithms of the current substep.
+    IterativeSolve iterative;  // JACOBI, PCG, CHEBYSHEV
+    StrainLimiter strain_limiter;
+    LimitRounds limit_rounds;  // the limiter's passes with the colliders between them
+
+    // The plan of the current substep, and where the frame is in it.
+    PlannedStage plan[kMaxPlannedStages] = {};
+    uint32_t plan_size = 0;
+    uint32_t substep = 0, entry = 0, round = 0;  // substep, entry of plan, round within it
+    bool done = true;
+};
+
+}  // namespace cloth
