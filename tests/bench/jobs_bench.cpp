@@ -17,12 +17,15 @@
 //                        features and the task system cost nothing
 //   Jobs/Sleeping        one sleeping 64 x 64 cloth: cost of cloth_step
 //
-// The flags are in 10 m/s wind, JACOBI one sweep, 1/60 s.
+// The flags are in 10 m/s wind, JACOBI one sweep, 1/60 s. Every step must
+// return CLOTH_OK: else the benchmark reports an error (and cloth_bench
+// exits 1).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "scenes.h"
@@ -43,26 +46,35 @@ double median(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
+// Runs `step` (which returns a cloth_result) and adds its time in ms to
+// `ms`; keeps the first result other than CLOTH_OK in `failure`.
 template <class Step>
-double time_ms(Step step) {
+double time_ms(Step step, cloth_result& failure) {
     const auto start = Clock::now();
-    step();
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    const cloth_result r = step();
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    if (r != CLOTH_OK && failure == CLOTH_OK) failure = r;
+    return ms;
 }
 
 // Steps a and b alternately; counters a_ms, b_ms (medians) and ratio = a / b.
 template <class A, class B>
 void run_pair(benchmark::State& state, A step_a, B step_b) {
+    cloth_result failure = CLOTH_OK;
     for (int i = 0; i < 20; ++i) {  // warm-up
-        step_a();
-        step_b();
+        time_ms(step_a, failure);
+        time_ms(step_b, failure);
     }
     std::vector<double> a, b;
     for (auto _ : state) {
-        const double ta = time_ms(step_a), tb = time_ms(step_b);
+        const double ta = time_ms(step_a, failure), tb = time_ms(step_b, failure);
         a.push_back(ta);
         b.push_back(tb);
         state.SetIterationTime((ta + tb) * 1e-3);
+    }
+    if (failure != CLOTH_OK) {
+        state.SkipWithError((std::string("a step returned ") + cloth_result_name(failure)).c_str());
+        return;
     }
     const double ma = median(a), mb = median(b);
     state.counters["a_ms"] = ma;
@@ -94,7 +106,7 @@ void workers_1_vs_2(benchmark::State& state, uint32_t resolution, uint32_t copie
         return;
     }
     run_pair(
-        state, [&] { one.step(kDt); }, [&] { two.step(kDt); });
+        state, [&] { return one.step(kDt); }, [&] { return two.step(kDt); });
 }
 
 void BM_Speedup128(benchmark::State& state) { workers_1_vs_2(state, 128, 1); }
@@ -123,12 +135,15 @@ void BM_FeaturesOff(benchmark::State& state) {
     }
     cloth_aero_params still{};
     still.air_density = 0;
-    cloth_set_aero(world_scene.cloth(), &still);
     cloth_sleep_params awake = cloth_default_sleep_params();
     awake.enabled = false;
-    cloth_set_sleep(world_scene.cloth(), &awake);
     const uint32_t pins[2] = {0, 63};
-    cloth_pin(world_scene.cloth(), pins, 2);
+    if (cloth_set_aero(world_scene.cloth(), &still) != CLOTH_OK ||
+        cloth_set_sleep(world_scene.cloth(), &awake) != CLOTH_OK ||
+        cloth_pin(world_scene.cloth(), pins, 2) != CLOTH_OK) {
+        state.SkipWithError(cloth_get_last_error());
+        return;
+    }
 
     // The bare solver: the same cloth as a core object, stepped directly.
     static const cloth::HostMemory heap{};
@@ -152,7 +167,7 @@ void BM_FeaturesOff(benchmark::State& state) {
     bare.pin(63);
     const cloth::Vec3 gravity(0.0f, -9.81f, 0.0f);
     run_pair(
-        state, [&] { world_scene.step(kDt); }, [&] { (void)bare.step(kDt, gravity); });
+        state, [&] { return world_scene.step(kDt); }, [&] { return bare.step(kDt, gravity).code; });
 }
 
 void BM_Sleeping(benchmark::State& state) {
@@ -167,15 +182,19 @@ void BM_Sleeping(benchmark::State& state) {
     cloth_sleep_params sleep = cloth_default_sleep_params();
     sleep.max_speed = 1e9f;  // asleep after one frame, whatever it does
     sleep.frames = 1;
-    cloth_set_sleep(scene.cloth(), &sleep);
-    scene.step(kDt);
     bool sleeping = false;
-    cloth_is_sleeping(scene.cloth(), &sleeping);
-    if (!sleeping) {
+    if (cloth_set_sleep(scene.cloth(), &sleep) != CLOTH_OK || scene.step(kDt) != CLOTH_OK ||
+        cloth_is_sleeping(scene.cloth(), &sleeping) != CLOTH_OK || !sleeping) {
         state.SkipWithError("the cloth did not fall asleep");
         return;
     }
-    for (auto _ : state) scene.step(kDt);
+    cloth_result failure = CLOTH_OK;
+    for (auto _ : state) {
+        const cloth_result r = scene.step(kDt);
+        if (r != CLOTH_OK && failure == CLOTH_OK) failure = r;
+    }
+    if (failure != CLOTH_OK)
+        state.SkipWithError((std::string("a step returned ") + cloth_result_name(failure)).c_str());
 }
 
 }  // namespace

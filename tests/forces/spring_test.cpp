@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <limits>
+#include <ostream>
 #include <string>
 
 #include "forces/springs.h"
@@ -30,6 +31,11 @@ struct Case {
     const char* name;
     float length_ratio;  // current length / rest length
 };
+
+// How GoogleTest prints a case (in failures and in --gtest_list_tests,
+// which gtest_discover_tests reads): its name and ratio, not the struct's
+// bytes, whose name pointer differs from build to build.
+void PrintTo(const Case& c, std::ostream* out) { *out << c.name << " (" << c.length_ratio << " x rest)"; }
 
 class SpringJacobian : public ::testing::TestWithParam<Case> {};
 

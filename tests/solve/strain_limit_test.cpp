@@ -111,13 +111,72 @@ TEST(Tethers, OnAMeshTheAnchorsArePinsReachedAlongTheSpringsNoCloserThanStraight
     }
 }
 
-// A stress case of the limit's promise: springs of 1e7 N/m on 1 kg at a
-// tenth of a second a step (gamma ~ 1e9 at 32x32), every spring kind that
-// stiff, a limit of 0.08 set by the host. After every step the strain is
-// within the limit plus 0.02 and the state is finite. Springs this stiff
-// hold the cloth by themselves (strain 5e-6 with the limit off too): what
-// this checks is that a step that stiff stays stable.
-TEST(StrainLimitPromise, AClothOfTenMillionNewtonPerMetreSpringsAtATenthOfASecondStaysWithinTheLimit) {
+// The largest |L - l0| / l0 over the structural springs of a 32 x 32 grid
+// cloth (row and column neighbours), from its positions now and at rest:
+// the strain limit's promise measured from the outside, stretched or
+// compressed.
+float structural_strain(const std::vector<float>& rest, const std::vector<float>& now) {
+    auto length = [](const std::vector<float>& x, uint32_t a, uint32_t b) {
+        return (Vec3(x[3 * a], x[3 * a + 1], x[3 * a + 2]) - Vec3(x[3 * b], x[3 * b + 1], x[3 * b + 2]))
+            .norm();
+    };
+    float worst = 0;
+    for (uint32_t r = 0; r < 32; ++r) {
+        for (uint32_t k = 0; k < 32; ++k) {
+            const uint32_t i = 32 * r + k;
+            for (const uint32_t j : {k + 1 < 32 ? i + 1 : i, r + 1 < 32 ? i + 32 : i}) {
+                if (j != i) worst = std::max(worst, std::fabs(length(now, i, j) / length(rest, i, j) - 1.0f));
+            }
+        }
+    }
+    return worst;
+}
+
+// The strain limit's promise (cloth_strain_limit, docs/accuracy.md): after
+// every step every structural spring is within the limit plus 0.02 of its
+// rest length, stretched or compressed. Here on a load the springs cannot
+// hold: 1 kg per particle (a tonne on the 32 x 32 cloth) on 1e3 N/m springs,
+// hanging from its whole top row (no seam between two pins' regions, where
+// the promise stops), at a tenth of a second a step. With a limit of 0.08
+// the worst spring ends every step within 0.10 (0.085 measured) and the
+// stats agree (no excess past 0.02, never unmet); the same cloth with the
+// limit off stretches past 1 (13 measured): the limiter is what holds it.
+TEST(StrainLimitPromise, AClothFarTooHeavyForItsSpringsAtATenthOfASecondStaysWithinTheLimitAfterEveryStep) {
+    auto worst_strain = [](float max_strain) {
+        PinnedCloth c(1.0f);
+        std::vector<uint32_t> top(32);
+        for (uint32_t k = 0; k < 32; ++k) top[k] = k;
+        EXPECT_EQ(cloth_pin(c.cloth, top.data(), 32), CLOTH_OK);
+        cloth_strain_limit limit = cloth_default_strain_limit();
+        limit.max_strain = max_strain;
+        EXPECT_EQ(cloth_set_strain_limit(c.cloth, &limit), CLOTH_OK);
+        std::vector<float> rest(3 * 32 * 32), now(rest.size());
+        EXPECT_EQ(cloth_read_positions(c.cloth, rest.data(), static_cast<uint32_t>(rest.size())), CLOTH_OK);
+        float worst = 0;
+        for (int step = 0; step < 30; ++step) {
+            EXPECT_EQ(cloth_step(c.world, 0.1f), CLOTH_OK) << "step " << step;
+            EXPECT_EQ(cloth_read_positions(c.cloth, now.data(), static_cast<uint32_t>(now.size())), CLOTH_OK);
+            const float strain = structural_strain(rest, now);
+            worst = std::max(worst, strain);
+            if (max_strain == 0.0f) continue;
+            EXPECT_LE(strain, max_strain + 0.02f) << "step " << step;
+            const cloth_stats stats = c.stats();
+            EXPECT_LE(stats.strain_limit_excess, 0.02f) << "step " << step;
+            EXPECT_EQ(stats.strain_limit_unmet, 0u) << "step " << step;
+            EXPECT_TRUE(std::isfinite(stats.kinetic_energy)) << "step " << step;
+        }
+        return worst;
+    };
+    EXPECT_LE(worst_strain(0.08f), 0.10f) << "the promise, over every step";
+    EXPECT_GT(worst_strain(0.0f), 1.0f) << "the same cloth without a limit: past the promise tenfold";
+}
+
+// A limit set on springs stiff enough to hold the cloth by themselves
+// (1e7 N/m on 1 kg at a tenth of a second a step, gamma ~ 1e9 at 32 x 32,
+// every spring kind that stiff): the limiter finds nothing to limit, and a
+// step that stiff stays finite with the cloth unstretched (1.2e-6 strain
+// measured, with the limit or without). What this checks is stability.
+TEST(StrainLimitPromise, ALimitOnTenMillionNewtonPerMetreSpringsAtATenthOfASecondLeavesTheStepStable) {
     PinnedCloth c([](cloth_desc& desc) {
         desc.area_density = 1.0f;  // 1 kg on the default grid's square metre
         for (cloth_spring_params* spring : {&desc.structural, &desc.shear, &desc.bend})
@@ -129,7 +188,7 @@ TEST(StrainLimitPromise, AClothOfTenMillionNewtonPerMetreSpringsAtATenthOfASecon
     for (int step = 0; step < 30; ++step) {
         ASSERT_EQ(cloth_step(c.world, 0.1f), CLOTH_OK) << "step " << step;
         const cloth_stats stats = c.stats();
-        EXPECT_LE(stats.max_strain, 0.10f) << "step " << step;
+        EXPECT_LT(stats.max_strain, 1e-4f) << "step " << step;
         EXPECT_TRUE(std::isfinite(stats.kinetic_energy)) << "step " << step;
     }
 }

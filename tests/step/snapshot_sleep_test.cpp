@@ -1,8 +1,10 @@
 // Snapshots reproduce a run bit for bit; bad snapshots change nothing. A
 // cloth at rest goes to sleep (and stays exactly where it is, skipped by
-// the step) and wakes when its pins, wind or gravity change.
+// the step) and wakes when its pins, wind or gravity change or cloth_wake
+// is called.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -211,6 +213,48 @@ TEST(Sleep, PinTargetsWindAndGravityWakeTheCloth) {
     ASSERT_EQ(cloth_world_set_gravity(scene.world(), sideways), CLOTH_OK);
     EXPECT_FALSE(sleeping(cloth)) << "gravity wakes it";
     ASSERT_EQ(cloth_wake(cloth), CLOTH_OK);
+}
+
+// cloth_wake wakes a sleeping cloth: it "steps again from the next
+// cloth_step" (cloth.h). A cloth sent to sleep mid-fall (any speed counts
+// as rest here) hangs where sleep caught it, with no velocity, through
+// steps that skip it; woken, it reports awake, the next step runs it (the
+// frame profile counts it awake) and it falls on: from rest, a particle
+// falls g h^2 = 2.7 mm in one step unless springs or air hold it (the
+// farthest fall 1.6 mm measured; asleep, 0).
+TEST(Sleep, CallingWakeOnASleepingClothLetsItsNextStepMoveIt) {
+    SceneConfig config;
+    config.kind = SceneKind::kFallingFlat;
+    config.resolution = 8;
+    Scene scene(config);
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    const cloth_id cloth = scene.cloth();
+    const uint32_t n = scene.particle_count();
+    cloth_sleep_params sleep = cloth_default_sleep_params();
+    sleep.max_speed = 1e3f;
+    sleep.frames = 3;
+    ASSERT_EQ(cloth_set_sleep(cloth, &sleep), CLOTH_OK);
+    for (int i = 0; i < 3; ++i) ASSERT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
+    ASSERT_TRUE(sleeping(cloth)) << "asleep after 3 frames below 1e3 m/s";
+    const std::vector<float> asleep = state_of(cloth, n);
+    for (int i = 0; i < 5; ++i) ASSERT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
+    ASSERT_TRUE(same_bits(state_of(cloth, n), asleep)) << "asleep, it stays where sleep caught it";
+    ASSERT_TRUE(sleeping(cloth));
+
+    ASSERT_EQ(cloth_wake(cloth), CLOTH_OK);
+    EXPECT_FALSE(sleeping(cloth)) << "cloth_wake wakes it";
+    ASSERT_EQ(cloth_world_set_profiling(scene.world(), 100), CLOTH_OK);
+    ASSERT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
+    cloth_frame_profile p{};
+    p.struct_size = sizeof p;
+    ASSERT_EQ(cloth_world_get_frame_profile(scene.world(), &p), CLOTH_OK);
+    EXPECT_EQ(p.awake_cloths, 1u);
+    EXPECT_EQ(p.sleeping_cloths, 0u);
+    EXPECT_FALSE(sleeping(cloth)) << "one frame is not the 3 it takes to sleep again";
+    const std::vector<float> woken = state_of(cloth, n);
+    float drop = 0;
+    for (uint32_t i = 0; i < n; ++i) drop = std::max(drop, asleep[3 * i + 1] - woken[3 * i + 1]);
+    EXPECT_GT(drop, 1e-3f) << "the largest drop in the step after the wake (m)";
 }
 
 // Solver settings wake a cloth (cloth.h), the strain limit among them:
