@@ -10,8 +10,8 @@ namespace cloth {
 
 // Fraction of each spring's excess one pass removes. Every particle moves
 // at once (Jacobi), so a particle pulled by several springs would overshoot
-// with the full share; 1/2 was measured to hold strain better than 1 (a
-// 128x128 cloth falling flat: 0.33 against 0.85 after 200 frames).
+// with the full share (docs/measurements.md, "The Provot passes'
+// relaxation").
 constexpr float kRelaxation = 0.5f;
 
 // Particles a pass with StrainLimitPass::maybe_over tests at a time (one
@@ -432,8 +432,9 @@ void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, floa
     grid_ = grid != nullptr && !grid->empty() ? grid : nullptr;
     tethers_ = tethers != nullptr && !tethers->empty() ? tethers : nullptr;
     // Passes past those asked for only where tethers hold the cloth's
-    // stretch as a whole: on a cloth without them, dragged 10 m, sixteen
-    // Jacobi passes overshot and diverged (strain 4e4 in the same frame).
+    // stretch as a whole: without them, many Jacobi passes on a cloth
+    // dragged far in one step overshoot and diverge (docs/measurements.md,
+    // "Strain-limit passes that follow what they find").
     max_iterations_ = tethers_ != nullptr ? std::max(iterations, max_iterations) : iterations;
     first_pass_round_ = tethers_ != nullptr ? 1 : 0;
     pass_ = pass;
