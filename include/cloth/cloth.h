@@ -736,10 +736,8 @@ CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
 /// ones (tethers, or long-range attachments: one pass that holds the whole
 /// cloth's stretch, however far the pins moved; changing which particles
 /// are pinned or attached plans them anew at the next step, once per
-/// change: on a grid one pass over particles and pins, measured at about
-/// 0.1 ms for a 64x64 cloth pinned at two corners, 0.4 ms for 128x128 and
-/// 3.5 ms for 128x128 with its top row pinned; on a mesh a search along
-/// the springs, about 2 ms for 4,096 particles and 10 ms for 16,384);
+/// change: on a grid one pass over particles and pins, on a mesh a search
+/// along the springs, about 10 ms for 16,384 particles);
 /// then (Provot 1995)
 /// structural and shear springs still longer than the limit, and
 /// structural springs shorter than (1 - max_strain) times their rest

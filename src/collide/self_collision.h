@@ -1,4 +1,5 @@
-// Self-collision of one cloth (paper section IV, algorithm.md 5):
+// Self-collision of one cloth (paper section IV; docs/method.md,
+// "Self-collision"):
 // particle-particle contacts found through a spatial hash, collision-free
 // regions (Volino) to skip pairs that cannot collide, and the paper's
 // response (push apart to the thickness theta_c, remove the approaching

@@ -1,5 +1,5 @@
-// Spatial hash of particles for self-collision (paper section IV,
-// algorithm.md 5): cubic cells of twice the search radius r, each cell
+// Spatial hash of particles for self-collision (paper section IV;
+// docs/method.md, "Self-collision"): cubic cells of twice the search radius r, each cell
 // (ix, iy, iz) hashed into a power-of-two number of buckets (about twice
 // the particle count), particles counting-sorted into their buckets every
 // step.
@@ -22,7 +22,7 @@
 //                                cell by cell in a fixed order, ascending
 //                                index within a cell.
 // Why 2x2x2 cells of size 2r find every pair closer than r (the gap the
-// paper leaves, algorithm.md 5): along each axis, if p lies in the lower
+// paper leaves; docs/method.md, "Self-collision"): along each axis, if p lies in the lower
 // half of its cell [k c, k c + c/2), every q with |q - p| < r = c/2 lies in
 // cells k-1 or k; if p lies in the upper half, in cells k or k+1. So the
 // block starting at floor(p / c - 1/2) holds every neighbour within r. It

@@ -5,7 +5,6 @@
 
 #include "base/lanes.h"
 #include "forces/material.h"
-#include "solve/solver_settings.h"
 
 namespace cloth {
 namespace {

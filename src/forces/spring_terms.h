@@ -1,5 +1,6 @@
 // Where a cloth's per-spring forces and Jacobian blocks live, and the three
-// loops that produce and read them (algorithm.md 4, stages 1-3):
+// loops that produce and read them (docs/method.md, "Every stage a
+// parallel loop", stages 1-3):
 //
 //   evaluate        per spring: f~ contribution and A_s      (paper Code 4)
 //   gather          per particle: sum of +-f~ and of A_s     (paper Code 1)
@@ -10,7 +11,10 @@
 //                   through padded incidence slots (fabric.h).
 //   GridSprings     regular grids: every spring of a family joins particle
 //                   p to p + offset, so no loop needs an index array and
-//                   every load is contiguous. Same physics, 3-4x faster.
+//                   every load is contiguous. Same physics; a mesh's
+//                   frame costs about 1.6 times a grid's
+//                   (docs/measurements.md, "The mesh's products and
+//                   spring kernels").
 //
 // Every sum over a particle's springs runs in a fixed order that does not
 // depend on how the particle range is split, so results are bit-identical
@@ -24,7 +28,6 @@
 #include "fabric/fabric.h"
 #include "forces/material.h"
 #include "forces/springs.h"
-#include "solve/solver_settings.h"
 
 namespace cloth {
 

@@ -4,8 +4,8 @@
 // particles, so both vectorize (indexed loads, contiguous accumulators).
 // Stage 1 also stores each spring's block at its two slots, so the
 // products (many per substep) load blocks contiguously and gather only
-// the other particle's x: a 64x64 mesh's products took 58 % of its frame
-// when they gathered six block entries per slot as well.
+// the other particle's x, not six block entries per slot as well
+// (docs/measurements.md, "The mesh's products and spring kernels").
 #include "base/lanes.h"
 #include "forces/spring_terms.h"
 
@@ -60,10 +60,9 @@ CLOTH_HOT_LOOP void gather_kernel(uint32_t begin, uint32_t end, int64_t base,
 }
 
 // One incidence slot: w_i += A_s, and A_s copied to the slot (o at base + i)
-// for the products, which then load it contiguously. Copying here, where
-// the slot's block is loaded anyway, instead of scattering each spring's
-// block to its two slots after evaluation, saves a pass (at 64x64 that
-// pass took a tenth of the default's frame).
+// for the products, which then load it contiguously. Copied here, where
+// the slot's block is loaded anyway, so no pass after evaluation scatters
+// each spring's block to its two slots.
 CLOTH_HOT_LOOP void gather_block_kernel(uint32_t begin, uint32_t end, int64_t base,
                                         const uint32_t* __restrict spring, const float* __restrict sxx,
                                         const float* __restrict sxy, const float* __restrict sxz,

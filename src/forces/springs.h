@@ -1,4 +1,5 @@
-// Spring forces and their Jacobians (paper eqs. 11-12; algorithm.md 1-2).
+// Spring forces and their Jacobians (paper eqs. 11-12; docs/method.md,
+// "The linear system").
 #pragma once
 
 #include <algorithm>
@@ -35,9 +36,8 @@ SpringEval spring_force_and_jacobian(const Vec3& xi, const Vec3& xj, float rest_
 // Jacobian and energy: a cable that only pulls). Why: projection passes
 // after the solve fix one spring length per pass, while the solve itself
 // spreads a stiff spring's pull over the whole cloth in the same substep;
-// passes alone leave a pinned 128 x 128 cloth at 1e3 N/m 21-34 % stretched
-// at its pins, with the cable it stays within a few tenths of a per cent
-// of the limit (docs/accuracy.md).
+// passes alone leave a pinned 128 x 128 cloth at 1e3 N/m up to 34 %
+// stretched at its pins (docs/measurements.md, "The strain cable").
 struct SpringModel {
     float a_min, ratio_max;
     float cable_stretch = 1.0f, cable_factor = 0.0f;  // cable off: factor 0
@@ -48,7 +48,8 @@ struct SpringModel {
     }
 };
 
-// What one spring contributes to the substep system (algorithm.md 2):
+// What one spring contributes to the substep system (docs/method.md,
+// "The linear system"):
 //   force = k (L - l0) u + c (u . rv) u + h J rv   on i (f~, eq. 4; -force on j;
 //           plus the strain cable's pull when it is taut)
 //   block = A_s = h^2 J + h c u u^T                 (W_ij = -A_s)

@@ -1,7 +1,9 @@
 // Position updates: where a substep's velocities take the particles.
 //
-//   integrate_implicit   the paper's update after the solve (algorithm.md 4,
-//                        paper eq. 6): v' = v + dv, x' = x + h v'
+//   integrate_implicit   the paper's update after the solve (paper eq. 6):
+//                        v' = v + dv, x' = x + h (v + theta dv); theta = 1
+//                        is backward Euler (docs/method.md, "The linear
+//                        system"; theta < 1: "The theta step")
 //   integrate_explicit   symplectic Euler, the explicit baseline the paper
 //                        argues against (stable only while h is below about
 //                        2 sqrt(m / k)): v' = v + h f / m, x' = x + h v'

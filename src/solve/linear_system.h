@@ -1,5 +1,5 @@
-// The linearized backward-Euler system of one substep (algorithm.md 2;
-// Baraff-Witkin eq. 6, paper eq. 3):
+// The linearized backward-Euler system of one substep (docs/method.md,
+// "The linear system"; Baraff-Witkin eq. 6, paper eq. 3):
 //
 //     W dv = b,   W = M - h dF/dv - h^2 dF/dx,   b = h (f + h dF/dx v)
 //

@@ -1,21 +1,20 @@
-// Aggregation multigrid: the default's preconditioner for PCG.
+// Aggregation multigrid: the default's preconditioner for PCG
+// (docs/method.md, "Multigrid-preconditioned CG").
 //
 // Block-Jacobi PCG moves tension one spring per iteration, so a stiff cloth
-// needs on the order of sqrt(condition) iterations (frontier.md); a
-// V-cycle over coarser copies of the cloth moves it across the whole cloth
-// in one. The levels: particles are grouped into aggregates (2 x 2 blocks
-// on a grid, greedy neighbourhoods on a mesh), each aggregate one node of
-// the next level, down to at most kCoarsestSize nodes. The coarse operator
-// is the Galerkin product P^T W P with P piecewise constant on aggregates:
-// sums of the fine 3x3 blocks, formed each substep from the system the
-// assembly stage produced (assemble). The cycle: one damped block-Jacobi
-// sweep before and after the coarse correction on every level, a dense
-// Cholesky solve on the coarsest. The same sweeps on both sides keep the
-// preconditioner symmetric, as PCG needs.
-//
-// Measured on a perturbed 64x64 and 128x128 cloth (1 kg, 1e3-1e4 N/m, 1/60
-// and 1/120 s): PCG reaches a relative residual of 1e-4 in 10-12 V-cycle
-// iterations at either size, where block-Jacobi PCG needs 88-192.
+// needs on the order of sqrt(condition) iterations (docs/method.md, "Where
+// one iteration stops holding"); a V-cycle over coarser copies of the
+// cloth moves it across the whole cloth in one. The levels: particles are
+// grouped into aggregates (2 x 2 blocks on a grid, greedy neighbourhoods on
+// a mesh), each aggregate one node of the next level, down to at most
+// kCoarsestSize nodes. The coarse operator is the Galerkin product P^T W P
+// with P piecewise constant on aggregates: sums of the fine 3x3 blocks,
+// formed each substep from the system the assembly stage produced
+// (assemble). The cycle: one damped block-Jacobi sweep before and after the
+// coarse correction on every level, a dense Cholesky solve on the coarsest.
+// The same sweeps on both sides keep the preconditioner symmetric, as PCG
+// needs. PCG so preconditioned brings a 64x64 or 128x128 cloth's residual
+// to 1e-4 in 12-16 iterations, block-Jacobi PCG in 144-257.
 //
 // Written by hand: the levels follow the fabric's own grid, and every pass
 // must run over the library's SoA buffers without allocating (the coarsest
@@ -25,9 +24,8 @@
 // level's operator and right-hand side by ranges of its nodes and pairs,
 // each a gather in a fixed order. The cycle over the coarse levels, a
 // quarter of the fine work and less, runs on one thread between two
-// barriers. So results do not depend on the worker count. (Gathering the
-// first level on every worker took 2 workers at 128x128 from 1.6 to about
-// 1.8 times one worker's speed: cloth_bench Frame/DEFAULT_2_WORKERS.)
+// barriers (docs/measurements.md, "The first coarse level on every
+// worker"). So results do not depend on the worker count.
 #pragma once
 
 #include "base/host_allocator.h"
@@ -53,12 +51,12 @@ class Multigrid {
     void plan(const Fabric& fabric, const SpringTerms& springs);
     bool empty() const { return levels_.empty(); }
 
-    // Per substep: the coarse operators of `system` (pinned
-    // particles are left out, as they are of the system). Forming them
-    // once a frame and keeping them for its other substeps was measured
-    // and lost: at the stiff extreme of the stability map (k = 1e7 N/m,
-    // 1e-4 kg, 1/10 s in 16 substeps) the strain cable switches within a
-    // frame and five iterations with the kept operator gained 1e4 J.
+    // Per substep: the coarse operators of `system` (pinned particles are
+    // left out, as they are of the system). Not kept across a frame's
+    // substeps: the strain cable switches within a frame, and five
+    // iterations with a stale operator gain energy at the stiff extreme of
+    // the stability map (docs/measurements.md, "The coarse operators kept
+    // across a frame's substeps").
     void assemble(const LinearSystem& system);  // on this thread
     // The same in two parts: the first level's pairs and nodes that `task`
     // owns (GroupTask::items), on any worker, then, on one thread after

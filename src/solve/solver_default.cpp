@@ -29,8 +29,8 @@ SolverSettings resolve_solver(const SolverSettings& requested, float dt, float s
     // (gamma falls with the square of the substep count). The gamma is the
     // springs' own: a taut strain cable is 101 times as stiff, and the choice
     // does not count it (it would multiply the cost of every stiff cloth);
-    // docs/stability.md measures where this holds, and the few cells of
-    // 1/30-1/10 s steps of soft, heavy cloth where it gains energy.
+    // kDefaultLongestSubstep bounds the cable's pull instead, and
+    // docs/stability.md maps where this holds.
     const double gamma = static_cast<double>(dt) * dt * stiffness_per_mass;
     const double wanted = std::max(std::ceil(std::sqrt(gamma / gamma_limit)),
                                    std::ceil(static_cast<double>(dt) / kDefaultLongestSubstep - 1e-6));
@@ -40,8 +40,9 @@ SolverSettings resolve_solver(const SolverSettings& requested, float dt, float s
     if (!out.strain_limit.chosen)
         out.strain_limit = StrainLimit{kDefaultStrainLimit, kDefaultStrainLimitPasses};
     const bool limited = out.strain_limit.max_strain > 0 && out.strain_limit.iterations > 0;
-    // The theta step was measured up to the substep gamma above; past it
-    // (the substep cap binds) backward Euler's damping holds the energy.
+    // Past the substep gamma above (the substep cap binds) the theta step
+    // gains energy and backward Euler's damping holds it
+    // (docs/measurements.md, "Backward Euler past the substep cap").
     const bool within_gamma = gamma <= gamma_limit * double(out.substeps) * out.substeps;
     out.theta = limited && within_gamma ? kDefaultTheta : 1.0f;
     return out;

@@ -28,9 +28,9 @@ inline uint32_t reduction_block_count(uint32_t particle_count) {
 // Calls body(block, first, last) for each reduction block met by [begin, end).
 // Always inlined with its body (flatten), like for_each_lane_group: out of
 // line, the body is a separate function compiled for the baseline only, so
-// the AVX2 clone of a CLOTH_HOT_LOOP caller ran it on SSE with its block
-// sum spilled to the stack (perf, a 64x64 PCG frame: pcg_update 22 % of
-// the time before, 13 % after; the same bits).
+// the AVX2 clone of a CLOTH_HOT_LOOP caller would run it on SSE with its
+// block sum spilled to the stack (docs/measurements.md, "The block loops
+// inlined into their AVX2 clones").
 template <class Body>
 __attribute__((always_inline, flatten)) inline void for_each_block(uint32_t begin, uint32_t end, Body body) {
     assert(begin % kReductionBlock == 0 && "reducing passes start on a block boundary");
@@ -64,10 +64,10 @@ double sum_partials(const SolverWorkspace& work);
 
 // A start, per particle: dv0_i = h f_ext_i / (m_i (1 + h c)), zero for
 // pinned particles: the exact answer when the springs do not resist the
-// motion (rigid translation under gravity). Measured as the step's start it
-// loses to p = W_ii^-1 b (docs/accuracy.md: near equilibrium it is a smooth
-// error the few iterations cannot remove, and JACOBI k=1 blows up from it),
-// so the step starts from p; tests use it as a far-from-answer start.
+// motion (rigid translation under gravity). The step starts from
+// p = W_ii^-1 b, not from this: near equilibrium it is a smooth error the
+// few iterations cannot remove (docs/measurements.md, "Starting vectors and
+// warm starts"); tests use it as a far-from-answer start.
 void external_force_guess(const AssemblyPass& pass, uint32_t begin, uint32_t end, Vec3Soa& dv);
 
 // Conjugate gradient on the same system with Eigen's sparse solver

@@ -1,26 +1,17 @@
 // Strain limiting (Provot 1995, "Deformation constraints in a mass-spring
-// model to describe rigid cloth behavior"), rearranged into per-particle
-// passes: Provot corrects one spring at a time (Gauss-Seidel, order
-// dependent); here every particle gathers the corrections of its own
-// over-stretched structural and shear springs from the positions of the
-// previous pass (Jacobi), so the passes split across workers and give the
-// same bits for any split.
+// model to describe rigid cloth behavior") as Jacobi passes: every particle
+// gathers the corrections of its own springs past the limit from the
+// previous pass's positions, so the passes split across workers with the
+// same bits for any split (Provot's spring-by-spring order would not).
+// Structural springs are held both ways (cloth buckles rather than
+// shortens, and a pass that pulls a stretched spring in pushes its ends
+// into their other neighbours); shear springs, which shorten whenever the
+// cloth shears, only against stretch (docs/method.md, "The strain
+// limiter").
 //
-// Structural springs are held within the limit both ways: cloth buckles
-// rather than shortens, and a pass that pulls a stretched spring in pushes
-// its ends into their other neighbours, which a stretch-only limiter left
-// compressed (a 128x128 flag in wind, whose theta step keeps the
-// high-frequency motion the passes stir up, showed 24 % compression).
-// Shear springs shorten whenever the cloth shears, so only their stretch
-// is limited.
-//
-// Grid fabrics take the same corrections family by family (GridStrainTerms):
-// one pass over the springs of each structural and shear family, stored by
-// first particle, then one pass per particle summing the families in a
-// fixed order. Every loop is contiguous and vectorizes; the general path
-// runs over the fabric's padded slots of structural and shear springs
-// (Fabric::limited_slots), a square root per spring end, vectorized with
-// gathers.
+// Grid fabrics take the corrections family by family (GridStrainTerms),
+// every loop contiguous; meshes run over the fabric's padded slots of
+// structural and shear springs (Fabric::limited_slots) with gathers.
 #pragma once
 
 #include "base/soa.h"
@@ -38,15 +29,12 @@ struct StrainLimitPass {
     const float* pinned;  // 1 pinned (does not move), 0 free
     float max_strain;     // allowed (L - l0) / l0
     // Scratch of one byte per particle, or null. With it a pass tests its
-    // springs by squared length first, eight particles at a time, and
-    // computes the exact corrections (a square root and divisions per
-    // spring) only for runs with a spring that may be over the limit; the
-    // same bits either way. Most of a cloth is within the limit after a
-    // pass or two: 6 % of the vehicle flag's runs had a spring over it.
+    // springs by squared length, eight particles at a time, and computes
+    // the exact corrections only for runs that may be over the limit (6 %
+    // of the vehicle flag's); the same bits either way.
     uint8_t* maybe_over = nullptr;
-    // Scratch of one float per particle (required): the summed weight of
-    // the corrections that pull each particle in a pass (see
-    // strain_limit_corrections).
+    // Scratch of one float per particle (required): each particle's pull
+    // in a pass (see strain_limit_corrections).
     float* pull = nullptr;
 };
 
@@ -61,15 +49,11 @@ constexpr float kStrainPromiseSlack = 0.01f;
 // for (cloth_strain_limit.iterations), and only while springs are past
 // the promise.
 constexpr uint32_t kStrainLimitMorePasses = 4;
-// The least share of a correction either free end of a spring takes,
-// however much heavier it is than the other (a mass ratio past 9:1 counts
-// as 9:1). By inverse mass alone a light particle between heavy ones takes
-// nearly all of both springs' corrections and cannot meet both: 1e-4 kg
-// particles beside 1 kg ones, a 32x32 default cloth pinned at two corners
-// with the 0.08 limit, reached 0.117 in a checkerboard and 0.147 in one
-// column; with the share kept to a tenth 0.104 and 0.132 (0.102 and 0.122
-// at a fifth; docs/accuracy.md). A grid's own masses (corners a sixth of
-// the interior's) stay inside it, so such cloths keep their bits.
+// The least share of a correction either free end of a spring takes (a
+// mass ratio past 9:1 counts as 9:1): by inverse mass alone a light
+// particle between heavy ones takes nearly all of both springs'
+// corrections and cannot meet both (docs/measurements.md, "The least share
+// of a correction"). A grid of one density stays within it.
 constexpr float kLeastShare = 0.1f;
 
 // correction_i = 1/2 sum over springs s = (i, j) past the limit of
@@ -77,30 +61,24 @@ constexpr float kLeastShare = 0.1f;
 // compressed past it w_i (L - (1 - max_strain) l0) (x_j - x_i) / L, with w_i = m_i^-1 /
 // (m_i^-1 + m_j^-1) (pinned: m^-1 = 0) kept within [kLeastShare,
 // 1 - kLeastShare] when both are free, divided by the particle's pull
-// P_i = 1/2 sum of those w_i where P_i > 1. Particles [begin, end); reads x.
+// P_i = 1/2 sum of those w_i where P_i > 1. Particles [begin, end); reads x;
+// `correction` holds the result; returns what the pass found.
 //
-// The division keeps the passes from diverging. A spring stretched far past
-// the limit moves its end by about 1/2 w_i (x_j - x_i), so a particle with
-// every spring past the limit moves by P_i times the mean pull of its
-// neighbours: past P_i = 1 the passes amplify an alternating pattern (a
-// pin moved 10 m in one frame took the cloth to 1e6 m within the frame).
-// Where P_i <= 1 (four springs of equal masses past the limit make 1) the
-// division changes no bit.
-// `correction` holds the result; returns what the pass found (StretchCount).
+// The division keeps the passes from diverging: a particle with every
+// spring far past the limit moves by about P_i times its neighbours' mean
+// pull, and past P_i = 1 the passes amplify an alternating pattern
+// (docs/measurements.md, "Corrections divided by each particle's pull").
+// Where P_i <= 1 (four springs of equal masses make 1) it changes no bit.
 StretchCount strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa& x, uint32_t begin,
                                       uint32_t end, Vec3Soa& correction);
 
 // Long-range limits on grids: along rows and columns, each particle and
 // the one kStrainReach places on are kept within (1 + limit) times their
-// rest distance (straight on a grid, so springs within the limit never
-// break it), as a family of the passes below with its corrections weighted
-// by kStrainReachWeight. A pass of springs moves tension one spring along;
-// these carry it four, across the seam between two pins' regions where no
-// tether runs (docs/accuracy.md). Measured on a 32x32 default cloth pinned
-// at two corners with a limit of 0.08, 300 frames: 1 kg per particle max
-// strain 0.170 -> 0.106, both pins dragged 10 m and back 0.416 -> 0.270;
-// the vehicle flag 0.117 -> 0.106. Reach 3 and 5 held one case worse;
-// weight 1 (as a spring) and 0.5 overshot the dragged cloth (to 1e12 at 1).
+// straight rest distance, as one more family of the passes with its
+// corrections weighted by kStrainReachWeight. They carry tension four
+// springs per pass, across the seam between two pins' regions where no
+// tether runs; a heavier weight overshoots a cloth dragged far in one step
+// (docs/measurements.md, "Long-range strain limits on grids").
 constexpr uint32_t kStrainReach = 4;
 constexpr float kStrainReachWeight = 0.25f;
 
@@ -141,16 +119,11 @@ void strain_limit_grid_corrections(const StrainLimitPass& pass, const GridStrain
 // dynamics"): pass k + 1 moves each particle past its corrected position
 // along the last two passes' move,
 //     x_k+1 = omega_k+1 (x_k + c_k - x_k-1) + x_k-1,
-// omega_1 = 1, omega_2 = 2 / (2 - rho^2), omega_k+1 = 4 / (4 - rho^2 omega_k).
-// The passes move tension one spring per pass; this carries it further in
-// the same passes. rho = 0.9 was measured (docs/accuracy.md): on the
-// vehicle flag's course the max strain 0.151 -> 0.126 with a cheaper
-// stage (fewer passes run past those asked for), the 32x32 stress cases
-// 0.215 -> 0.196 (1 kg per particle) and 0.62 -> 0.44 (pins dragged 10 m);
-// 0.8 and 0.85 held the stress cases worse. The last pass is plain (see
-// finish_round). Not for the explicit integrator: its substeps are so
-// short (the flag's: 1/3840 s) that the passes' moves over h, which
-// become speed, took the flag to 170 m/s.
+// omega_1 = 1, omega_2 = 2 / (2 - rho^2), omega_k+1 = 4 / (4 - rho^2 omega_k),
+// which carries tension further in the same passes (docs/measurements.md,
+// "Chebyshev-accelerated strain-limit passes", for rho). The last pass is
+// plain (see finish_round). Not for the explicit integrator: its substeps
+// are so short that the moves over h, which become speed, shake the cloth.
 constexpr float kStrainLimitChebyshevRho = 0.9f;
 // The weight of the pass after pass `pass` (counted from 0), from that
 // pass's weight `omega` (the first pass's is 1).
@@ -169,8 +142,8 @@ void strain_limit_apply(const Vec3Soa& correction, float h, float omega, uint32_
 // per particle group) the number of passes follows what they find: at
 // least `iterations`, more while a spring is longer than the limit plus
 // kStrainPromiseSlack, up to `max_iterations` (with tethers only), and
-// none after a pass that finds nothing to correct (the rest would move
-// nothing). Without, exactly `iterations`. A frame runs the colliders after the last round
+// none after a pass that finds nothing to correct. Without, exactly
+// `iterations`. A frame runs the colliders after the last round
 // (step/cloth_stages.cpp).
 class StrainLimiter final : public StagedAlgorithm {
   public:

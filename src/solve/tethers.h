@@ -4,7 +4,8 @@
 // kAnchors nearest pinned particles than its rest distance to it times
 // (1 + max_strain). One clamp per particle and anchor in one pass: it holds
 // the whole cloth's stretch at once, where the local strain-limit passes
-// move tension one spring per pass (frontier.md).
+// move tension one spring per pass (docs/method.md, "Where one iteration
+// stops holding" and "Tethers").
 //
 // The anchors follow the pin set: plan() runs when it changes, not per
 // frame. A grid is flat at rest, so the straight rest distance is the
@@ -18,11 +19,10 @@
 // kPathOverGeodesic if that is longer: on a flat sheet the path (octile
 // steps) is at most kPathOverGeodesic times the straight distance, and on
 // a curved mesh the path divided by it stays close to the geodesic, so a
-// tether never holds a cloth at rest. One anchor alone would tear a cloth dragged far
-// in one step along the seams between the anchors' regions (two pins moved
-// 10 m: the springs across the seam reached 31x their rest length); with
-// several, a particle must lie within reach of each, so the regions move
-// together.
+// tether never holds a cloth at rest. One anchor alone would tear a cloth
+// dragged far in one step along the seams between the anchors' regions;
+// with several, a particle must lie within reach of each, so the regions
+// move together (docs/measurements.md, "Tethers in the strain limiter").
 //
 // Written by hand: one clamp per particle over the library's SoA buffers,
 // and a search that must allocate only when the pin set changes.
@@ -60,16 +60,15 @@ class Tethers {
     // Particles [begin, end) farther than (1 + max_strain) * length from
     // an anchor move onto that sphere (the farthest anchor first, the
     // nearest last) and lose their speed away from it, relative to the
-    // anchor's: a rope, which adds no energy. (Giving them the move over h
-    // as speed, as the Provot passes do, raised a 128x128 flag's late
-    // energy rise in wind at 1e4 N/m from 0.12 J to 0.80 J.) Writes only
-    // free particles and reads only pinned ones besides its own, so groups
-    // run in parallel.
+    // anchor's: a rope, which adds no energy (the move over h as speed, as
+    // the Provot passes give it, makes a stiff flag in wind gain energy).
+    // Writes only free particles and reads only pinned ones besides its
+    // own, so groups run in parallel.
     void clamp(float max_strain, uint32_t begin, uint32_t end, Vec3Soa& x, Vec3Soa& v) const;
 
     // How many distance-and-compare steps of a grid's plan cost as much as
-    // one heap step of the search: 1.7 against 11-25 ns (cloth_bench
-    // Tethers/Plan).
+    // one heap step of the search (cloth_bench Tethers/Plan;
+    // docs/measurements.md, "What a change of the pin set costs").
     static constexpr uint64_t kSearchStepOverDistance = 16;
 
   private:
