@@ -79,6 +79,7 @@ cloth_result api_call(const char* function, Body body) {
     // Reporting allocates nothing (Status holds its message in place).
     char message[512];
     std::snprintf(message, sizeof message, "%s: %s", function, status.message);
+    end_at_utf8_boundary(message);
     set_last_error(message);
     if (log_world) {
         const bool warning =

@@ -12,6 +12,23 @@ void set_last_error(const char* message) {
     last_error[sizeof last_error - 1] = '\0';
 }
 
+void end_at_utf8_boundary(char* text) {
+    const size_t length = std::strlen(text);
+    size_t lead = length;
+    // Back over at most three continuation bytes (10xxxxxx) to the sequence's first byte.
+    while (lead > 0 && length - lead < 3 && (static_cast<unsigned char>(text[lead - 1]) & 0xC0) == 0x80) {
+        --lead;
+    }
+    if (lead == 0) return;
+    const unsigned char first = static_cast<unsigned char>(text[lead - 1]);
+    const size_t needed = first < 0x80             ? 1
+                          : (first & 0xE0) == 0xC0 ? 2
+                          : (first & 0xF0) == 0xE0 ? 3
+                          : (first & 0xF8) == 0xF0 ? 4
+                                                   : 1;
+    if (lead - 1 + needed > length) text[lead - 1] = '\0';
+}
+
 }  // namespace cloth
 
 extern "C" {

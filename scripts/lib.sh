@@ -7,9 +7,10 @@ CLOTH_PACKAGES=(cmake ninja-build g++ pkg-config libeigen3-dev libbullet-dev lib
                 libstb-dev libtinyobjloader-dev libcli11-dev abigail-tools nlohmann-json3-dev gnuplot-nox
                 doxygen libxxhash-dev)
 # What the checks add (scripts/test, scripts/format-check, scripts/tidy): the
-# second compiler, the format and naming checks, and MinGW-w64 for the public
-# header's _WIN32 branch. `cloth_install_packages "${CLOTH_CHECK_PACKAGES[@]}"`.
-CLOTH_CHECK_PACKAGES=(clang clang-format clang-tidy gcc-mingw-w64-x86-64-win32)
+# second compiler, the format and naming checks, MinGW-w64 for the public
+# header's _WIN32 branch, and Python with Mono's C# compiler and runtime for
+# the C# binding (bindings/csharp). `cloth_install_packages "${CLOTH_CHECK_PACKAGES[@]}"`.
+CLOTH_CHECK_PACKAGES=(clang clang-format clang-tidy gcc-mingw-w64-x86-64-win32 python3 mono-mcs mono-runtime)
 
 cloth_install_packages() {
     local missing=()

@@ -73,7 +73,35 @@
  * doubles, pointers and 32-bit enums (no C bool: flags are uint8_t, 0 or 1,
  * and any other value counts as 1), and cloth_struct_size() returns the
  * library's size of each of them, so a binding can check its own layouts
- * at run time.
+ * at run time. What else a binding relies on (bindings/csharp/README.md
+ * walks through it for C#):
+ *   - Calling convention: cdecl for every function and callback type
+ *     (CLOTH_CALL).
+ *   - Strings the library returns (cloth_result_name, cloth_stage_name,
+ *     cloth_get_last_error, the names passed to zone callbacks, the message
+ *     passed to a log callback) are NUL-terminated UTF-8 owned by the
+ *     library: the caller never frees them (declared as a managed string
+ *     return, a marshaller frees them; declare a pointer and copy). Names
+ *     are static ASCII; messages are UTF-8 and echo caller input such as an
+ *     OBJ path. Strings the library takes (the OBJ path) are NUL-terminated
+ *     UTF-8 and read during the call only.
+ *   - bool in function signatures (the cloth_*_is_valid() returns and the
+ *     bool* outputs of cloth_is_pinned, cloth_is_sleeping and
+ *     cloth_get_teleported) is C99 _Bool: one byte, 0 or 1, on every
+ *     platform the library builds for. A binding reads and writes exactly
+ *     one byte (C#: byte, or bool with MarshalAs(UnmanagedType.U1); the
+ *     default bool marshalling is a 4-byte BOOL and reads the return
+ *     register's upper bytes, which the ABI leaves undefined).
+ *   - Constants are macros and enums of this header: a binding generates
+ *     them from it (bindings/csharp/generate.py does). The null ids
+ *     (cloth_null_*_id) and cloth_*_id_equal() are header-only and need no
+ *     symbol: a null id is all-zero, and two ids are equal exactly when
+ *     every field is.
+ *   - Descriptions (`_desc`) start from cloth_default_*() (see "Which
+ *     structs carry a cookie"): a zero-filled one is refused. The
+ *     cloth_default_*() functions and cloth_get_version return structs by
+ *     value, in the platform's C convention; cloth_frame_profile (about
+ *     4 KB) is never returned by value but filled through a pointer.
  *
  * Limits: every count the API takes has its limit as a CLOTH_MAX_* macro
  * (section "Limits"); a count above it is refused with
@@ -125,6 +153,19 @@
 #define CLOTH_API __attribute__((visibility("default")))
 #endif
 
+/// The calling convention of every function of this header and of every
+/// callback type (cloth_alloc_fn, cloth_log_fn, cloth_zone_begin_fn, ...):
+/// the C convention, cdecl. On Windows it is spelled out as __cdecl, which
+/// matters on 32-bit x86, where a caller may default to another one (C#
+/// delegates default to stdcall there); on 64-bit Windows and elsewhere
+/// there is one C convention and it changes nothing. A binding declares
+/// every function and callback cdecl (C#: CallingConvention.Cdecl). Since 1.7.
+#if defined(_WIN32)
+#define CLOTH_CALL __cdecl
+#else
+#define CLOTH_CALL
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -154,7 +195,7 @@ typedef struct cloth_version {
 } cloth_version;
 
 /// The version of the library that is loaded (not of the header).
-CLOTH_API cloth_version cloth_get_version(void);
+CLOTH_API cloth_version CLOTH_CALL cloth_get_version(void);
 
 /// Every public struct, for cloth_struct_size(). The values are ABI: a new
 /// struct gets a new value at the end, and no value is ever reused.
@@ -222,7 +263,7 @@ typedef enum cloth_struct_kind {
 /// version). One function for every struct, so that a binding checks all
 /// its layouts with one symbol, and a later struct adds a kind, not a
 /// function.
-CLOTH_API size_t cloth_struct_size(cloth_struct_kind kind);
+CLOTH_API size_t CLOTH_CALL cloth_struct_size(cloth_struct_kind kind);
 
 /* ------------------------------------------------------------------ */
 /* Results                                                              */
@@ -327,12 +368,18 @@ typedef enum cloth_result {
 /// resolution there, so the step could not advance it anyway.
 #define CLOTH_MIN_DT 1.0e-6f
 
-/// A short constant name for a result ("CLOTH_ERROR_NULL_POINTER"). Never NULL.
-CLOTH_API const char* cloth_result_name(cloth_result result);
+/// A short constant name for a result ("CLOTH_ERROR_NULL_POINTER"), or
+/// "CLOTH_ERROR_UNKNOWN" for a value this library does not know. Never NULL:
+/// a static, NUL-terminated ASCII string, valid for the life of the process;
+/// the caller must not free it.
+CLOTH_API const char* CLOTH_CALL cloth_result_name(cloth_result result);
 
 /// The message of the last failed call made on this thread ("" if none).
-/// Valid until the next failing call on this thread.
-CLOTH_API const char* cloth_get_last_error(void);
+/// Never NULL: a NUL-terminated UTF-8 string in a buffer of the library's,
+/// one per thread, that the caller must not free; it is valid until the
+/// next failing call on this thread (copy it to keep it). It may echo
+/// caller input (an OBJ path).
+CLOTH_API const char* CLOTH_CALL cloth_get_last_error(void);
 
 /* ------------------------------------------------------------------ */
 /* Handles                                                              */
@@ -444,19 +491,23 @@ static inline bool cloth_collider_id_equal(cloth_collider_id a, cloth_collider_i
            a.world_generation == b.world_generation;
 }
 
+/* The cloth_*_is_valid() functions return C99 bool: one byte, 0 or 1 (see
+ * "Other languages" at the top: C# declares the return as byte, or as bool
+ * with [return: MarshalAs(UnmanagedType.U1)]). */
+
 /// Whether `world` names a live world: false for the null id, a destroyed
 /// world and an id that was never handed out. Sets no error.
-CLOTH_API bool cloth_world_is_valid(cloth_world_id world);
+CLOTH_API bool CLOTH_CALL cloth_world_is_valid(cloth_world_id world);
 /// Whether `fabric` names a live fabric of a live world (a fabric released
 /// with cloth_fabric_destroy is not, even while cloths still use it).
-CLOTH_API bool cloth_fabric_is_valid(cloth_fabric_id fabric);
+CLOTH_API bool CLOTH_CALL cloth_fabric_is_valid(cloth_fabric_id fabric);
 /// Whether `cloth` names a live cloth of a live world.
-CLOTH_API bool cloth_is_valid(cloth_id cloth);
+CLOTH_API bool CLOTH_CALL cloth_is_valid(cloth_id cloth);
 /// Whether `body` names a live body of a live world.
-CLOTH_API bool cloth_body_is_valid(cloth_body_id body);
+CLOTH_API bool CLOTH_CALL cloth_body_is_valid(cloth_body_id body);
 /// Whether `collider` names a live collider of a live world (a collider
 /// dies with the body it is fixed to).
-CLOTH_API bool cloth_collider_is_valid(cloth_collider_id collider);
+CLOTH_API bool CLOTH_CALL cloth_collider_is_valid(cloth_collider_id collider);
 
 /* ------------------------------------------------------------------ */
 /* World                                                                */
@@ -465,9 +516,9 @@ CLOTH_API bool cloth_collider_is_valid(cloth_collider_id collider);
 /// Allocate `size` bytes aligned to `alignment` (a power of two <= 64).
 /// Return NULL on failure: the call that needed the memory then returns
 /// CLOTH_ERROR_OUT_OF_MEMORY and changes nothing.
-typedef void* cloth_alloc_fn(size_t size, size_t alignment, void* user);
+typedef void* CLOTH_CALL cloth_alloc_fn(size_t size, size_t alignment, void* user);
 /// Free memory returned by the matching cloth_alloc_fn. `ptr` is never NULL.
-typedef void cloth_free_fn(void* ptr, size_t size, void* user);
+typedef void CLOTH_CALL cloth_free_fn(void* ptr, size_t size, void* user);
 
 /// Severity of a message passed to cloth_log_fn.
 typedef enum cloth_log_level {
@@ -482,22 +533,25 @@ typedef enum cloth_log_level {
 } cloth_log_level;
 
 /// Receives every error message (and warnings) of the world's calls.
-typedef void cloth_log_fn(cloth_log_level level, cloth_result code, const char* message, void* user);
+/// `message` is NUL-terminated UTF-8 owned by the library, valid during the
+/// call only (copy it to keep it); the callee must not free it.
+typedef void CLOTH_CALL cloth_log_fn(cloth_log_level level, cloth_result code, const char* message,
+                                     void* user);
 
 /// A range of a task the library hands to the host's job system: run items
 /// [begin, end) as `worker` (an index < cloth_world_desc.worker_count that
 /// no other thread uses at the same time), passing `task_context` back.
-typedef void cloth_task_fn(uint32_t begin, uint32_t end, uint32_t worker, void* task_context);
+typedef void CLOTH_CALL cloth_task_fn(uint32_t begin, uint32_t end, uint32_t worker, void* task_context);
 /// Host job system, Box2D v3.1 style: run `task` over items [0, item_count)
 /// split in ranges of at least `min_range` items, on any of the host's
 /// workers, and return a handle for cloth_finish_task_fn, or NULL if the
 /// work already ran inside this call (then finish is not called). The
 /// ranges may run in any order, concurrently; results do not depend on
 /// the split or on which worker ran what.
-typedef void* cloth_enqueue_task_fn(cloth_task_fn* task, uint32_t item_count, uint32_t min_range,
-                                    void* task_context, void* user);
+typedef void* CLOTH_CALL cloth_enqueue_task_fn(cloth_task_fn* task, uint32_t item_count, uint32_t min_range,
+                                               void* task_context, void* user);
 /// Wait until every range of the enqueued task has run.
-typedef void cloth_finish_task_fn(void* host_task, void* user);
+typedef void CLOTH_CALL cloth_finish_task_fn(void* host_task, void* user);
 
 /// How to create a world: gravity, capacities and the host's callbacks.
 /// Function pointers and user pointers are kept for the world's lifetime.
@@ -535,14 +589,14 @@ typedef struct cloth_world_desc {
 } cloth_world_desc;
 
 /// A world description with every default set (and its cookie).
-CLOTH_API cloth_world_desc cloth_default_world_desc(void);
+CLOTH_API cloth_world_desc CLOTH_CALL cloth_default_world_desc(void);
 
 /// Create a world. At most CLOTH_MAX_WORLDS worlds exist at once.
-CLOTH_API cloth_result cloth_world_create(const cloth_world_desc* desc, cloth_world_id* out_world);
+CLOTH_API cloth_result CLOTH_CALL cloth_world_create(const cloth_world_desc* desc, cloth_world_id* out_world);
 /// Destroy a world and every fabric and cloth in it.
-CLOTH_API cloth_result cloth_world_destroy(cloth_world_id world);
+CLOTH_API cloth_result CLOTH_CALL cloth_world_destroy(cloth_world_id world);
 /// Change gravity (m/s^2).
-CLOTH_API cloth_result cloth_world_set_gravity(cloth_world_id world, const float gravity[3]);
+CLOTH_API cloth_result CLOTH_CALL cloth_world_set_gravity(cloth_world_id world, const float gravity[3]);
 
 /// Move the world's origin to the point `shift` of the current world frame
 /// (origin rebasing, as PhysX's shiftOrigin): `shift` is subtracted from
@@ -558,7 +612,7 @@ CLOTH_API cloth_result cloth_world_set_gravity(cloth_world_id world, const float
 /// CLOTH_ERROR_NOT_FINITE, and a shift with a component beyond
 /// CLOTH_MAX_COORDINATE or one that would take any position out of float
 /// range CLOTH_ERROR_INVALID_VALUE; each leaves the world unchanged.
-CLOTH_API cloth_result cloth_world_shift_origin(cloth_world_id world, const float shift[3]);
+CLOTH_API cloth_result CLOTH_CALL cloth_world_shift_origin(cloth_world_id world, const float shift[3]);
 
 /// Advance every cloth of the world by `dt` seconds, CLOTH_MIN_DT <= dt <= 1
 /// (else CLOTH_ERROR_INVALID_VALUE before anything moves; NaN or infinity:
@@ -571,7 +625,7 @@ CLOTH_API cloth_result cloth_world_shift_origin(cloth_world_id world, const floa
 /// C++ heap). CLOTH_ERROR_SOLVER_FAILED means CG stopped at its iteration
 /// limit; the cloth still advanced. A step allocates nothing from the
 /// world's allocator.
-CLOTH_API cloth_result cloth_step(cloth_world_id world, float dt);
+CLOTH_API cloth_result CLOTH_CALL cloth_step(cloth_world_id world, float dt);
 
 /* ------------------------------------------------------------------ */
 /* Fabric (shared topology)                                             */
@@ -613,7 +667,7 @@ typedef struct cloth_grid_desc {
 } cloth_grid_desc;
 
 /// A grid description with every default set (and its cookie).
-CLOTH_API cloth_grid_desc cloth_default_grid_desc(void);
+CLOTH_API cloth_grid_desc CLOTH_CALL cloth_default_grid_desc(void);
 
 /// An arbitrary triangle mesh. Structural springs on every edge, bend
 /// springs across every edge shared by two triangles; no shear springs.
@@ -638,33 +692,37 @@ typedef struct cloth_mesh_desc {
 
 /// A mesh description with every default set (and its cookie); positions
 /// and indices are NULL and must be set.
-CLOTH_API cloth_mesh_desc cloth_default_mesh_desc(void);
+CLOTH_API cloth_mesh_desc CLOTH_CALL cloth_default_mesh_desc(void);
 
 /// Build a fabric from a grid description. At most max_fabrics per world.
-CLOTH_API cloth_result cloth_fabric_create_grid(cloth_world_id world, const cloth_grid_desc* desc,
-                                                cloth_fabric_id* out_fabric);
+CLOTH_API cloth_result CLOTH_CALL cloth_fabric_create_grid(cloth_world_id world, const cloth_grid_desc* desc,
+                                                           cloth_fabric_id* out_fabric);
 /// Build a fabric from a triangle mesh (its arrays are copied).
-CLOTH_API cloth_result cloth_fabric_create_mesh(cloth_world_id world, const cloth_mesh_desc* desc,
-                                                cloth_fabric_id* out_fabric);
+CLOTH_API cloth_result CLOTH_CALL cloth_fabric_create_mesh(cloth_world_id world, const cloth_mesh_desc* desc,
+                                                           cloth_fabric_id* out_fabric);
 /// Load a triangle mesh from a Wavefront OBJ file (faces are triangulated),
-/// with the limits of cloth_mesh_desc.
-CLOTH_API cloth_result cloth_fabric_create_obj(cloth_world_id world, const char* path, uint32_t spring_kinds,
-                                               cloth_fabric_id* out_fabric);
+/// with the limits of cloth_mesh_desc. `path` is a NUL-terminated UTF-8
+/// string, read during the call only (on Windows it is converted to UTF-16
+/// to open the file; elsewhere its bytes name the file as they are).
+CLOTH_API cloth_result CLOTH_CALL cloth_fabric_create_obj(cloth_world_id world, const char* path,
+                                                          uint32_t spring_kinds, cloth_fabric_id* out_fabric);
 /// Release the handle. Cloths made from the fabric keep working; the
 /// memory is freed when the last of them is destroyed.
-CLOTH_API cloth_result cloth_fabric_destroy(cloth_fabric_id fabric);
+CLOTH_API cloth_result CLOTH_CALL cloth_fabric_destroy(cloth_fabric_id fabric);
 
 /// Number of particles of the fabric (grid: columns * rows; mesh: vertices).
-CLOTH_API cloth_result cloth_fabric_get_particle_count(cloth_fabric_id fabric, uint32_t* out_count);
+CLOTH_API cloth_result CLOTH_CALL cloth_fabric_get_particle_count(cloth_fabric_id fabric,
+                                                                  uint32_t* out_count);
 /// Number of triangles of the fabric (grid: 2 per cell).
-CLOTH_API cloth_result cloth_fabric_get_triangle_count(cloth_fabric_id fabric, uint32_t* out_count);
+CLOTH_API cloth_result CLOTH_CALL cloth_fabric_get_triangle_count(cloth_fabric_id fabric,
+                                                                  uint32_t* out_count);
 /// Number of springs of the given kinds (a bit set of cloth_spring_kind).
-CLOTH_API cloth_result cloth_fabric_get_spring_count(cloth_fabric_id fabric, uint32_t kinds,
-                                                     uint32_t* out_count);
+CLOTH_API cloth_result CLOTH_CALL cloth_fabric_get_spring_count(cloth_fabric_id fabric, uint32_t kinds,
+                                                                uint32_t* out_count);
 /// Copy the triangle indices (3 per triangle) into `out_indices`, which
 /// holds `capacity` uint32 values (at least 3 * triangle count).
-CLOTH_API cloth_result cloth_fabric_read_triangles(cloth_fabric_id fabric, uint32_t* out_indices,
-                                                   uint32_t capacity);
+CLOTH_API cloth_result CLOTH_CALL cloth_fabric_read_triangles(cloth_fabric_id fabric, uint32_t* out_indices,
+                                                              uint32_t capacity);
 
 /* ------------------------------------------------------------------ */
 /* Cloth                                                                */
@@ -724,7 +782,7 @@ typedef struct cloth_solver_settings {
 } cloth_solver_settings;
 
 /// Solver settings with every default set.
-CLOTH_API cloth_solver_settings cloth_default_solver_settings(void);
+CLOTH_API cloth_solver_settings CLOTH_CALL cloth_default_solver_settings(void);
 
 /// Strain limiting, in two parts. Inside the solve (every kind but
 /// CLOTH_SOLVER_EXPLICIT): a spring longer than (1 + max_strain) times its
@@ -768,7 +826,7 @@ typedef struct cloth_strain_limit {
 } cloth_strain_limit;
 
 /// A strain limit with every default set (limiting off).
-CLOTH_API cloth_strain_limit cloth_default_strain_limit(void);
+CLOTH_API cloth_strain_limit CLOTH_CALL cloth_default_strain_limit(void);
 
 /// Aerodynamics: wind, drag and lift per triangle against the relative air
 /// velocity, plus linear air drag per particle.
@@ -814,32 +872,33 @@ typedef struct cloth_desc {
 
 /// A cloth description with every default set (and its cookie); the
 /// fabric is null and must be set.
-CLOTH_API cloth_desc cloth_default_desc(void);
+CLOTH_API cloth_desc CLOTH_CALL cloth_default_desc(void);
 
 /// Create a cloth of a fabric of the same world, at the fabric's rest
 /// positions (or desc->initial_positions), at rest. At most max_cloths per world.
-CLOTH_API cloth_result cloth_create(cloth_world_id world, const cloth_desc* desc, cloth_id* out_cloth);
+CLOTH_API cloth_result CLOTH_CALL cloth_create(cloth_world_id world, const cloth_desc* desc,
+                                               cloth_id* out_cloth);
 /// Destroy a cloth (its fabric lives on while its handle or another cloth uses it).
-CLOTH_API cloth_result cloth_destroy(cloth_id cloth);
+CLOTH_API cloth_result CLOTH_CALL cloth_destroy(cloth_id cloth);
 
 /// Number of particles of the cloth (those of its fabric).
-CLOTH_API cloth_result cloth_get_particle_count(cloth_id cloth, uint32_t* out_count);
+CLOTH_API cloth_result CLOTH_CALL cloth_get_particle_count(cloth_id cloth, uint32_t* out_count);
 
 /// Copy positions (3 floats per particle) into `out_xyz`, which holds
 /// `capacity` floats (at least 3 * particle count).
-CLOTH_API cloth_result cloth_read_positions(cloth_id cloth, float* out_xyz, uint32_t capacity);
+CLOTH_API cloth_result CLOTH_CALL cloth_read_positions(cloth_id cloth, float* out_xyz, uint32_t capacity);
 /// Copy velocities (m/s), same layout as positions.
-CLOTH_API cloth_result cloth_read_velocities(cloth_id cloth, float* out_xyz, uint32_t capacity);
+CLOTH_API cloth_result CLOTH_CALL cloth_read_velocities(cloth_id cloth, float* out_xyz, uint32_t capacity);
 /// Copy unit per-vertex normals (area-weighted triangle normals), same layout.
-CLOTH_API cloth_result cloth_read_normals(cloth_id cloth, float* out_xyz, uint32_t capacity);
+CLOTH_API cloth_result CLOTH_CALL cloth_read_normals(cloth_id cloth, float* out_xyz, uint32_t capacity);
 
 /// Calls that take `indices` and `count` need 1 <= count <= particle count
 /// (else CLOTH_ERROR_INVALID_COUNT) and every index < particle count (else
 /// CLOTH_ERROR_INDEX_OUT_OF_RANGE); they change nothing unless all are valid.
 
 /// Teleport particles: set positions (and zero their velocities).
-CLOTH_API cloth_result cloth_set_positions(cloth_id cloth, const uint32_t* indices,
-                                           const float* positions_xyz, uint32_t count);
+CLOTH_API cloth_result CLOTH_CALL cloth_set_positions(cloth_id cloth, const uint32_t* indices,
+                                                      const float* positions_xyz, uint32_t count);
 
 /// Set particles' masses in kg, each finite (else CLOTH_ERROR_NOT_FINITE)
 /// and > 0 (else CLOTH_ERROR_INVALID_VALUE): a weighted hem, a light trim.
@@ -849,38 +908,40 @@ CLOTH_API cloth_result cloth_set_positions(cloth_id cloth, const uint32_t* indic
 /// rest of the material). CLOTH_SOLVER_DEFAULT chooses its substeps from
 /// the lightest free particle: a few light particles among heavy ones
 /// make every step of the cloth dearer. Since 1.6.
-CLOTH_API cloth_result cloth_set_particle_masses(cloth_id cloth, const uint32_t* indices, const float* masses,
-                                                 uint32_t count);
+CLOTH_API cloth_result CLOTH_CALL cloth_set_particle_masses(cloth_id cloth, const uint32_t* indices,
+                                                            const float* masses, uint32_t count);
 /// Copy every particle's mass in kg, vertex order (capacity >= particle
 /// count). Since 1.6.
-CLOTH_API cloth_result cloth_read_particle_masses(cloth_id cloth, float* out_masses, uint32_t capacity);
+CLOTH_API cloth_result CLOTH_CALL cloth_read_particle_masses(cloth_id cloth, float* out_masses,
+                                                             uint32_t capacity);
 
 /// Pin particles where they are: they become kinematic (infinite mass).
-CLOTH_API cloth_result cloth_pin(cloth_id cloth, const uint32_t* indices, uint32_t count);
+CLOTH_API cloth_result CLOTH_CALL cloth_pin(cloth_id cloth, const uint32_t* indices, uint32_t count);
 /// Release pinned particles; they keep their current velocity.
-CLOTH_API cloth_result cloth_unpin(cloth_id cloth, const uint32_t* indices, uint32_t count);
+CLOTH_API cloth_result CLOTH_CALL cloth_unpin(cloth_id cloth, const uint32_t* indices, uint32_t count);
 /// Move pinned particles: each reaches its target at the end of the next
 /// cloth_step, moving linearly across substeps, and carries the matching
 /// velocity. Every index must be pinned.
-CLOTH_API cloth_result cloth_set_pin_targets(cloth_id cloth, const uint32_t* indices,
-                                             const float* targets_xyz, uint32_t count);
-/// Whether particle `index` is pinned.
-CLOTH_API cloth_result cloth_is_pinned(cloth_id cloth, uint32_t index, bool* out_pinned);
+CLOTH_API cloth_result CLOTH_CALL cloth_set_pin_targets(cloth_id cloth, const uint32_t* indices,
+                                                        const float* targets_xyz, uint32_t count);
+/// Whether particle `index` is pinned. *out_pinned is one byte (C99 bool), 1 or 0.
+CLOTH_API cloth_result CLOTH_CALL cloth_is_pinned(cloth_id cloth, uint32_t index, bool* out_pinned);
 
 /// Change how the cloth is solved (keeps its strain limit; wakes it).
-CLOTH_API cloth_result cloth_set_solver(cloth_id cloth, const cloth_solver_settings* settings);
+CLOTH_API cloth_result CLOTH_CALL cloth_set_solver(cloth_id cloth, const cloth_solver_settings* settings);
 /// Fills the whole struct, struct_size included.
-CLOTH_API cloth_result cloth_get_solver(cloth_id cloth, cloth_solver_settings* out_settings);
+CLOTH_API cloth_result CLOTH_CALL cloth_get_solver(cloth_id cloth, cloth_solver_settings* out_settings);
 /// Set the cloth's strain limit (see cloth_strain_limit).
-CLOTH_API cloth_result cloth_set_strain_limit(cloth_id cloth, const cloth_strain_limit* limit);
+CLOTH_API cloth_result CLOTH_CALL cloth_set_strain_limit(cloth_id cloth, const cloth_strain_limit* limit);
 /// Fills the whole struct, struct_size included.
-CLOTH_API cloth_result cloth_get_strain_limit(cloth_id cloth, cloth_strain_limit* out_limit);
+CLOTH_API cloth_result CLOTH_CALL cloth_get_strain_limit(cloth_id cloth, cloth_strain_limit* out_limit);
 /// Change one or more spring kinds (a bit set of cloth_spring_kind).
-CLOTH_API cloth_result cloth_set_spring_params(cloth_id cloth, uint32_t kinds, cloth_spring_params params);
+CLOTH_API cloth_result CLOTH_CALL cloth_set_spring_params(cloth_id cloth, uint32_t kinds,
+                                                          cloth_spring_params params);
 /// Change wind, drag and lift (wakes the cloth).
-CLOTH_API cloth_result cloth_set_aero(cloth_id cloth, const cloth_aero_params* params);
+CLOTH_API cloth_result CLOTH_CALL cloth_set_aero(cloth_id cloth, const cloth_aero_params* params);
 /// Shorthand: change only the wind velocity (m/s).
-CLOTH_API cloth_result cloth_set_wind(cloth_id cloth, const float wind[3]);
+CLOTH_API cloth_result CLOTH_CALL cloth_set_wind(cloth_id cloth, const float wind[3]);
 
 /// Measurements of a cloth's current state.
 typedef struct cloth_stats {
@@ -919,7 +980,7 @@ typedef struct cloth_stats {
 
 /// Measure the cloth now; the caller sets out_stats->struct_size first
 /// (the size of 1.6, without the strain-limit fields, is accepted too).
-CLOTH_API cloth_result cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);
+CLOTH_API cloth_result CLOTH_CALL cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);
 
 /* ------------------------------------------------------------------ */
 /* Jobs, frame budget and profiling                                   */
@@ -947,7 +1008,7 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);
 /// reaches a worker already polling or asleep after its next job. Results
 /// do not depend on it. Without the world's own threads the value is kept
 /// and has no effect.
-CLOTH_API cloth_result cloth_world_set_worker_spin(cloth_world_id world, uint32_t microseconds);
+CLOTH_API cloth_result CLOTH_CALL cloth_world_set_worker_spin(cloth_world_id world, uint32_t microseconds);
 
 /// The stages of a step, as profiles and traces name them. The values are
 /// numbered in the order the stages were added, not in run order; a substep
@@ -1000,8 +1061,10 @@ typedef enum cloth_stage {
 /// Entries of the per-worker arrays of cloth_frame_profile: the most workers a world has.
 #define CLOTH_MAX_WORKERS 256
 
-/// A stage's short name ("forces", "jacobi_sweep", ...); "?" if unknown. Never NULL.
-CLOTH_API const char* cloth_stage_name(cloth_stage stage);
+/// A stage's short name ("forces", "jacobi_sweep", ...); "?" if unknown.
+/// Never NULL: a static, NUL-terminated ASCII string, valid for the life of
+/// the process; the caller must not free it.
+CLOTH_API const char* CLOTH_CALL cloth_stage_name(cloth_stage stage);
 
 /// What the last cloth_step of a world cost. Filled by
 /// cloth_world_get_frame_profile; times in milliseconds of wall time.
@@ -1064,13 +1127,16 @@ typedef struct cloth_task_record {
 /// memory is allocated here, from the world's allocator), at most
 /// CLOTH_MAX_PROFILED_TASKS; 0 turns recording off and frees it. Stage and worker times are measured while
 /// it is on. Off by default.
-CLOTH_API cloth_result cloth_world_set_profiling(cloth_world_id world, uint32_t max_tasks_per_frame);
+CLOTH_API cloth_result CLOTH_CALL cloth_world_set_profiling(cloth_world_id world,
+                                                            uint32_t max_tasks_per_frame);
 /// The profile of the last cloth_step.
-CLOTH_API cloth_result cloth_world_get_frame_profile(cloth_world_id world, cloth_frame_profile* out_profile);
+CLOTH_API cloth_result CLOTH_CALL cloth_world_get_frame_profile(cloth_world_id world,
+                                                                cloth_frame_profile* out_profile);
 /// Copy the last frame's task records (at most `capacity`); *out_count
 /// receives the number copied.
-CLOTH_API cloth_result cloth_world_read_task_records(cloth_world_id world, cloth_task_record* out_records,
-                                                     uint32_t capacity, uint32_t* out_count);
+CLOTH_API cloth_result CLOTH_CALL cloth_world_read_task_records(cloth_world_id world,
+                                                                cloth_task_record* out_records,
+                                                                uint32_t capacity, uint32_t* out_count);
 /// The last frame as Chrome trace-event JSON (opens in Perfetto and
 /// chrome://tracing): one event for the step, one per stage used (on its
 /// own track, duration = the stage's summed wall time, starting at its
@@ -1079,20 +1145,23 @@ CLOTH_API cloth_result cloth_world_read_task_records(cloth_world_id world, cloth
 /// receives the bytes needed including the NUL. With buffer NULL and
 /// capacity 0 it only reports the size; a buffer too small gives
 /// CLOTH_ERROR_INVALID_COUNT and writes nothing.
-CLOTH_API cloth_result cloth_world_write_trace_json(cloth_world_id world, char* buffer, size_t capacity,
-                                                    size_t* out_size);
+CLOTH_API cloth_result CLOTH_CALL cloth_world_write_trace_json(cloth_world_id world, char* buffer,
+                                                               size_t capacity, size_t* out_size);
 
 /// Profiler zones for the host's profiler (Tracy, Unreal Insights, ...):
 /// begin and end are called on the thread that runs the work, around
 /// every cloth_step ("cloth_step", worker 0) and every task (the stage's
-/// name, as a static string, and the worker index). They must be cheap,
+/// name, as a static string, and the worker index). `name` is static,
+/// NUL-terminated ASCII: the same pointer for the same name every time, so
+/// a host may key a cache on it; the callee must not free it. They must be cheap,
 /// must not call this API, and may run concurrently on different workers.
-typedef void cloth_zone_begin_fn(const char* name, uint32_t worker, void* user);
+typedef void CLOTH_CALL cloth_zone_begin_fn(const char* name, uint32_t worker, void* user);
 /// Ends the zone the matching cloth_zone_begin_fn opened (same name and worker).
-typedef void cloth_zone_end_fn(const char* name, uint32_t worker, void* user);
+typedef void CLOTH_CALL cloth_zone_end_fn(const char* name, uint32_t worker, void* user);
 /// Install (or, with both NULL, remove) zone callbacks.
-CLOTH_API cloth_result cloth_world_set_zone_callbacks(cloth_world_id world, cloth_zone_begin_fn* begin,
-                                                      cloth_zone_end_fn* end, void* user);
+CLOTH_API cloth_result CLOTH_CALL cloth_world_set_zone_callbacks(cloth_world_id world,
+                                                                 cloth_zone_begin_fn* begin,
+                                                                 cloth_zone_end_fn* end, void* user);
 
 /* Frame budget. A world may have a per-frame budget for cloth_step in
  * milliseconds of wall time. Every frame then reports in its profile
@@ -1119,7 +1188,7 @@ CLOTH_API cloth_result cloth_world_set_zone_callbacks(cloth_world_id world, clot
  * policy again (or the solver) lifts the policy's cuts. */
 
 /// Set the world's frame budget in milliseconds, >= 0 (0: no budget, the default).
-CLOTH_API cloth_result cloth_world_set_frame_budget(cloth_world_id world, float milliseconds);
+CLOTH_API cloth_result CLOTH_CALL cloth_world_set_frame_budget(cloth_world_id world, float milliseconds);
 
 /// Bounds within which a world's frame budget may change a cloth's
 /// iterations and substeps (see "Frame budget").
@@ -1139,12 +1208,13 @@ typedef struct cloth_quality_policy {
 } cloth_quality_policy;
 
 /// A quality policy with every default set (off).
-CLOTH_API cloth_quality_policy cloth_default_quality_policy(void);
+CLOTH_API cloth_quality_policy CLOTH_CALL cloth_default_quality_policy(void);
 /// Let the world's budget change this cloth's iterations and substeps within
 /// the bounds (enabling clamps the current settings into them; the current
 /// values are read back with cloth_get_solver, or for CLOTH_SOLVER_DEFAULT
 /// with cloth_get_stats: see "Frame budget").
-CLOTH_API cloth_result cloth_set_quality_policy(cloth_id cloth, const cloth_quality_policy* policy);
+CLOTH_API cloth_result CLOTH_CALL cloth_set_quality_policy(cloth_id cloth,
+                                                           const cloth_quality_policy* policy);
 
 /* Sleep. A cloth whose particles all move slower than max_speed for
  * `frames` consecutive frames goes to sleep: its velocities become zero and
@@ -1166,13 +1236,13 @@ typedef struct cloth_sleep_params {
 } cloth_sleep_params;
 
 /// Sleep parameters with every default set (sleep on).
-CLOTH_API cloth_sleep_params cloth_default_sleep_params(void);
+CLOTH_API cloth_sleep_params CLOTH_CALL cloth_default_sleep_params(void);
 /// Change when the cloth sleeps (wakes it).
-CLOTH_API cloth_result cloth_set_sleep(cloth_id cloth, const cloth_sleep_params* params);
+CLOTH_API cloth_result CLOTH_CALL cloth_set_sleep(cloth_id cloth, const cloth_sleep_params* params);
 /// Wake the cloth: it steps again from the next cloth_step.
-CLOTH_API cloth_result cloth_wake(cloth_id cloth);
-/// Whether the cloth sleeps.
-CLOTH_API cloth_result cloth_is_sleeping(cloth_id cloth, bool* out_sleeping);
+CLOTH_API cloth_result CLOTH_CALL cloth_wake(cloth_id cloth);
+/// Whether the cloth sleeps. *out_sleeping is one byte (C99 bool), 1 or 0.
+CLOTH_API cloth_result CLOTH_CALL cloth_is_sleeping(cloth_id cloth, bool* out_sleeping);
 
 /* ------------------------------------------------------------------ */
 /* Snapshots                                                          */
@@ -1202,16 +1272,16 @@ CLOTH_API cloth_result cloth_is_sleeping(cloth_id cloth, bool* out_sleeping);
  * snapshots written by any library of the same format. */
 
 /// Bytes a snapshot of this cloth needs.
-CLOTH_API cloth_result cloth_get_snapshot_size(cloth_id cloth, size_t* out_size);
+CLOTH_API cloth_result CLOTH_CALL cloth_get_snapshot_size(cloth_id cloth, size_t* out_size);
 /// Write a snapshot into `buffer` of `capacity` bytes (at least the snapshot size).
-CLOTH_API cloth_result cloth_save_snapshot(cloth_id cloth, void* buffer, size_t capacity);
+CLOTH_API cloth_result CLOTH_CALL cloth_save_snapshot(cloth_id cloth, void* buffer, size_t capacity);
 /// Restore a snapshot of `size` bytes (exactly the size it was saved with).
 /// A buffer that is truncated, has any byte changed, is no snapshot or one
 /// of another format is CLOTH_ERROR_CORRUPT_SNAPSHOT; an intact snapshot of
 /// a cloth of another particle count is CLOTH_ERROR_INVALID_COUNT, and of
 /// another fabric with the same count CLOTH_ERROR_INVALID_VALUE. In every
 /// case the cloth is unchanged.
-CLOTH_API cloth_result cloth_restore_snapshot(cloth_id cloth, const void* buffer, size_t size);
+CLOTH_API cloth_result CLOTH_CALL cloth_restore_snapshot(cloth_id cloth, const void* buffer, size_t size);
 
 /* ------------------------------------------------------------------ */
 /* Bodies, colliders and attachments                                  */
@@ -1264,29 +1334,30 @@ typedef struct cloth_body_desc {
 } cloth_body_desc;
 
 /// A body description with every default set (and its cookie).
-CLOTH_API cloth_body_desc cloth_default_body_desc(void);
+CLOTH_API cloth_body_desc CLOTH_CALL cloth_default_body_desc(void);
 
 /// Create a body at the description's pose. At most CLOTH_MAX_BODIES bodies per world.
-CLOTH_API cloth_result cloth_body_create(cloth_world_id world, const cloth_body_desc* desc,
-                                         cloth_body_id* out_body);
+CLOTH_API cloth_result CLOTH_CALL cloth_body_create(cloth_world_id world, const cloth_body_desc* desc,
+                                                    cloth_body_id* out_body);
 /// Destroy a body, the colliders fixed to it, every attachment to it (those
 /// particles become free, keeping their velocity) and every carrier link to it.
-CLOTH_API cloth_result cloth_body_destroy(cloth_body_id body);
+CLOTH_API cloth_result CLOTH_CALL cloth_body_destroy(cloth_body_id body);
 /// The pose the body reaches at the end of the next cloth_step; it moves
 /// there from its current pose across the step's substeps.
-CLOTH_API cloth_result cloth_body_set_pose(cloth_body_id body, const float position[3],
-                                           const float rotation[4]);
+CLOTH_API cloth_result CLOTH_CALL cloth_body_set_pose(cloth_body_id body, const float position[3],
+                                                      const float rotation[4]);
 /// Jump to a pose: the next step starts there (no sweep, no interpolation).
 /// Attachments jump with it; free particles stay where they are unless the
 /// cloth's carrier teleport handling moves them (cloth_carrier_desc).
-CLOTH_API cloth_result cloth_body_teleport(cloth_body_id body, const float position[3],
-                                           const float rotation[4]);
+CLOTH_API cloth_result CLOTH_CALL cloth_body_teleport(cloth_body_id body, const float position[3],
+                                                      const float rotation[4]);
 /// Velocities of the body (origin velocity in m/s, angular velocity in rad/s,
 /// world frame). Used for friction against its colliders.
-CLOTH_API cloth_result cloth_body_set_velocity(cloth_body_id body, const float linear[3],
-                                               const float angular[3]);
+CLOTH_API cloth_result CLOTH_CALL cloth_body_set_velocity(cloth_body_id body, const float linear[3],
+                                                          const float angular[3]);
 /// The pose set last (position, rotation quaternion x, y, z, w).
-CLOTH_API cloth_result cloth_body_get_pose(cloth_body_id body, float out_position[3], float out_rotation[4]);
+CLOTH_API cloth_result CLOTH_CALL cloth_body_get_pose(cloth_body_id body, float out_position[3],
+                                                      float out_rotation[4]);
 
 /// Common part of every collider.
 typedef struct cloth_collider_desc {
@@ -1306,33 +1377,38 @@ typedef struct cloth_collider_desc {
 
 /// A collider description with every default set (and its cookie): static,
 /// at the origin.
-CLOTH_API cloth_collider_desc cloth_default_collider_desc(void);
+CLOTH_API cloth_collider_desc CLOTH_CALL cloth_default_collider_desc(void);
 
 /// A sphere of `radius` > 0 m centred on the local origin.
-CLOTH_API cloth_result cloth_collider_create_sphere(cloth_world_id world, const cloth_collider_desc* desc,
-                                                    float radius, cloth_collider_id* out_collider);
+CLOTH_API cloth_result CLOTH_CALL cloth_collider_create_sphere(cloth_world_id world,
+                                                               const cloth_collider_desc* desc, float radius,
+                                                               cloth_collider_id* out_collider);
 /// A capsule along the local y axis: the segment from (0, -half_height, 0) to
 /// (0, half_height, 0), swept by `radius` > 0 (half_height >= 0), as
 /// btCapsuleShape (up axis y) with half_height = its getHalfHeight().
-CLOTH_API cloth_result cloth_collider_create_capsule(cloth_world_id world, const cloth_collider_desc* desc,
-                                                     float radius, float half_height,
-                                                     cloth_collider_id* out_collider);
+CLOTH_API cloth_result CLOTH_CALL cloth_collider_create_capsule(cloth_world_id world,
+                                                                const cloth_collider_desc* desc, float radius,
+                                                                float half_height,
+                                                                cloth_collider_id* out_collider);
 /// A box with the given half extents (each > 0) centred on the local origin.
-CLOTH_API cloth_result cloth_collider_create_box(cloth_world_id world, const cloth_collider_desc* desc,
-                                                 const float half_extents[3],
-                                                 cloth_collider_id* out_collider);
+CLOTH_API cloth_result CLOTH_CALL cloth_collider_create_box(cloth_world_id world,
+                                                            const cloth_collider_desc* desc,
+                                                            const float half_extents[3],
+                                                            cloth_collider_id* out_collider);
 /// The solid half-space { p : dot(normal, p) <= offset } in the local frame
 /// (btStaticPlaneShape's normal and constant). `normal` need not be unit
 /// length but must not be zero.
-CLOTH_API cloth_result cloth_collider_create_plane(cloth_world_id world, const cloth_collider_desc* desc,
-                                                   const float normal[3], float offset,
-                                                   cloth_collider_id* out_collider);
+CLOTH_API cloth_result CLOTH_CALL cloth_collider_create_plane(cloth_world_id world,
+                                                              const cloth_collider_desc* desc,
+                                                              const float normal[3], float offset,
+                                                              cloth_collider_id* out_collider);
 /// The convex hull of `point_count` local points (4..CLOTH_MAX_HULL_POINTS, 3 floats each, not
 /// all in one plane: else CLOTH_ERROR_DEGENERATE_GEOMETRY).
-CLOTH_API cloth_result cloth_collider_create_convex_hull(cloth_world_id world,
-                                                         const cloth_collider_desc* desc,
-                                                         const float* points_xyz, uint32_t point_count,
-                                                         cloth_collider_id* out_collider);
+CLOTH_API cloth_result CLOTH_CALL cloth_collider_create_convex_hull(cloth_world_id world,
+                                                                    const cloth_collider_desc* desc,
+                                                                    const float* points_xyz,
+                                                                    uint32_t point_count,
+                                                                    cloth_collider_id* out_collider);
 /// A triangle mesh (typically static: terrain, walls). Triangles are
 /// one-sided solids of shallow depth: the front is where the winding
 /// (counter-clockwise) normal points. A particle closer than the thickness
@@ -1340,11 +1416,9 @@ CLOTH_API cloth_result cloth_collider_create_convex_hull(cloth_world_id world,
 /// in front. 3..CLOTH_MAX_MESH_COLLIDER_VERTICES vertices and
 /// 1..CLOTH_MAX_MESH_COLLIDER_TRIANGLES triangles; no degenerate triangle; the
 /// vertices' span must fit a float (else CLOTH_ERROR_INVALID_VALUE).
-CLOTH_API cloth_result cloth_collider_create_triangle_mesh(cloth_world_id world,
-                                                           const cloth_collider_desc* desc,
-                                                           const float* vertices_xyz, uint32_t vertex_count,
-                                                           const uint32_t* indices, uint32_t triangle_count,
-                                                           cloth_collider_id* out_collider);
+CLOTH_API cloth_result CLOTH_CALL cloth_collider_create_triangle_mesh(
+    cloth_world_id world, const cloth_collider_desc* desc, const float* vertices_xyz, uint32_t vertex_count,
+    const uint32_t* indices, uint32_t triangle_count, cloth_collider_id* out_collider);
 
 /// A height field in the local frame, solid below. Sample (c, r) sits at
 /// (c * spacing_x, heights[r * columns + c], r * spacing_z); cell (c, r) is
@@ -1370,17 +1444,18 @@ typedef struct cloth_heightfield_desc {
 
 /// A height field description with every default set (and its cookie);
 /// heights is NULL and must be set.
-CLOTH_API cloth_heightfield_desc cloth_default_heightfield_desc(void);
+CLOTH_API cloth_heightfield_desc CLOTH_CALL cloth_default_heightfield_desc(void);
 
 /// A height field (cloth_heightfield_desc); its heights are copied.
-CLOTH_API cloth_result cloth_collider_create_heightfield(cloth_world_id world,
-                                                         const cloth_collider_desc* desc,
-                                                         const cloth_heightfield_desc* heightfield,
-                                                         cloth_collider_id* out_collider);
+CLOTH_API cloth_result CLOTH_CALL cloth_collider_create_heightfield(cloth_world_id world,
+                                                                    const cloth_collider_desc* desc,
+                                                                    const cloth_heightfield_desc* heightfield,
+                                                                    cloth_collider_id* out_collider);
 /// Destroy a collider; cloths stop colliding with it from the next step.
-CLOTH_API cloth_result cloth_collider_destroy(cloth_collider_id collider);
+CLOTH_API cloth_result CLOTH_CALL cloth_collider_destroy(cloth_collider_id collider);
 /// Change which cloths collide with it (see cloth_collision_params.collider_mask).
-CLOTH_API cloth_result cloth_collider_set_group_bits(cloth_collider_id collider, uint32_t group_bits);
+CLOTH_API cloth_result CLOTH_CALL cloth_collider_set_group_bits(cloth_collider_id collider,
+                                                                uint32_t group_bits);
 
 /// How a cloth meets colliders.
 typedef struct cloth_collision_params {
@@ -1395,11 +1470,11 @@ typedef struct cloth_collision_params {
 } cloth_collision_params;
 
 /// Collision parameters with every default set.
-CLOTH_API cloth_collision_params cloth_default_collision_params(void);
+CLOTH_API cloth_collision_params CLOTH_CALL cloth_default_collision_params(void);
 /// Change how the cloth meets colliders.
-CLOTH_API cloth_result cloth_set_collision(cloth_id cloth, const cloth_collision_params* params);
+CLOTH_API cloth_result CLOTH_CALL cloth_set_collision(cloth_id cloth, const cloth_collision_params* params);
 /// Fills the whole struct, struct_size included.
-CLOTH_API cloth_result cloth_get_collision(cloth_id cloth, cloth_collision_params* out_params);
+CLOTH_API cloth_result CLOTH_CALL cloth_get_collision(cloth_id cloth, cloth_collision_params* out_params);
 
 /// Attach particles to a body, particle indices[k] at body-local offset
 /// local_offsets_xyz[3k..3k+2] (m). With local_offsets_xyz NULL, each stays
@@ -1408,14 +1483,14 @@ CLOTH_API cloth_result cloth_get_collision(cloth_id cloth, cloth_collision_param
 /// sit exactly at body pose * offset, the body pose interpolated across the
 /// step. Re-attaching a particle moves it to the new body and offset. The
 /// body must be in the cloth's world.
-CLOTH_API cloth_result cloth_attach(cloth_id cloth, cloth_body_id body, const uint32_t* indices,
-                                    const float* local_offsets_xyz, uint32_t count);
+CLOTH_API cloth_result CLOTH_CALL cloth_attach(cloth_id cloth, cloth_body_id body, const uint32_t* indices,
+                                               const float* local_offsets_xyz, uint32_t count);
 /// Release attached particles (each must be attached); they keep their
 /// velocity. cloth_unpin releases attached particles too.
-CLOTH_API cloth_result cloth_detach(cloth_id cloth, const uint32_t* indices, uint32_t count);
+CLOTH_API cloth_result CLOTH_CALL cloth_detach(cloth_id cloth, const uint32_t* indices, uint32_t count);
 /// Whether particle `index` is attached, and to which body (null if not).
-CLOTH_API cloth_result cloth_get_attachment(cloth_id cloth, uint32_t index, cloth_body_id* out_body,
-                                            float out_local_offset[3]);
+CLOTH_API cloth_result CLOTH_CALL cloth_get_attachment(cloth_id cloth, uint32_t index,
+                                                       cloth_body_id* out_body, float out_local_offset[3]);
 
 /// What a carrier teleport does to the cloth (cloth_carrier_desc.teleport_mode).
 typedef enum cloth_teleport_mode {
@@ -1458,15 +1533,17 @@ typedef struct cloth_carrier_desc {
 } cloth_carrier_desc;
 
 /// A carrier description with every default set (and its cookie).
-CLOTH_API cloth_carrier_desc cloth_default_carrier_desc(void);
+CLOTH_API cloth_carrier_desc CLOTH_CALL cloth_default_carrier_desc(void);
 
 /// Make `body` the cloth's carrier (a null body removes the carrier; desc is
 /// then ignored and may be NULL). The cloth's current positions relative to
 /// the body's current pose become its reference shape for
 /// CLOTH_TELEPORT_AND_RESET.
-CLOTH_API cloth_result cloth_set_carrier(cloth_id cloth, cloth_body_id body, const cloth_carrier_desc* desc);
-/// Whether the carrier teleport handling fired in the last step of this cloth.
-CLOTH_API cloth_result cloth_get_teleported(cloth_id cloth, bool* out_teleported);
+CLOTH_API cloth_result CLOTH_CALL cloth_set_carrier(cloth_id cloth, cloth_body_id body,
+                                                    const cloth_carrier_desc* desc);
+/// Whether the carrier teleport handling fired in the last step of this
+/// cloth. *out_teleported is one byte (C99 bool), 1 or 0.
+CLOTH_API cloth_result CLOTH_CALL cloth_get_teleported(cloth_id cloth, bool* out_teleported);
 
 /* ------------------------------------------------------------------ */
 /* Self-collision                                                     */
@@ -1503,15 +1580,17 @@ typedef struct cloth_self_collision_desc {
 } cloth_self_collision_desc;
 
 /// Self-collision settings with every default set (and its cookie); off.
-CLOTH_API cloth_self_collision_desc cloth_default_self_collision_desc(void);
+CLOTH_API cloth_self_collision_desc CLOTH_CALL cloth_default_self_collision_desc(void);
 
 /// Enable, change or disable (desc->enabled = 0) self-collision of a
 /// cloth. Enabling allocates (CLOTH_ERROR_OUT_OF_MEMORY changes nothing);
 /// a thickness above twice the fabric's mean rest edge is
 /// CLOTH_ERROR_INVALID_VALUE (rest neighbours would need too many rings).
-CLOTH_API cloth_result cloth_set_self_collision(cloth_id cloth, const cloth_self_collision_desc* desc);
+CLOTH_API cloth_result CLOTH_CALL cloth_set_self_collision(cloth_id cloth,
+                                                           const cloth_self_collision_desc* desc);
 /// The current settings (enabled = 0 and defaults while off).
-CLOTH_API cloth_result cloth_get_self_collision(cloth_id cloth, cloth_self_collision_desc* out_desc);
+CLOTH_API cloth_result CLOTH_CALL cloth_get_self_collision(cloth_id cloth,
+                                                           cloth_self_collision_desc* out_desc);
 
 /// What the last substep's self-collision did (all zero while off).
 typedef struct cloth_self_collision_stats {
@@ -1531,7 +1610,8 @@ typedef struct cloth_self_collision_stats {
 
 /// What the last substep's self-collision did; the caller sets
 /// out_stats->struct_size first.
-CLOTH_API cloth_result cloth_get_self_collision_stats(cloth_id cloth, cloth_self_collision_stats* out_stats);
+CLOTH_API cloth_result CLOTH_CALL cloth_get_self_collision_stats(cloth_id cloth,
+                                                                 cloth_self_collision_stats* out_stats);
 
 #ifdef __cplusplus
 } /* extern "C" */

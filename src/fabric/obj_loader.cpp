@@ -2,11 +2,72 @@
 // triangulated by the loader, then built like any triangle mesh.
 #include <tiny_obj_loader.h>
 
+#include <string>
 #include <vector>
 
 #include "fabric/fabric.h"
 
+#if defined(_WIN32)
+#ifndef NOMINMAX
+#define NOMINMAX
+#endif
+#ifndef WIN32_LEAN_AND_MEAN
+#define WIN32_LEAN_AND_MEAN
+#endif
+#include <windows.h>
+
+#include <cstdio>
+#endif
+
 namespace cloth {
+
+namespace {
+
+// Parse the OBJ file at `path`, a UTF-8 string (cloth.h). Elsewhere the
+// bytes name the file as they are; Windows' narrow file functions would
+// read them in the ANSI code page, so there the path is converted to
+// UTF-16 and the file read through _wfopen.
+bool parse_obj_file(const char* path, const tinyobj::ObjReaderConfig& config, tinyobj::ObjReader& reader,
+                    std::string& error) {
+#if defined(_WIN32)
+    const int wide_length = MultiByteToWideChar(CP_UTF8, MB_ERR_INVALID_CHARS, path, -1, nullptr, 0);
+    if (wide_length <= 0) {
+        error = "the path is not valid UTF-8";
+        return false;
+    }
+    std::wstring wide(static_cast<size_t>(wide_length), L'\0');
+    MultiByteToWideChar(CP_UTF8, MB_ERR_INVALID_CHARS, path, -1, &wide[0], wide_length);
+    std::FILE* file = _wfopen(wide.c_str(), L"rb");
+    if (!file) {
+        error = "cannot open the file";
+        return false;
+    }
+    std::string text;
+    char chunk[16384];
+    size_t n = 0;
+    while ((n = std::fread(chunk, 1, sizeof chunk, file)) > 0) text.append(chunk, n);
+    const bool read_error = std::ferror(file) != 0;
+    std::fclose(file);
+    if (read_error) {
+        error = "cannot read the file";
+        return false;
+    }
+    // Materials are not used: no .mtl text.
+    if (!reader.ParseFromString(text, std::string(), config)) {
+        error = reader.Error();
+        return false;
+    }
+    return true;
+#else
+    if (!reader.ParseFromFile(path, config)) {
+        error = reader.Error();
+        return false;
+    }
+    return true;
+#endif
+}
+
+}  // namespace
 
 Status build_obj_fabric(const char* path, uint32_t spring_kinds, Fabric& out) {
     if (!path) return Status::error(CLOTH_ERROR_NULL_POINTER, "OBJ path is NULL");
@@ -14,8 +75,9 @@ Status build_obj_fabric(const char* path, uint32_t spring_kinds, Fabric& out) {
     config.triangulate = true;
     config.vertex_color = false;
     tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(path, config)) {
-        return Status::error(CLOTH_ERROR_IO, "cannot load OBJ '%s': %s", path, reader.Error().c_str());
+    std::string error;
+    if (!parse_obj_file(path, config, reader, error)) {
+        return Status::error(CLOTH_ERROR_IO, "cannot load OBJ '%s': %s", path, error.c_str());
     }
     const auto& vertices = reader.GetAttrib().vertices;
     std::vector<uint32_t> indices;

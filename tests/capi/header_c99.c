@@ -12,6 +12,12 @@
 #include <cloth/cloth.h>
 #include <cloth/cloth.h> /* the include guard must make a second inclusion harmless */
 
+/* Every function and callback type carries the calling-convention macro
+ * (empty here, __cdecl on Windows: tests/abi/win32_header.c). */
+#ifndef CLOTH_CALL
+#error "cloth.h must define CLOTH_CALL"
+#endif
+
 /* C99 has no _Static_assert: a negative array size fails to compile. */
 #define CLOTH_HEADER_CHECK(name, cond) typedef char cloth_header_check_##name[(cond) ? 1 : -1]
 

@@ -1,0 +1,437 @@
+// The C# binding end to end under Mono: every struct's layout against the
+// library, a grid cloth stepped and read, stats, a snapshot round trip, a
+// body attachment, the frame profile and zone callbacks on worker threads,
+// a counting allocator, and the error paths with their messages. Prints one
+// line per check and exits non-zero on the first failure.
+using System;
+using System.Collections.Generic;
+using System.Runtime.InteropServices;
+using System.Threading;
+using ClothSharp;
+
+static class ClothTests
+{
+    static int checks;
+
+    static void Check(bool condition, string what)
+    {
+        if (!condition) throw new Exception("FAILED: " + what);
+        ++checks;
+        Console.WriteLine("ok - " + what);
+    }
+
+    static bool Finite(float f) { return !float.IsNaN(f) && !float.IsInfinity(f); }
+
+    static int Main()
+    {
+        try
+        {
+            Layouts();
+            GridCloth();
+            Snapshot();
+            Attachment();
+            ProfileAndZones();
+            Allocator();
+            Errors();
+            Console.WriteLine("C# binding: all " + checks + " checks passed");
+            return 0;
+        }
+        catch (Exception e)
+        {
+            Console.WriteLine(e);
+            return 1;
+        }
+    }
+
+    // Every struct of the binding has the library's size (cloth_struct_size), and the library can
+    // serve this header.
+    static void Layouts()
+    {
+        ClothVersion v = ClothLibrary.Version;
+        Console.WriteLine("library " + v.Major + "." + v.Minor + "." + v.Patch + ", header " + Native.CLOTH_VERSION_MAJOR +
+                          "." + Native.CLOTH_VERSION_MINOR + "." + Native.CLOTH_VERSION_PATCH);
+        Check(v.Major == Native.CLOTH_VERSION_MAJOR && v.Minor == Native.CLOTH_VERSION_MINOR, "library version is the header's");
+        string[] mismatches = Native.CheckStructLayouts();
+        foreach (string m in mismatches) Console.WriteLine("  layout mismatch: " + m);
+        int kinds = 0;
+        foreach (ClothStructKind k in Enum.GetValues(typeof(ClothStructKind)))
+        {
+            if (k != ClothStructKind.None && k != ClothStructKind.KindForceU32) ++kinds;
+        }
+        Check(mismatches.Length == 0 && Native.StructTypes.Length == kinds,
+              "all " + Native.StructTypes.Length + " structs have the size cloth_struct_size reports");
+        ClothLibrary.Verify();
+        Check(Marshal.SizeOf(typeof(ClothFrameProfile)) == (int)(ulong)Native.cloth_struct_size(ClothStructKind.FrameProfile),
+              "frame profile is " + Marshal.SizeOf(typeof(ClothFrameProfile)) + " bytes on both sides");
+        Check(ClothLibrary.ResultName(ClothResult.ErrorCorruptSnapshot) == "CLOTH_ERROR_CORRUPT_SNAPSHOT" &&
+              ClothLibrary.StageName(ClothStage.Forces) == "forces",
+              "returned strings are copied, not freed (result and stage names, twice)");
+        Check(ClothLibrary.ResultName(ClothResult.Ok) == "CLOTH_OK" && ClothLibrary.StageName(ClothStage.Forces) == "forces",
+              "the names read again after the first copies");
+    }
+
+    static void GridCloth()
+    {
+        using (var world = new World())
+        {
+            ClothGridDesc grid = ClothGridDesc.Default();
+            grid.Columns = 16;
+            grid.Rows = 16;
+            using (Fabric fabric = world.CreateGridFabric(grid))
+            {
+                Check(fabric.ParticleCount == 256 && fabric.TriangleCount == 2 * 15 * 15, "grid fabric: 256 particles, 450 triangles");
+                Cloth cloth = world.CreateCloth(fabric);
+                Check(cloth.ParticleCount == 256, "cloth of the fabric: 256 particles");
+                cloth.Pin(new uint[] { 0, 15 });
+                Check(cloth.IsPinned(0) && cloth.IsPinned(15) && !cloth.IsPinned(7), "bool outputs: 0 and 15 pinned, 7 not");
+                Check(Native.cloth_is_valid(cloth.Id) == 1 && Native.cloth_is_valid(ClothId.Null) == 0, "bool returns: one byte, 1 and 0");
+                Check(cloth.Id == cloth.Id && cloth.Id != ClothId.Null && ClothId.Null.IsNull && !cloth.Id.IsNull,
+                      "ids compare field by field; the null id is all-zero");
+
+                var xyz = new float[3 * cloth.ParticleCount];
+                cloth.ReadPositions(xyz);
+                float startY = xyz[3 * 255 + 1];
+                ClothResult last = ClothResult.Ok;
+                for (int frame = 0; frame < 120; ++frame) last = world.Step(1.0f / 60.0f);
+                Check(last == ClothResult.Ok, "120 steps of 1/60 s return Ok");
+                var span = new Span<float>(xyz);
+                cloth.ReadPositions(span);
+                bool finite = true;
+                foreach (float f in xyz) finite &= Finite(f);
+                Check(finite, "positions finite after 120 steps (Span overload)");
+                Check(xyz[0] == 0.0f && xyz[1] == 0.0f && xyz[2] == 0.0f, "pinned corner 0 stayed at the origin");
+                var vertices = new Float3[cloth.ParticleCount];
+                cloth.ReadPositions(vertices);
+                Check(vertices[255].Y == xyz[3 * 255 + 1], "Float3[] overload reads the same positions");
+                var normals = new float[3 * 256];
+                cloth.ReadNormals(normals);
+                float n = normals[0] * normals[0] + normals[1] * normals[1] + normals[2] * normals[2];
+                Check(Math.Abs(n - 1.0f) < 1e-3f, "normals are unit length");
+
+                ClothStats stats = cloth.GetStats();
+                Console.WriteLine(string.Format("  stats: kinetic {0:F4} J, elastic {1:F4} J, max strain {2:F4}, iterations {3}",
+                                                stats.KineticEnergy, stats.ElasticEnergy, stats.MaxStrain, stats.LastSolverIterations));
+                Check(stats.StructSize == (uint)Marshal.SizeOf(typeof(ClothStats)) && stats.LastStepResult == ClothResult.Ok &&
+                      stats.MaxStrain > 0.0f && stats.MaxStrain < 0.2f && stats.LastSolverIterations > 0,
+                      "stats: struct_size kept, last step Ok, strain within 0.2");
+                Check(xyz[3 * 255 + 1] < startY, "the free corner fell (y " + startY + " -> " + xyz[3 * 255 + 1] + ")");
+                ClothSolverSettings solver = cloth.Solver;
+                Check(solver.Kind == ClothSolverKind.Default && solver.StructSize == (uint)Marshal.SizeOf(typeof(ClothSolverSettings)),
+                      "solver settings read back (CLOTH_SOLVER_DEFAULT)");
+            }
+        }
+    }
+
+    static bool SameBits(float[] a, float[] b)
+    {
+        if (a.Length != b.Length) return false;
+        for (int i = 0; i < a.Length; ++i)
+        {
+            if (BitConverter.ToInt32(BitConverter.GetBytes(a[i]), 0) != BitConverter.ToInt32(BitConverter.GetBytes(b[i]), 0)) return false;
+        }
+        return true;
+    }
+
+    static void Snapshot()
+    {
+        using (var world = new World())
+        {
+            Fabric fabric = world.CreateGridFabric(ClothGridDesc.Default());
+            Cloth cloth = world.CreateCloth(fabric);
+            cloth.Pin(new uint[] { 0, 31 });
+            cloth.SetWind(new Float3(2.0f, 0.0f, 1.0f));
+            for (int i = 0; i < 30; ++i) world.Step(1.0f / 60.0f);
+            byte[] snapshot = cloth.SaveSnapshot();
+            var saved = new float[3 * cloth.ParticleCount];
+            cloth.ReadPositions(saved);
+            for (int i = 0; i < 30; ++i) world.Step(1.0f / 60.0f);
+            var first = new float[saved.Length];
+            cloth.ReadPositions(first);
+
+            cloth.RestoreSnapshot(snapshot);
+            var restored = new float[saved.Length];
+            cloth.ReadPositions(restored);
+            Check(SameBits(saved, restored), "snapshot of " + snapshot.Length + " bytes restores the positions bit for bit");
+            for (int i = 0; i < 30; ++i) world.Step(1.0f / 60.0f);
+            var second = new float[saved.Length];
+            cloth.ReadPositions(second);
+            Check(SameBits(first, second), "30 steps after the restore repeat the same bits");
+
+            byte[] damaged = (byte[])snapshot.Clone();
+            damaged[damaged.Length / 2] ^= 0x01;
+            var before = new float[saved.Length];
+            cloth.ReadPositions(before);
+            try
+            {
+                cloth.RestoreSnapshot(damaged);
+                Check(false, "a flipped byte is refused");
+            }
+            catch (ClothException e)
+            {
+                Console.WriteLine("  refused: " + e.Message);
+                var after = new float[saved.Length];
+                cloth.ReadPositions(after);
+                Check(e.Result == ClothResult.ErrorCorruptSnapshot && SameBits(before, after),
+                      "a snapshot with one flipped byte is refused (CORRUPT_SNAPSHOT), the cloth unchanged");
+            }
+            var span = new ReadOnlySpan<byte>(snapshot);
+            cloth.RestoreSnapshot(span);
+            cloth.ReadPositions(restored);
+            Check(SameBits(saved, restored), "the intact snapshot restores again (ReadOnlySpan<byte> overload)");
+        }
+    }
+
+    static void Attachment()
+    {
+        using (var world = new World())
+        {
+            ClothGridDesc grid = ClothGridDesc.Default();
+            grid.Columns = 8;
+            grid.Rows = 8;
+            Fabric fabric = world.CreateGridFabric(grid);
+            Cloth cloth = world.CreateCloth(fabric);
+            Body pole = world.CreateBody(ClothBodyDesc.Default());
+            // The top row hangs from the pole, 0.1 m in front of its axis.
+            var top = new uint[8];
+            var offsets = new float[3 * 8];
+            for (uint c = 0; c < 8; ++c)
+            {
+                top[c] = c;
+                offsets[3 * c + 0] = c / 7.0f;
+                offsets[3 * c + 2] = 0.1f;
+            }
+            cloth.Attach(pole, top, offsets);
+            Check(cloth.IsPinned(3), "attached particles report pinned");
+            Collider sphere = world.CreateSphere(ClothColliderDesc.Default(), 0.2f);
+            float x = 0.0f;
+            for (int frame = 0; frame < 60; ++frame)
+            {
+                x += 0.05f;  // 3 m/s along x
+                pole.SetPose(new Float3(x, 1.0f, 0.0f), new Float4(0, 0, 0, 1));
+                pole.SetVelocity(new Float3(3.0f, 0.0f, 0.0f), new Float3(0, 0, 0));
+                world.Step(1.0f / 60.0f);
+            }
+            var xyz = new float[3 * cloth.ParticleCount];
+            cloth.ReadPositions(xyz);
+            float error = 0.0f;
+            for (uint c = 0; c < 8; ++c)
+            {
+                error = Math.Max(error, Math.Abs(xyz[3 * c] - (x + c / 7.0f)));
+                error = Math.Max(error, Math.Abs(xyz[3 * c + 1] - 1.0f));
+                error = Math.Max(error, Math.Abs(xyz[3 * c + 2] - 0.1f));
+            }
+            Check(error < 1e-5f, "the attached row sits at body pose * offset after 60 frames (error " + error + " m)");
+            Float3 p;
+            Float4 q;
+            pole.GetPose(out p, out q);
+            Check(Math.Abs(p.X - x) < 1e-6f && q.W == 1.0f, "body pose reads back " + p);
+            Check(xyz[3 * 60] > 2.0f && Finite(xyz[3 * 60 + 1]), "the free rows were carried along (bottom row x 0.571 -> " + xyz[3 * 60] + " m)");
+            pole.Dispose();
+            Check(!cloth.IsPinned(3) && Native.cloth_collider_is_valid(sphere.Id) == 1,
+                  "disposing the body frees its attachments; the static collider stays");
+            sphere.Dispose();  // a static collider: destroyed now
+            Check(Native.cloth_collider_is_valid(sphere.Id) == 0, "collider disposed");
+        }
+    }
+
+    // Counts zones per thread; called by the library's workers concurrently.
+    sealed class ZoneCounter : IClothZoneListener
+    {
+        public int Begins, Ends, MaxWorker;
+        public readonly Dictionary<int, int> Threads = new Dictionary<int, int>();
+        public readonly HashSet<string> Names = new HashSet<string>();
+
+        public void Begin(string name, uint worker)
+        {
+            Interlocked.Increment(ref Begins);
+            lock (Threads)
+            {
+                int id = Thread.CurrentThread.ManagedThreadId;
+                int n;
+                Threads.TryGetValue(id, out n);
+                Threads[id] = n + 1;
+                Names.Add(name);
+                if ((int)worker > MaxWorker) MaxWorker = (int)worker;
+            }
+        }
+
+        public void End(string name, uint worker) { Interlocked.Increment(ref Ends); }
+    }
+
+    static void ProfileAndZones()
+    {
+        ClothWorldDesc desc = ClothWorldDesc.Default();
+        desc.WorkerCount = 4;
+        using (var world = new World(desc))
+        {
+            ClothGridDesc grid = ClothGridDesc.Default();
+            grid.Columns = 64;
+            grid.Rows = 64;
+            Fabric fabric = world.CreateGridFabric(grid);
+            Cloth cloth = world.CreateCloth(fabric);
+            cloth.Pin(new uint[] { 0, 63 });
+            var zones = new ZoneCounter();
+            world.SetZoneCallbacks(zones);
+            world.SetProfiling(4096);
+            world.SetWorkerSpin(2000);  // workers keep polling between these back-to-back steps
+            for (int i = 0; i < 20; ++i) world.Step(1.0f / 60.0f);
+            world.SetZoneCallbacks(null);
+            world.Step(1.0f / 60.0f);
+            var profile = ClothFrameProfile.Default();
+            world.GetFrameProfile(ref profile);
+            double stages = 0.0;
+            for (int s = 0; s < Native.CLOTH_MAX_STAGES; ++s) stages += profile.GetStageMs(s);
+            double busy = 0.0;
+            for (int w = 0; w < profile.WorkerCount; ++w) busy += profile.GetWorkerBusyMs(w);
+            Console.WriteLine(string.Format("  profile: frame {0}, step {1:F3} ms, {2} workers, busy {3:F3} ms, {4} tasks, solve {5:F3} ms",
+                                            profile.Frame, profile.StepMs, profile.WorkerCount, busy, profile.TaskCount,
+                                            profile.GetStageMs((int)ClothStage.IterativeSolve)));
+            Check(profile.Frame == 21 && profile.WorkerCount == 4 && profile.StepMs > 0.0 && stages > 0.0 && busy > 0.0 &&
+                  profile.TaskCount > 0 && profile.GetStageTasks((int)ClothStage.Forces) > 0,
+                  "frame profile: frame 21, 4 workers, stage and worker times, task records");
+            var records = new ClothTaskRecord[profile.TaskCount];
+            int count = world.ReadTaskRecords(records);
+            Check(count == (int)profile.TaskCount && records[0].Cloth == cloth.Id && records[count - 1].EndUs >= records[0].StartUs,
+                  count + " task records name the cloth");
+            string trace = world.WriteTraceJson();
+            Check(trace.StartsWith("{") && trace.Contains("\"forces\""), "trace JSON of " + trace.Length + " characters");
+
+            Console.WriteLine("  zones: " + zones.Begins + " on " + zones.Threads.Count + " threads, highest worker " + zones.MaxWorker +
+                              ", names " + string.Join(" ", new List<string>(zones.Names).ToArray()));
+            Check(zones.Begins == zones.Ends && zones.Begins > 20, "every zone that began ended (" + zones.Begins + ")");
+            Check(zones.Names.Contains("cloth_step") && zones.Names.Contains("forces"), "zones name the step and its stages");
+            Check(zones.Threads.Count >= 2 && zones.MaxWorker >= 1, "zone callbacks ran on worker threads (" + zones.Threads.Count + " threads)");
+        }
+    }
+
+    // Memory from the managed side: alignment up to 64, and free receives the aligned pointer with
+    // its size, so each block is over-allocated and the raw pointer kept in a map.
+    sealed class CountingAllocator : ClothAllocator
+    {
+        public int Allocations, Frees, BadFrees;
+        public ulong LiveBytes, MaxAlignment;
+        readonly Dictionary<long, KeyValuePair<IntPtr, ulong>> blocks = new Dictionary<long, KeyValuePair<IntPtr, ulong>>();
+
+        public override IntPtr Allocate(ulong size, ulong alignment)
+        {
+            if (alignment == 0 || (alignment & (alignment - 1)) != 0 || alignment > 64) return IntPtr.Zero;
+            IntPtr raw = Marshal.AllocHGlobal((IntPtr)(long)(size + alignment));
+            long aligned = ((long)raw + (long)alignment - 1) & ~((long)alignment - 1);
+            lock (blocks) blocks.Add(aligned, new KeyValuePair<IntPtr, ulong>(raw, size));
+            ++Allocations;
+            LiveBytes += size;
+            if (alignment > MaxAlignment) MaxAlignment = alignment;
+            return (IntPtr)aligned;
+        }
+
+        public override void Free(IntPtr pointer, ulong size)
+        {
+            KeyValuePair<IntPtr, ulong> block;
+            lock (blocks)
+            {
+                if (!blocks.TryGetValue((long)pointer, out block) || block.Value != size)
+                {
+                    ++BadFrees;
+                    return;
+                }
+                blocks.Remove((long)pointer);
+            }
+            ++Frees;
+            LiveBytes -= size;
+            Marshal.FreeHGlobal(block.Key);
+        }
+
+        public int Live { get { lock (blocks) return blocks.Count; } }
+    }
+
+    static void Allocator()
+    {
+        var allocator = new CountingAllocator();
+        var world = new World(ClothWorldDesc.Default(), allocator);
+        int afterWorld = allocator.Allocations;
+        Fabric fabric = world.CreateGridFabric(ClothGridDesc.Default());
+        Cloth cloth = world.CreateCloth(fabric);
+        int afterCloth = allocator.Allocations;
+        world.Step(1.0f / 60.0f);
+        int afterStep = allocator.Allocations;
+        world.SetProfiling(1024);  // allocated from the world's allocator
+        cloth.Dispose();
+        fabric.Dispose();
+        Check(afterWorld > 0 && afterCloth > afterWorld && allocator.Allocations > afterStep,
+              "world, cloth and profiling memory came from the C# allocator (" + allocator.Allocations + " blocks)");
+        Check(afterStep == afterCloth, "a step allocates nothing");
+        world.Dispose();
+        Console.WriteLine("  allocator: " + allocator.Allocations + " allocations, " + allocator.Frees + " frees, largest alignment " +
+                          allocator.MaxAlignment);
+        Check(allocator.Frees == allocator.Allocations && allocator.Live == 0 && allocator.LiveBytes == 0 && allocator.BadFrees == 0,
+              "every block freed once, with its aligned pointer and size");
+        IntPtr block = allocator.Allocate(1000, 64);
+        bool aligned = ((long)block & 63) == 0;
+        allocator.Free(block, 1000);
+        Check(allocator.MaxAlignment == 64 && aligned && allocator.Live == 0 && allocator.BadFrees == 0,
+              "the allocator serves alignment 64 too (the library asked for up to 16 here; cloth.h allows 64)");
+    }
+
+    static void Errors()
+    {
+        var messages = new List<string>();
+        using (var world = new World(ClothWorldDesc.Default(), null, (level, code, message) => messages.Add(code + ": " + message)))
+        {
+            try
+            {
+                world.Step(0.0f);
+                Check(false, "dt 0 is refused");
+            }
+            catch (ClothException e)
+            {
+                Console.WriteLine("  " + e.Message);
+                Check(e.Result == ClothResult.ErrorInvalidValue && e.Message.Contains("cloth_step"),
+                      "dt 0 throws ClothException(INVALID_VALUE) with the library's message");
+                Check(messages.Count == 1 && messages[0].Contains(e.LibraryMessage), "the log callback heard the same message");
+            }
+
+            try
+            {
+                world.CreateGridFabric(new ClothGridDesc());  // zero-filled: no cookie
+                Check(false, "a description made with new is refused");
+            }
+            catch (ClothException e)
+            {
+                Console.WriteLine("  " + e.Message);
+                Check(e.Result == ClothResult.ErrorInvalidDesc, "a description made with new is refused (INVALID_DESC): start from Default()");
+            }
+
+            string path = "/nonexistent/\u00e9toffe-\u5e03.obj";
+            try
+            {
+                world.LoadObjFabric(path);
+                Check(false, "a missing OBJ file is refused");
+            }
+            catch (ClothException e)
+            {
+                Console.WriteLine("  " + e.Message);
+                Check(e.Result == ClothResult.ErrorIo && e.LibraryMessage.Contains(path), "the OBJ path goes in and comes back as UTF-8");
+            }
+
+            // A message cut to the library's buffer ends on a whole UTF-8 character.
+            string longPath = "/nonexistent/" + new string('\u00e9', 400) + ".obj";
+            try
+            {
+                world.LoadObjFabric(longPath);
+            }
+            catch (ClothException e)
+            {
+                Check(e.Result == ClothResult.ErrorIo && e.LibraryMessage.IndexOf('\uFFFD') < 0 && e.LibraryMessage.Length < longPath.Length,
+                      "a truncated message is still valid UTF-8 (" + e.LibraryMessage.Length + " characters)");
+            }
+
+            var stale = world.CreateGridFabric(ClothGridDesc.Default());
+            ClothFabricId id = stale.Id;
+            stale.Dispose();
+            uint n;
+            ClothResult r = Native.cloth_fabric_get_particle_count(id, out n);
+            Check(r == ClothResult.ErrorInvalidHandle && ClothLibrary.LastError.Length > 0,
+                  "a destroyed fabric's id is refused: " + ClothLibrary.LastError);
+        }
+    }
+}
