@@ -1061,7 +1061,9 @@ typedef enum cloth_stage {
 /// Entries of the per-worker arrays of cloth_frame_profile: the most workers a world has.
 #define CLOTH_MAX_WORKERS 256
 
-/// A stage's short name ("forces", "jacobi_sweep", ...); "?" if unknown.
+/// A stage's short name: its enumerator's without CLOTH_STAGE_, in lower
+/// case ("forces", "jacobi_sweep", ...; since 1.7 also "self_collision",
+/// which was "self_hash"); "?" if unknown.
 /// Never NULL: a static, NUL-terminated ASCII string, valid for the life of
 /// the process; the caller must not free it.
 CLOTH_API const char* CLOTH_CALL cloth_stage_name(cloth_stage stage);

@@ -5,14 +5,11 @@
 // Quality is a ladder of (iterations, substeps) rungs (quality_ladder.h):
 // from the top (the policy's maximum, or what CLOTH_SOLVER_DEFAULT chooses
 // by itself within that maximum) the iterations fall to half the top's,
-// then a substep goes and the iterations come back, and so on. Measured on
-// the vehicle flag's course (docs/vehicle_flag.md, the default's own 5
-// iterations at 2 substeps: max strain 0.106): below about half its
-// iterations a solve stops holding the strain limit (3 iterations at 2
-// substeps 0.114, 1 iteration 0.150), while a substep costs more than the
-// iterations it would run (5 iterations at 1 substep reach 0.114-0.130
-// over perturbed runs for 0.57 ms a frame, 1 iteration at 2 substeps 0.150
-// for 0.71 ms).
+// then a substep goes and the iterations come back, and so on: below about
+// half its iterations a solve stops holding the strain limit, while a
+// substep costs more than the iterations it would run (on the vehicle
+// flag's course 1 iteration at 2 substeps costs more than 5 at 1 and holds
+// less; docs/measurements.md, "The ladder").
 //
 // A rung's cost is what the cloth's frames cost there lately
 // (QualityCosts), or at a rung it has not run a model of its last frame:

@@ -5,8 +5,10 @@
 // out of the colliders, and, where the collision stage found contacts,
 // after every round that moved particles, so the next pass sees where the
 // particles really are: limiting after the colliders alone pulls a spring
-// that wraps a thin collider (the flag round its pole) through it. A
-// collider round touches only its own group's particles, so running it as
+// that wraps a thin collider (the flag round its pole) through it; without
+// contacts those runs would buy nothing and cost half the stage
+// (docs/measurements.md, "Colliders between the strain limiter's rounds
+// only after a contact"). A collider round touches only its own group's particles, so running it as
 // a round of its own gives the bits of running it in the limiter's task.
 #pragma once
 

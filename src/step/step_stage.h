@@ -63,7 +63,7 @@ inline const char* stage_name(Stage stage) {
         case Stage::kCollisions:
             return "collisions";
         case Stage::kSelfCollision:
-            return "self_hash";
+            return "self_collision";
         case Stage::kSelfSort:
             return "self_sort";
         case Stage::kSelfContacts:

@@ -138,7 +138,8 @@ void World::run_round_range(uint32_t begin, uint32_t end, uint32_t worker) {
     if (!zone_begin_ && !zone_end_) {
         // One clock read per task: each task starts when the one before it
         // on this worker ended (a clock read costs about as much as the
-        // vehicle flag's smallest tasks: two a task were 3 % of its step).
+        // vehicle flag's smallest tasks; docs/measurements.md, "One clock
+        // read per timed task").
         int64_t start = now_ns();
         for (uint32_t t = begin; t < end; ++t) {
             round_[t].cloth->run_task(round_[t].task, worker);
@@ -203,8 +204,8 @@ void World::destroy_body(uint32_t body) {
 
 // Tasks (particle groups of kGroupSize) a worker takes at least at a time.
 // A round of a few groups runs on one thread: waking a second worker costs
-// more than it saves there (Jobs/Overhead32: a 32 x 32 flag, 4 groups, ran
-// 1.6x slower on 2 workers than on 1 with ranges of one group).
+// more than it saves there (Jobs/Overhead32; docs/measurements.md, "A
+// round of a few groups on one thread").
 constexpr uint32_t kMinTasksPerRange = 4;
 
 Status World::shift_origin(const Vec3& shift) {
@@ -238,7 +239,6 @@ Status World::step(float dt) {
             continue;
         }
         cloth->begin_frame(dt, gravity);
-        cloth_cost_ns_[s] = cloth_solve_ns_[s] = 0;
         stepping_.push_back(s);
         stepping_cloths_.push_back(cloth);
     }

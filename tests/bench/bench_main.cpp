@@ -1,7 +1,7 @@
 // cloth_bench: step cost per solver kind and grid size (Google Benchmark,
 // single thread), preceded by the accuracy table that shows where the
 // paper's one-iteration step stands against the full solve
-// (algorithm.md section 6).
+// (docs/method.md, "Where one iteration stops holding").
 //
 //   cloth_bench [--accuracy=full|quick|off] [Google Benchmark flags]
 //

@@ -297,7 +297,8 @@ int main(void) {
             CHECK(all_finite(velocities, 3 * PARTICLES), "%s: velocities not finite", names[c]);
             dy = mean_y_of_free(positions) - mean_y_of_free(start);
             /* CG must fall; 4 Jacobi sweeps at this stiffness-to-mass ratio are the
-               unstable regime of algorithm.md section 6, so only boundedness is asked. */
+               unstable regime of docs/method.md, "Where one iteration stops holding", so only boundedness is
+               asked. */
             if (c == 1) {
                 CHECK(dy < -0.05, "%s: the free particles did not fall (mean y moved by %g m)", names[c], dy);
             } else {

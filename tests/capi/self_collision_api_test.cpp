@@ -257,7 +257,7 @@ TEST(SelfCollisionApi, FrameProfileShowsTheSelfCollisionStagesOnlyWhenEnabled) {
     EXPECT_EQ(profile.stage_tasks[CLOTH_STAGE_SELF_CONTACTS], 4u);
     EXPECT_GE(profile.stage_tasks[CLOTH_STAGE_SELF_PROJECT], 4u);
     EXPECT_EQ(profile.stage_tasks[CLOTH_STAGE_SELF_RESPOND], 4u);
-    EXPECT_STREQ(cloth_stage_name(CLOTH_STAGE_SELF_COLLISION), "self_hash");
+    EXPECT_STREQ(cloth_stage_name(CLOTH_STAGE_SELF_COLLISION), "self_collision");
     EXPECT_STREQ(cloth_stage_name(CLOTH_STAGE_SELF_SORT), "self_sort");
     EXPECT_STREQ(cloth_stage_name(CLOTH_STAGE_SELF_CONTACTS), "self_contacts");
     EXPECT_STREQ(cloth_stage_name(CLOTH_STAGE_SELF_PROJECT), "self_project");

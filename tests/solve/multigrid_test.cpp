@@ -51,7 +51,7 @@ TEST(Multigrid, ATinyClothHasNoLevelsAndPcgFallsBackToBlockJacobi) {
 
 // The reason it exists: tension crosses the whole cloth in one V-cycle, so
 // the iteration count does not grow with stiffness or resolution the way
-// block Jacobi's does (frontier.md: on the order of sqrt(condition)).
+// block Jacobi's does (docs/method.md, "Multigrid-preconditioned CG": on the order of sqrt(condition)).
 TEST(Multigrid, PcgWithMultigridNeedsAFractionOfBlockJacobisIterationsOnAStiffGrid) {
     for (uint32_t side : {32u, 64u}) {
         SCOPED_TRACE(::testing::Message() << side << "x" << side);

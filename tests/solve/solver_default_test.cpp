@@ -89,7 +89,7 @@ TEST(DefaultSolver, FlagInWindHoldsStrain) {
 }
 
 // JACOBI k=1 at the same settings is what the default replaces: it
-// over-stretches and gains energy (algorithm.md 6), so the test above
+// over-stretches and gains energy (docs/method.md, "Where one iteration stops holding"), so the test above
 // distinguishes a holding solver from the paper's one-iteration step.
 TEST(DefaultSolver, ThePaperStepFailsWhereTheDefaultHolds) {
     SceneConfig config;
