@@ -80,6 +80,67 @@ TEST(Profile, EveryStageRunsOneTaskPerGroupPerCloth) {
     }
 }
 
+// The colliders run again inside the strain limit as a stage of their own:
+// after the limiter's last pass when the cloth has colliders, and after
+// every pass that moved particles while the substep touches one; never
+// without colliders. One soft 32 x 32 cloth (4 groups), PCG with a strain
+// limit of 2 passes, one substep, falling from its two pinned corners.
+TEST(Profile, TheCollidersBetweenStrainLimitPassesAreTheirOwnStage) {
+    struct Case {
+        const char* name;
+        bool collider;
+        float depth;  // of a ball's top below the sheet, m
+    };
+    for (const Case& c :
+         {Case{"no collider", false, 0.0f}, Case{"far below", true, 10.0f}, Case{"touching", true, 0.02f}}) {
+        SCOPED_TRACE(c.name);
+        cloth_world_desc world_desc = cloth_default_world_desc();
+        cloth_world_id world{};
+        ASSERT_EQ(cloth_world_create(&world_desc, &world), CLOTH_OK);
+        cloth_grid_desc grid = cloth_default_grid_desc();
+        grid.v[1] = 0.0f;  // a horizontal sheet at y = 0
+        grid.v[2] = 1.0f;
+        cloth_fabric_id fabric{};
+        ASSERT_EQ(cloth_fabric_create_grid(world, &grid, &fabric), CLOTH_OK);
+        cloth_desc desc = cloth_default_desc();
+        desc.fabric = fabric;
+        desc.solver.kind = CLOTH_SOLVER_PCG;
+        desc.solver.iterations = 4;
+        desc.structural.stiffness = desc.shear.stiffness = 10.0f;  // soft: the limiter has work
+        cloth_id cloth{};
+        ASSERT_EQ(cloth_create(world, &desc, &cloth), CLOTH_OK);
+        cloth_strain_limit limit = cloth_default_strain_limit();
+        limit.max_strain = 0.08f;
+        limit.iterations = 2;
+        ASSERT_EQ(cloth_set_strain_limit(cloth, &limit), CLOTH_OK);
+        const uint32_t corners[] = {0, 31};
+        ASSERT_EQ(cloth_pin(cloth, corners, 2), CLOTH_OK);
+        if (c.collider) {  // a ball under the sheet's middle
+            cloth_collider_desc collider = cloth_default_collider_desc();
+            collider.local_position[0] = collider.local_position[2] = 0.5f;
+            collider.local_position[1] = -0.25f - c.depth;
+            cloth_collider_id ball{};
+            ASSERT_EQ(cloth_collider_create_sphere(world, &collider, 0.25f, &ball), CLOTH_OK);
+        }
+        ASSERT_EQ(cloth_world_set_profiling(world, 1000), CLOTH_OK);
+        for (int i = 0; i < 10; ++i) ASSERT_EQ(cloth_step(world, 1.0f / 60.0f), CLOTH_OK);
+        const cloth_frame_profile p = profile_of(world);
+        const uint32_t groups = 4, limiting = p.stage_tasks[CLOTH_STAGE_STRAIN_LIMIT];
+        const uint32_t colliding = p.stage_tasks[CLOTH_STAGE_LIMIT_COLLISIONS];
+        EXPECT_GE(limiting, groups) << "the strain limit ran";
+        EXPECT_STREQ(cloth_stage_name(CLOTH_STAGE_LIMIT_COLLISIONS), "limit_collisions");
+        if (!c.collider) {
+            EXPECT_EQ(colliding, 0u);
+        } else if (c.depth > 1.0f) {
+            EXPECT_EQ(colliding, groups) << "once, after the last pass";
+            EXPECT_GT(p.stage_tasks[CLOTH_STAGE_COLLISIONS], 0u);
+        } else {
+            EXPECT_GT(colliding, groups) << "after every pass that moved particles too";
+        }
+        cloth_world_destroy(world);
+    }
+}
+
 TEST(Profile, TasksBeyondTheCapacityAreCountedAsDropped) {
     Scene scene(three_flags());
     ASSERT_TRUE(scene.ok());
