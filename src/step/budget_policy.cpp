@@ -8,7 +8,7 @@ namespace {
 
 // Where a cloth stands on its ladder: its current settings' rung.
 QualityRung current_rung(const QualityLadder& ladder, const ClothInstance& cloth) {
-    const SolverSettings settings = cloth.quality_settings();
+    const SolverSettings settings = cloth.quality().settings();
     return ladder.rung_of(settings.iterations, settings.substeps);
 }
 
@@ -18,8 +18,8 @@ QualityRung current_rung(const QualityLadder& ladder, const ClothInstance& cloth
 // the solve) and per iteration and substep.
 class RungCost {
   public:
-    RungCost(const BudgetCloth& c, uint64_t frame) : costs_(c.cloth->quality_costs()), frame_(frame) {
-        const QualityRung ran = c.cloth->ran_rung();
+    RungCost(const BudgetCloth& c, uint64_t frame) : costs_(c.cloth->quality().costs()), frame_(frame) {
+        const QualityRung ran = c.cloth->quality().ran_rung();
         const double substeps = std::max(ran.substeps, 1u), iterations = std::max(ran.iterations, 1u);
         const double cost = static_cast<double>(c.cost_ns);
         const double usual = costs_.cost_ns(ran, frame);
@@ -40,10 +40,10 @@ class RungCost {
 };
 
 void set_rung(ClothInstance& cloth, QualityRung rung) {
-    SolverSettings next = cloth.quality_settings();
+    SolverSettings next = cloth.quality().settings();
     next.iterations = rung.iterations;
     next.substeps = rung.substeps;
-    cloth.set_quality_settings(next);
+    cloth.quality().set_settings(next);
 }
 
 // Moves one cloth down its ladder until the predicted step (`predicted`,
@@ -52,7 +52,7 @@ void set_rung(ClothInstance& cloth, QualityRung rung) {
 double lower(const BudgetCloth& c, uint64_t frame, double predicted, double target, double ms_per_ns,
              bool below_floor) {
     ClothInstance& cloth = *c.cloth;
-    const QualityLadder ladder = cloth.quality_ladder();
+    const QualityLadder ladder = cloth.quality().ladder();
     const RungCost cost(c, frame);
     const double others = predicted - static_cast<double>(c.cost_ns) * ms_per_ns;
     QualityRung rung = current_rung(ladder, cloth);
@@ -85,8 +85,9 @@ void BudgetPolicy::after_frame(double budget_ms, double step_ms, uint64_t frame,
     // judged against what the rung usually costs, not with itself in it.
     for (uint32_t c = 0; c < count; ++c) {
         ClothInstance& cloth = *cloths[c].cloth;
-        if (cloth.quality_policy().enabled)
-            cloth.quality_costs().record(cloth.ran_rung(), static_cast<double>(cloths[c].cost_ns), frame);
+        if (cloth.quality().policy().enabled)
+            cloth.quality().costs().record(cloth.quality().ran_rung(), static_cast<double>(cloths[c].cost_ns),
+                                           frame);
     }
 }
 
@@ -106,7 +107,7 @@ void BudgetPolicy::decide(double budget_ms, double step_ms, uint64_t frame, int6
         const bool below_floor =
             static_cast<uint32_t>(__builtin_popcount(recent_overruns_ & window)) >= kLoadOverruns;
         for (uint32_t c = 0; c < count && predicted > kLowerTo * budget_ms; ++c) {
-            if (!cloths[c].cloth->quality_policy().enabled) continue;
+            if (!cloths[c].cloth->quality().policy().enabled) continue;
             predicted = lower(cloths[c], frame, predicted, kLowerTo * budget_ms, ms_per_ns, below_floor);
         }
         return;
@@ -119,8 +120,8 @@ void BudgetPolicy::decide(double budget_ms, double step_ms, uint64_t frame, int6
     calm_frames_ = 0;
     for (uint32_t c = count; c-- > 0;) {  // the cheapest first
         ClothInstance& cloth = *cloths[c].cloth;
-        if (!cloth.quality_policy().enabled || !cloth.quality_can_rise()) continue;
-        const QualityLadder ladder = cloth.quality_ladder();
+        if (!cloth.quality().policy().enabled || !cloth.quality().can_rise()) continue;
+        const QualityLadder ladder = cloth.quality().ladder();
         const RungCost cost(cloths[c], frame);
         QualityRung rung = current_rung(ladder, cloth);
         if (!ladder.up(rung)) continue;

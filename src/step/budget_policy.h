@@ -31,12 +31,12 @@
 //                        again until forgotten)
 //
 // Below the floor a cloth's strain limit runs only the passes asked for
-// (ClothInstance::quality_below_floor): behind a solve that no longer
+// (ClothQuality::below_floor): behind a solve that no longer
 // holds the cloth the extra passes grow with every rung cut, which no
 // prediction sees (docs/vehicle_flag.md). A CLOTH_SOLVER_DEFAULT cloth
 // picks its own iterations and substeps every frame: the policy keeps its
 // rung as caps on that choice, and raising ends when the caps reach it
-// (ClothInstance::quality_settings).
+// (ClothQuality::settings).
 #pragma once
 
 #include <cstdint>

@@ -138,62 +138,14 @@ const Vec3Soa& ClothInstance::normals() const {
 }
 
 void ClothInstance::set_quality_policy(const QualityPolicy& policy) {
-    quality_ = policy;
-    quality_costs_.clear();
-    // A default solver the policy had capped goes back to its own choice.
-    solver_.default_iteration_cap = solver_.default_substep_cap = 0;
-    if (!policy.enabled) return;
-    solver_.iterations = std::clamp(solver_.iterations, policy.min_iterations, policy.max_iterations);
-    solver_.substeps = std::clamp(solver_.substeps, policy.min_substeps, policy.max_substeps);
+    quality_.set_policy(policy);
     wake();
-}
-
-SolverSettings ClothInstance::quality_settings() const {
-    if (solver_.kind != CLOTH_SOLVER_DEFAULT) return solver_;
-    SolverSettings out = solver_;
-    out.iterations =
-        solver_.default_iteration_cap > 0 ? solver_.default_iteration_cap : frame_.solver.iterations;
-    out.substeps = solver_.default_substep_cap > 0 ? solver_.default_substep_cap : frame_.solver.substeps;
-    return out;
-}
-
-void ClothInstance::set_quality_settings(const SolverSettings& settings) {
-    if (solver_.kind != CLOTH_SOLVER_DEFAULT) {
-        solver_ = settings;
-        return;
-    }
-    // Caps at or above the default's own choice of the last frame change
-    // nothing: drop them, so the default follows its own choice again.
-    const bool below = settings.iterations < frame_.own_iterations || settings.substeps < frame_.own_substeps;
-    solver_.default_iteration_cap = below ? settings.iterations : 0;
-    solver_.default_substep_cap = below ? settings.substeps : 0;
 }
 
 void ClothInstance::set_solver(const SolverSettings& settings) {
     solver_ = settings;
-    quality_costs_.clear();
+    quality_.costs().clear();
     wake();
-}
-
-QualityLadder ClothInstance::quality_ladder() const {
-    const QualityRung top = solver_.kind == CLOTH_SOLVER_DEFAULT
-                                ? QualityRung{frame_.own_iterations, frame_.own_substeps}
-                                : QualityRung{quality_.max_iterations, quality_.max_substeps};
-    return {top, quality_.min_iterations, quality_.min_substeps};
-}
-
-bool ClothInstance::quality_can_rise() const {
-    return solver_.kind != CLOTH_SOLVER_DEFAULT || solver_.default_iteration_cap > 0 ||
-           solver_.default_substep_cap > 0;
-}
-
-bool ClothInstance::quality_below_floor() const {
-    if (!quality_.enabled) return false;
-    const bool lowered =
-        solver_.kind == CLOTH_SOLVER_DEFAULT
-            ? frame_.solver.iterations < frame_.own_iterations || frame_.solver.substeps < frame_.own_substeps
-            : solver_.iterations < quality_.max_iterations || solver_.substeps < quality_.max_substeps;
-    return lowered && frame_.solver.iterations < quality_ladder().floor();
 }
 
 // ---------------------------------------------------------------- sleep

@@ -29,8 +29,8 @@
 #include "solve/solver_settings.h"
 #include "solve/solvers.h"
 #include "solve/strain_limit.h"
+#include "step/cloth_quality.h"
 #include "step/frame_context.h"
-#include "step/quality_ladder.h"
 #include "step/step_stage.h"
 
 namespace cloth {
@@ -44,14 +44,6 @@ struct SleepSettings {
     bool enabled = true;
     float max_speed = 1e-3f;  // m/s: every particle slower than this...
     uint32_t frames = 60;     // ...for this many consecutive frames
-};
-
-// Bounds within which a world's frame budget may change a cloth's solver
-// iterations and substeps (budget_policy.h). Off by default.
-struct QualityPolicy {
-    bool enabled = false;
-    uint32_t min_iterations = 1, max_iterations = 8;
-    uint32_t min_substeps = 1, max_substeps = 4;
 };
 
 class ClothInstance {
@@ -105,34 +97,16 @@ class ClothInstance {
     bool can_shift_origin(const Vec3& shift) const;
     void shift_origin(const Vec3& shift);
 
-    // Frame-budget policy bounds; enabling clamps the solver into them.
+    // The cloth under a world's frame budget (cloth_quality.h). A new
+    // quality policy wakes the cloth.
     void set_quality_policy(const QualityPolicy& policy);
-    const QualityPolicy& quality_policy() const { return quality_; }
-    // The iterations and substeps the frame-budget policy steps from
-    // (budget_policy.h): the solver settings' own or, for
-    // CLOTH_SOLVER_DEFAULT, its caps, or what its last frame ran when it has
-    // none. Setting them sets the settings, or the default's caps (removed
-    // once they reach what the default chooses by itself).
-    SolverSettings quality_settings() const;
-    void set_quality_settings(const SolverSettings& settings);
-    // The ladder the policy moves this cloth along (budget_policy.h): from
-    // the policy's top, or the default's own choice of this frame, down to
-    // the policy's minimum. And the rung this frame ran.
-    QualityLadder quality_ladder() const;
-    QualityRung ran_rung() const { return {frame_.solver.iterations, frame_.solver.substeps}; }
+    ClothQuality& quality() { return quality_; }
+    const ClothQuality& quality() const { return quality_; }
     // The strain limit the last step ran with (0: none).
     float ran_strain_limit() const {
         const StrainLimit& limit = frame_.solver.strain_limit;
         return limit.iterations > 0 ? limit.max_strain : 0.0f;
     }
-    QualityCosts& quality_costs() { return quality_costs_; }
-    const QualityCosts& quality_costs() const { return quality_costs_; }
-    // Whether the policy may raise them: not for a default running its own choice.
-    bool quality_can_rise() const;
-    // Whether the policy has taken this frame below its ladder's floor
-    // (fewer iterations than half the top's): a solve that no longer holds
-    // the cloth, whose strain limit then runs only the passes asked for.
-    bool quality_below_floor() const;
 
     // Snapshots (cloth_snapshot.cpp): the dynamic state in a flat buffer.
     size_t snapshot_size() const;
@@ -314,8 +288,7 @@ class ClothInstance {
 
     void update_sleep();  // end of a successful frame
     SleepSettings sleep_;
-    QualityPolicy quality_;
-    QualityCosts quality_costs_;  // the budget policy's memory of what each rung cost
+    ClothQuality quality_{solver_, frame_};
     bool sleeping_ = false;
     uint32_t rest_frames_ = 0;  // consecutive frames below sleep_.max_speed
 

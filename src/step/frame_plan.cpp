@@ -88,7 +88,7 @@ StagedAlgorithm* ClothInstance::begin_strain_limit() {
     // without them, since behind a solve that no longer holds the cloth
     // they grow, and the frame with them (docs/vehicle_flag.md).
     const uint32_t most =
-        quality_below_floor() ? limit.iterations : kStrainLimitMorePasses * limit.iterations;
+        quality_.below_floor() ? limit.iterations : kStrainLimitMorePasses * limit.iterations;
     frame_.strain_limiter.begin(pass, limit.iterations, frame_.h, x_, v_, solver_work_.r, solver_work_.z,
                                 accelerate, &grid_strain_terms_, &tethers_, stretch_counts_.data(), most);
     frame_.limit_rounds.begin(&frame_.strain_limiter, frame_.collides, &frame_.touching);
@@ -126,11 +126,12 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     frame_.solver = resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty());
     frame_.strained = strained_;
     // The default's own choice within a quality policy's maxima (the
-    // host's bounds), then the policy's caps on it (quality_settings): the
+    // host's bounds), then the policy's caps on it (ClothQuality::settings): the
     // host's budget wins.
-    if (quality_.enabled && solver_.kind == CLOTH_SOLVER_DEFAULT) {
-        frame_.solver.iterations = std::min(frame_.solver.iterations, quality_.max_iterations);
-        frame_.solver.substeps = std::min(frame_.solver.substeps, quality_.max_substeps);
+    const QualityPolicy& policy = quality_.policy();
+    if (policy.enabled && solver_.kind == CLOTH_SOLVER_DEFAULT) {
+        frame_.solver.iterations = std::min(frame_.solver.iterations, policy.max_iterations);
+        frame_.solver.substeps = std::min(frame_.solver.substeps, policy.max_substeps);
     }
     frame_.own_iterations = frame_.solver.iterations;
     frame_.own_substeps = frame_.solver.substeps;

@@ -72,7 +72,7 @@ class ModelWorld {
         int64_t total_ns = 0;
         for (auto& cloth : cloths_) {
             EXPECT_TRUE(cloth->step(kDt, kGravity).ok());
-            const QualityRung ran = cloth->ran_rung();
+            const QualityRung ran = cloth->quality().ran_rung();
             const int64_t cost = static_cast<int64_t>(spike * static_cast<double>(model.cost_ns(ran)));
             costs.push_back({cloth.get(), cost, static_cast<int64_t>(spike * model.solve_ns(ran))});
             total_ns += cost;
@@ -89,7 +89,8 @@ class ModelWorld {
     // The step's cost at every cloth's current rung (the last frame's).
     double step_ms() const {
         double ns = 0;
-        for (const auto& cloth : cloths_) ns += static_cast<double>(model.cost_ns(cloth->ran_rung()));
+        for (const auto& cloth : cloths_)
+            ns += static_cast<double>(model.cost_ns(cloth->quality().ran_rung()));
         return ns * 1e-6;
     }
     CostModel model;
@@ -154,7 +155,7 @@ TEST(BudgetPolicyModel, AtTheFloorOnlyALoadTakesAClothLowerAndThenOneRungAFrame)
     ModelWorld world;
     ClothInstance& cloth = world.add(jacobi(16), 300.0f);
     cloth.set_quality_policy(sweeps_policy());
-    const QualityLadder ladder = cloth.quality_ladder();
+    const QualityLadder ladder = cloth.quality().ladder();
     ASSERT_EQ(ladder.floor(), 8u);
 
     // A budget nothing meets: the first frame takes the cloth to the
@@ -200,10 +201,10 @@ TEST(BudgetPolicyModel, TheDefaultKeepsHalfItsIterationsWhileSubstepsCanGoAndGet
     capped.set_quality_policy(policy);
 
     world.frame(1e9);
-    const QualityRung own = free_running.ran_rung();
+    const QualityRung own = free_running.quality().ran_rung();
     ASSERT_GT(own.iterations, 1u) << "the default iterates more than once here";
     ASSERT_GT(own.substeps, 1u) << "and runs more than one substep";
-    ASSERT_EQ(capped.ran_rung().iterations, own.iterations) << "no budget, no cap";
+    ASSERT_EQ(capped.quality().ran_rung().iterations, own.iterations) << "no budget, no cap";
 
     // The free-running cloth alone costs half the step: at 80% of it the
     // capped one must come down to its fewest substeps.
@@ -211,7 +212,7 @@ TEST(BudgetPolicyModel, TheDefaultKeepsHalfItsIterationsWhileSubstepsCanGoAndGet
     bool capped_below_own = false;
     for (int i = 0; i < 60; ++i) {
         world.frame(budget);
-        const QualityRung ran = capped.ran_rung();
+        const QualityRung ran = capped.quality().ran_rung();
         if (ran.substeps > 1) {
             EXPECT_GE(2 * ran.iterations, own.iterations)
                 << "frame " << i << ": iterations at half their own or more while " << ran.substeps
@@ -220,16 +221,16 @@ TEST(BudgetPolicyModel, TheDefaultKeepsHalfItsIterationsWhileSubstepsCanGoAndGet
         capped_below_own |= ran.substeps < own.substeps;
     }
     EXPECT_TRUE(capped_below_own) << "the policy took substeps away";
-    EXPECT_EQ(free_running.ran_rung().iterations, own.iterations)
+    EXPECT_EQ(free_running.quality().ran_rung().iterations, own.iterations)
         << "a cloth without a policy keeps the default's choice";
-    EXPECT_EQ(free_running.ran_rung().substeps, own.substeps);
+    EXPECT_EQ(free_running.quality().ran_rung().substeps, own.substeps);
     EXPECT_EQ(world.overruns(budget, 30), 0) << "settled: no frame over budget";
 
     const double loose = 100 * budget;
     for (int i = 0; i < 300; ++i) world.frame(loose);
-    EXPECT_EQ(capped.ran_rung().iterations, own.iterations) << "the caps came off";
-    EXPECT_EQ(capped.ran_rung().substeps, own.substeps);
-    EXPECT_FALSE(capped.quality_can_rise()) << "and nothing is raised past the default's own choice";
+    EXPECT_EQ(capped.quality().ran_rung().iterations, own.iterations) << "the caps came off";
+    EXPECT_EQ(capped.quality().ran_rung().substeps, own.substeps);
+    EXPECT_FALSE(capped.quality().can_rise()) << "and nothing is raised past the default's own choice";
 }
 
 // The ladder: iterations down to half the top's, then a substep with the

@@ -1,0 +1,64 @@
+// One cloth under a world's frame budget (budget_policy.h): its quality
+// policy, the policy's memory of what each rung cost, and the view of the
+// cloth's solver settings the policy moves along its ladder. It reads the
+// cloth's settings and its last frame (FrameContext) and writes only the
+// settings' iterations and substeps, or the default's caps.
+#pragma once
+
+#include <cstdint>
+
+#include "solve/solver_settings.h"
+#include "step/frame_context.h"
+#include "step/quality_ladder.h"
+
+namespace cloth {
+
+// Bounds within which a world's frame budget may change a cloth's solver
+// iterations and substeps. Off by default.
+struct QualityPolicy {
+    bool enabled = false;
+    uint32_t min_iterations = 1, max_iterations = 8;
+    uint32_t min_substeps = 1, max_substeps = 4;
+};
+
+class ClothQuality {
+  public:
+    // `solver` and `frame` are the cloth's, which outlives this.
+    ClothQuality(SolverSettings& solver, const FrameContext& frame) : solver_(solver), frame_(frame) {}
+    ClothQuality(const ClothQuality&) = delete;
+    ClothQuality& operator=(const ClothQuality&) = delete;
+
+    const QualityPolicy& policy() const { return policy_; }
+    // Enabling clamps the solver settings into the bounds; either way the
+    // default's caps and the cost memory go.
+    void set_policy(const QualityPolicy& policy);
+    QualityCosts& costs() { return costs_; }
+    const QualityCosts& costs() const { return costs_; }
+
+    // The iterations and substeps the policy steps from: the solver
+    // settings' own or, for CLOTH_SOLVER_DEFAULT, its caps, or what its
+    // last frame ran when it has none. Setting them sets the settings, or
+    // the default's caps (removed once they reach what the default chooses
+    // by itself).
+    SolverSettings settings() const;
+    void set_settings(const SolverSettings& settings);
+    // The ladder the policy moves the cloth along: from the policy's top,
+    // or the default's own choice of the last frame, down to the policy's
+    // minimum. And the rung the last frame ran.
+    QualityLadder ladder() const;
+    QualityRung ran_rung() const { return {frame_.solver.iterations, frame_.solver.substeps}; }
+    // Whether the policy may raise it: not a default running its own choice.
+    bool can_rise() const;
+    // Whether the policy has taken this frame below its ladder's floor
+    // (fewer iterations than half the top's): a solve that no longer holds
+    // the cloth, whose strain limit then runs only the passes asked for.
+    bool below_floor() const;
+
+  private:
+    SolverSettings& solver_;
+    const FrameContext& frame_;
+    QualityPolicy policy_;
+    QualityCosts costs_;
+};
+
+}  // namespace cloth
