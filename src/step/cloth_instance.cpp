@@ -23,7 +23,6 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       pinned_(HostAllocator<float>(memory)),
       pinned_list_(HostAllocator<uint32_t>(memory)),
       pin_target_(memory),
-      pin_start_(memory),
       external_force_(memory),
       triangle_force_(memory),
       springs_(make_spring_terms(memory, fabric_, material)),
@@ -34,23 +33,17 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       dv_scratch_(memory),
       solver_work_(memory),
       normals_(memory),
-      backup_x_(memory),
-      backup_v_(memory),
-      pin_velocity_start_(memory),
       multigrid_(memory),
       grid_strain_terms_(memory),
       tethers_(memory),
       stretch_counts_(HostAllocator<StretchCount>(memory)),
       strain_maybe_over_(HostAllocator<uint8_t>(memory)),
       strain_pull_(HostAllocator<float>(memory)),
-      group_finite_(HostAllocator<uint8_t>(memory)),
-      group_speed_squared_(HostAllocator<float>(memory)),
-      contact_(memory),
-      group_contacts_(HostAllocator<uint32_t>(memory)) {
+      frame_(memory),
+      contact_(memory) {
     const Fabric& f = *fabric_;
     const uint32_t n = f.particle_count();
-    for (Vec3Soa* a : {&x_, &v_, &pin_target_, &pin_start_, &external_force_, &rhs_, &dv_, &dv_scratch_,
-                       &normals_, &backup_x_, &backup_v_, &pin_velocity_start_}) {
+    for (Vec3Soa* a : {&x_, &v_, &pin_target_, &external_force_, &rhs_, &dv_, &dv_scratch_, &normals_}) {
         a->resize(n);
     }
     for (uint32_t i = 0; i < n; ++i) x_.set(i, f.rest_positions[i]);
@@ -63,9 +56,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     diagonal_inverse_.resize(n);
     solver_work_.resize(n);
     group_count_ = (n + kGroupSize - 1) / kGroupSize;
-    group_finite_.assign(group_count_, 1);
-    group_speed_squared_.assign(group_count_, 0.0f);
-    group_contacts_.assign(group_count_, 0);
+    frame_.resize(n, group_count_);
     stretch_counts_.assign(group_count_, StretchCount{});
     strain_maybe_over_.assign(n, 0);
     strain_pull_.assign(n, 0.0f);
@@ -179,7 +170,7 @@ void ClothInstance::shift_origin(const Vec3& shift) {
 
 void ClothInstance::update_sleep() {
     float speed_squared = 0;
-    for (float s : group_speed_squared_) speed_squared = std::max(speed_squared, s);
+    for (float s : frame_.group_speed_squared) speed_squared = std::max(speed_squared, s);
     const bool at_rest = speed_squared <= sleep_.max_speed * sleep_.max_speed && !contact_.follows_bodies();
     rest_frames_ = at_rest ? rest_frames_ + 1 : 0;
     if (sleep_.enabled && rest_frames_ >= sleep_.frames) {
@@ -192,18 +183,18 @@ void ClothInstance::update_sleep() {
 void ClothInstance::restore_frame_start() {
     switch (frame_.backup) {
         case FrameBackup::kCopied:
-            x_ = backup_x_;
-            v_ = backup_v_;
+            x_ = frame_.backup_x;
+            v_ = frame_.backup_v;
             return;
         case FrameBackup::kSwapped:
-            x_.swap_buffers(backup_x_);
-            v_.swap_buffers(backup_v_);
+            x_.swap_buffers(frame_.backup_x);
+            v_.swap_buffers(frame_.backup_v);
             break;
         case FrameBackup::kFirstIntegration:
             break;
     }
     // Only pinned velocities changed before the first integration.
-    for (uint32_t i : pinned_list_) v_.set(i, pin_velocity_start_.get(i));
+    for (uint32_t i : pinned_list_) v_.set(i, frame_.pin_velocity_start.get(i));
 }
 
 }  // namespace cloth

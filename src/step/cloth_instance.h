@@ -206,7 +206,7 @@ class ClothInstance {
     void integrate_implicitly(const GroupTask& task);
     void adopt_first_integration();
     /// The collision stage: particles against the world's colliders over
-    /// this substep, and whether any touched one (group_contacts_).
+    /// this substep, and whether any touched one (frame_.group_contacts).
     void collide_stage(const GroupTask& task);
     void note_contacts();
     void collide(const GroupTask& task, uint32_t* contacts = nullptr);
@@ -226,8 +226,12 @@ class ClothInstance {
     void restore_frame_start();
     // Where the integration stage writes: the spare buffers while the
     // frame-start state is still in x_ and v_ (FrameBackup::kFirstIntegration).
-    Vec3Soa& integration_x() { return frame_.backup == FrameBackup::kFirstIntegration ? backup_x_ : x_; }
-    Vec3Soa& integration_v() { return frame_.backup == FrameBackup::kFirstIntegration ? backup_v_ : v_; }
+    Vec3Soa& integration_x() {
+        return frame_.backup == FrameBackup::kFirstIntegration ? frame_.backup_x : x_;
+    }
+    Vec3Soa& integration_v() {
+        return frame_.backup == FrameBackup::kFirstIntegration ? frame_.backup_v : v_;
+    }
     GroupTask group_task(uint32_t group) const {
         return GroupTask::of(group, group_count_, particle_count());
     }
@@ -248,7 +252,6 @@ class ClothInstance {
     HostVector<float> pinned_;          // 1 pinned, 0 free (a factor in branch-free loops)
     HostVector<uint32_t> pinned_list_;  // the pinned particles, ascending
     Vec3Soa pin_target_;                // where a pinned particle is at the end of the next frame
-    Vec3Soa pin_start_;                 // where it was at the start of this frame
 
     // Scratch, sized once at creation (no allocation per step).
     Vec3Soa external_force_;                // per particle
@@ -260,10 +263,6 @@ class ClothInstance {
     Vec3Soa dv_, dv_scratch_;               // per particle
     SolverWorkspace solver_work_;  // PCG / Chebyshev vectors and block partials, strain-limit scratch
     mutable Vec3Soa normals_;      // per particle, filled by normals()
-
-    // The spare buffers of the state a frame started from (FrameBackup).
-    Vec3Soa backup_x_, backup_v_;
-    Vec3Soa pin_velocity_start_;  // per particle, valid for pinned ones: v at the start of the frame
 
     std::shared_ptr<SelfCollision> self_collision_;  // null while off
 
@@ -282,9 +281,7 @@ class ClothInstance {
     // saved in snapshots.
     bool strained_ = false;
     uint32_t group_count_ = 0;
-    FrameContext frame_;                     // the frame in progress, or the last one
-    HostVector<uint8_t> group_finite_;       // per group, written by the last stage of a frame
-    HostVector<float> group_speed_squared_;  // per group: largest |v|^2, written with group_finite_
+    FrameContext frame_;  // the frame in progress, or the last one
 
     void update_sleep();  // end of a successful frame
     SleepSettings sleep_;
@@ -292,8 +289,7 @@ class ClothInstance {
     bool sleeping_ = false;
     uint32_t rest_frames_ = 0;  // consecutive frames below sleep_.max_speed
 
-    ClothContact contact_;                 // colliders, attachments, carrier
-    HostVector<uint32_t> group_contacts_;  // per group: contacts of this substep's collision stage
+    ClothContact contact_;  // colliders, attachments, carrier
 };
 
 }  // namespace cloth

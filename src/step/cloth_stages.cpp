@@ -43,7 +43,7 @@ bool ClothInstance::has_air() const {
 
 Vec3 ClothInstance::pin_position(uint32_t i, float frame_fraction) const {
     if (contact_.is_attached(i)) return contact_.attached_position(i, frame_fraction);
-    return pin_start_.get(i) + (pin_target_.get(i) - pin_start_.get(i)) * frame_fraction;
+    return frame_.pin_start.get(i) + (pin_target_.get(i) - frame_.pin_start.get(i)) * frame_fraction;
 }
 
 void ClothInstance::land_pins(uint32_t begin, uint32_t end, Vec3Soa& x) {
@@ -152,19 +152,19 @@ void ClothInstance::integrate_implicitly(const GroupTask& task) {
 void ClothInstance::adopt_first_integration() {
     if (frame_.backup != FrameBackup::kFirstIntegration) return;
     // The new state is in the backups, the frame-start state in x_, v_: swap.
-    x_.swap_buffers(backup_x_);
-    v_.swap_buffers(backup_v_);
+    x_.swap_buffers(frame_.backup_x);
+    v_.swap_buffers(frame_.backup_v);
     frame_.backup = FrameBackup::kSwapped;
 }
 
 void ClothInstance::collide_stage(const GroupTask& task) {
     expect_stage(Stage::kCollisions);
-    collide(task, &group_contacts_[task.group]);
+    collide(task, &frame_.group_contacts[task.group]);
 }
 
 void ClothInstance::note_contacts() {
-    frame_.touching =
-        std::any_of(group_contacts_.begin(), group_contacts_.end(), [](uint32_t n) { return n > 0; });
+    frame_.touching = std::any_of(frame_.group_contacts.begin(), frame_.group_contacts.end(),
+                                  [](uint32_t n) { return n > 0; });
 }
 
 void ClothInstance::collide(const GroupTask& task, uint32_t* contacts) {
@@ -236,12 +236,12 @@ void ClothInstance::check_finite(uint32_t group) {
                                                       : v_;
     const GroupTask task = group_task(group);
     float speed_squared = 0;
-    group_finite_[group] = range_is_finite(x, v, task.begin, task.end, speed_squared) ? 1 : 0;
-    group_speed_squared_[group] = speed_squared;
+    frame_.group_finite[group] = range_is_finite(x, v, task.begin, task.end, speed_squared) ? 1 : 0;
+    frame_.group_speed_squared[group] = speed_squared;
 }
 
 bool ClothInstance::state_is_finite() const {
-    for (uint8_t finite : group_finite_) {
+    for (uint8_t finite : frame_.group_finite) {
         if (!finite) return false;
     }
     return true;

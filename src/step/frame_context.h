@@ -8,6 +8,7 @@
 
 #include <cstdint>
 
+#include "base/host_allocator.h"
 #include "base/math.h"
 #include "base/soa.h"
 #include "base/staged.h"
@@ -48,6 +49,22 @@ struct PlannedStage {
 struct FrameContext {
     static constexpr uint32_t kMaxPlannedStages = 12;
 
+    explicit FrameContext(const HostMemory* memory)
+        : pin_start(memory),
+          pin_velocity_start(memory),
+          backup_x(memory),
+          backup_v(memory),
+          group_finite(HostAllocator<uint8_t>(memory)),
+          group_speed_squared(HostAllocator<float>(memory)),
+          group_contacts(HostAllocator<uint32_t>(memory)) {}
+    // Sizes the buffers once, at the cloth's creation (no allocation per step).
+    void resize(uint32_t particles, uint32_t groups) {
+        for (Vec3Soa* a : {&pin_start, &pin_velocity_start, &backup_x, &backup_v}) a->resize(particles);
+        group_finite.assign(groups, 1);
+        group_speed_squared.assign(groups, 0.0f);
+        group_contacts.assign(groups, 0);
+    }
+
     // What this frame runs: the cloth's solver settings with
     // CLOTH_SOLVER_DEFAULT resolved, and what the default chose by itself,
     // within a quality policy's maxima and before its caps.
@@ -65,6 +82,16 @@ struct FrameContext {
     bool out_of_memory = false;  // set by the serial solve task
     FrameBackup backup = FrameBackup::kCopied;
     const Vec3Soa* solution = nullptr;  // the solver's dv, which integration reads
+
+    // Per particle: where a pinned one was at the start of the frame, and
+    // its velocity then; the spare buffers of the frame-start state (FrameBackup).
+    Vec3Soa pin_start, pin_velocity_start;
+    Vec3Soa backup_x, backup_v;
+    // Per group: finite and the largest |v|^2 (written by the frame's last
+    // round), and the contacts of this substep's collision stage.
+    HostVector<uint8_t> group_finite;
+    HostVector<float> group_speed_squared;
+    HostVector<uint32_t> group_contacts;
 
     // The staged algorithms of the current substep.
     IterativeSolve iterative;  // JACOBI, PCG, CHEBYSHEV

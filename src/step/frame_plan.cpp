@@ -141,15 +141,15 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
         frame_.solver.substeps = std::min(frame_.solver.substeps, solver_.default_substep_cap);
     if (contact_.carrier().active() || frame_.solver.kind == CLOTH_SOLVER_EXPLICIT) {
         frame_.backup = FrameBackup::kCopied;
-        backup_x_ = x_;
-        backup_v_ = v_;
+        frame_.backup_x = x_;
+        frame_.backup_v = v_;
     } else {
         frame_.backup = FrameBackup::kFirstIntegration;
-        for (uint32_t i : pinned_list_) pin_velocity_start_.set(i, v_.get(i));
+        for (uint32_t i : pinned_list_) frame_.pin_velocity_start.set(i, v_.get(i));
     }
     contact_.begin_step(dt, pinned_.data(), x_, v_);  // carrier (no pass without one)
     frame_.collides = contact_.collides();
-    for (uint32_t i : pinned_list_) pin_start_.set(i, x_.get(i));
+    for (uint32_t i : pinned_list_) frame_.pin_start.set(i, x_.get(i));
     if (frame_.solver.strain_limit.max_strain > 0 && !tethers_follow_pins_) {
         tethers_.plan(*fabric_, pinned_.data());
         tethers_follow_pins_ = true;
@@ -159,7 +159,7 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     frame_.gravity = gravity;
     frame_.converged = true;
     frame_.out_of_memory = false;
-    std::fill(group_finite_.begin(), group_finite_.end(), uint8_t{1});
+    std::fill(frame_.group_finite.begin(), frame_.group_finite.end(), uint8_t{1});
     frame_.substep = frame_.entry = frame_.round = 0;
     plan_substep();
     frame_.done = false;
