@@ -15,7 +15,7 @@ void set_last_error(const char* message) {
 void end_at_utf8_boundary(char* text) {
     const size_t length = std::strlen(text);
     size_t lead = length;
-    // Back over at most three continuation bytes (10xxxxxx) to the sequence's first byte.
+    // Back over at most three continuation bytes (top bits 10) to the sequence's first byte.
     while (lead > 0 && length - lead < 3 && (static_cast<unsigned char>(text[lead - 1]) & 0xC0) == 0x80) {
         --lead;
     }

@@ -1,6 +1,6 @@
 // Bad solver, spring, aerodynamic and wind settings are rejected and the old settings stay.
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <utility>
