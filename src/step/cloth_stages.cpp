@@ -48,7 +48,8 @@ Vec3 ClothInstance::pin_position(uint32_t i, float frame_fraction) const {
 
 void ClothInstance::land_pins(uint32_t begin, uint32_t end, Vec3Soa& x) {
     // Pinned particles land exactly on their substep targets.
-    const float fraction_end = static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.substeps);
+    const float fraction_end =
+        static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.solver.substeps);
     auto first = std::lower_bound(pinned_list_.begin(), pinned_list_.end(), begin);
     for (auto it = first; it != pinned_list_.end() && *it < end; ++it) {
         x.set(*it, pin_position(*it, fraction_end));
@@ -59,7 +60,8 @@ void ClothInstance::land_pins(uint32_t begin, uint32_t end, Vec3Soa& x) {
 
 void ClothInstance::move_pins() {
     // Pinned particles move linearly towards their frame-end targets.
-    const float fraction_end = static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.substeps);
+    const float fraction_end =
+        static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.solver.substeps);
     for (uint32_t i : pinned_list_) v_.set(i, (pin_position(i, fraction_end) - x_.get(i)) / frame_.h);
 }
 
@@ -169,8 +171,8 @@ void ClothInstance::note_contacts() {
 
 void ClothInstance::collide(const GroupTask& task, uint32_t* contacts) {
     // Particles against the world's colliders over this substep (colliders.h).
-    const float from = static_cast<float>(frame_.substep) / static_cast<float>(frame_.substeps);
-    const float to = static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.substeps);
+    const float from = static_cast<float>(frame_.substep) / static_cast<float>(frame_.solver.substeps);
+    const float to = static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.solver.substeps);
     const uint32_t found = contact_.collide(frame_.h, from, to, pinned_.data(), task.begin, task.end, x_, v_);
     if (contacts) *contacts = found;
 }

@@ -72,7 +72,6 @@ struct FrameContext {
     uint32_t own_iterations = 0, own_substeps = 0;
 
     float h = 0;  // substep length, s
-    uint32_t substeps = 1;
     Vec3 gravity = Vec3::Zero();
     float theta = 1.0f;     // this substep's (integrate.h)
     bool strained = false;  // a substep of this frame ended past the strain limit's promise

@@ -154,8 +154,7 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
         tethers_.plan(*fabric_, pinned_.data());
         tethers_follow_pins_ = true;
     }
-    frame_.substeps = frame_.solver.substeps;
-    frame_.h = dt / static_cast<float>(frame_.substeps);
+    frame_.h = dt / static_cast<float>(frame_.solver.substeps);
     frame_.gravity = gravity;
     frame_.converged = true;
     frame_.out_of_memory = false;
@@ -195,7 +194,7 @@ uint32_t ClothInstance::task_count() const {
 
 bool ClothInstance::final_round() const {
     const PlannedStage& s = planned();
-    return frame_.substep + 1 == frame_.substeps && frame_.entry + 1 == frame_.plan_size &&
+    return frame_.substep + 1 == frame_.solver.substeps && frame_.entry + 1 == frame_.plan_size &&
            (!s.rounds || s.rounds->last_round());
 }
 
@@ -228,7 +227,7 @@ void ClothInstance::finish_stage() {
     }
     frame_.round = 0;
     if (++frame_.entry < frame_.plan_size) return;
-    if (++frame_.substep == frame_.substeps) {
+    if (++frame_.substep == frame_.solver.substeps) {
         frame_.done = true;
         return;
     }
