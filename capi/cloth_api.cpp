@@ -231,7 +231,8 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id id, cloth_stats* out) {
         stats.last_solver_residual = cloth.last_solve().residual;
         stats.last_step_result = cloth.last_step_result();
         const float limit = cloth.ran_strain_limit();
-        stats.strain_limit_excess = limit > 0.0f ? std::max(0.0f, m.max_abs_strain - limit) : 0.0f;
+        const float strain = cloth.holds_compression() ? m.max_abs_strain : m.max_strain;
+        stats.strain_limit_excess = limit > 0.0f ? std::max(0.0f, strain - limit) : 0.0f;
         stats.strain_limit_unmet = stats.strain_limit_excess > kStrainPromiseSlackOfAStep ? 1 : 0;
         std::memcpy(out, &stats, size);
         return {};

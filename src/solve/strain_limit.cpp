@@ -93,7 +93,8 @@ StretchCount strain_limit_corrections(const StrainLimitPass& pass, const Vec3Soa
                                       uint32_t end, Vec3Soa& correction) {
     const Fabric& f = *pass.fabric;
     const float stretch_limit = 1.0f + pass.max_strain;
-    const float promise = stretch_limit + kStrainPromiseSlack, shortest = 1.0f - pass.max_strain;
+    const float promise = stretch_limit + kStrainPromiseSlack,
+                shortest = pass.hold_compression ? 1.0f - pass.max_strain : 0.0f;
     for (HostVector<float>* a : {&correction.x, &correction.y, &correction.z})
         std::fill(a->begin() + begin, a->begin() + end, 0.0f);
     std::fill(pass.pull + begin, pass.pull + end, 0.0f);

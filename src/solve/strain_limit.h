@@ -36,6 +36,9 @@ struct StrainLimitPass {
     // Scratch of one float per particle (required): each particle's pull
     // in a pass (see strain_limit_corrections).
     float* pull = nullptr;
+    // Structural springs held against compression too (past 1 - max_strain),
+    // not only against stretch (ClothInstance::holds_compression says when).
+    bool hold_compression = true;
 };
 
 // What a corrections or terms pass found over its springs: how many are

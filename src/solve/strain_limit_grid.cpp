@@ -184,7 +184,8 @@ StretchCount strain_limit_grid_terms(const StrainLimitPass& pass, const Vec3Soa&
     StretchCount count;
     for (size_t k = 0; k < terms.families.size(); ++k) {
         const SpringFamily& family = *terms.families[k];
-        const float shortest = terms.compresses[k] != 0 ? 1.0f - pass.max_strain : 0.0f;
+        const float shortest =
+            terms.compresses[k] != 0 && pass.hold_compression ? 1.0f - pass.max_strain : 0.0f;
         const uint32_t last = std::min(end, n > family.offset ? n - family.offset : 0u);
         if (begin >= last) continue;
         const size_t base = k * terms.stride + terms.lead;

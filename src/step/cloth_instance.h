@@ -108,6 +108,16 @@ class ClothInstance {
         return limit.iterations > 0 ? limit.max_strain : 0.0f;
     }
 
+    // Whether the strain limit holds structural springs against compression
+    // as well as stretch: for the default, whose theta step rebounds a
+    // spring the passes pulled in, past the limit the other way unless held
+    // (docs/measurements.md, "Structural springs held against compression").
+    // The other kinds integrate every substep with backward Euler, which
+    // does not rebound; there compression terms only fight the stretch
+    // terms where a load shears the cloth ("The course's PCG and JACOBI
+    // kinds with compression held").
+    bool holds_compression() const { return solver_.kind == CLOTH_SOLVER_DEFAULT; }
+
     // Snapshots (cloth_snapshot.cpp): the dynamic state in a flat buffer.
     size_t snapshot_size() const;
     void save_snapshot(void* out) const;

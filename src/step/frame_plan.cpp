@@ -80,8 +80,8 @@ bool ClothInstance::limits_strain() const {
 StagedAlgorithm* ClothInstance::begin_strain_limit() {
     const StrainLimit& limit = frame_.solver.strain_limit;
     const StrainLimitPass pass{
-        fabric_.get(),      mass_.data(), pinned_.data(), limit.max_strain, strain_maybe_over_.data(),
-        strain_pull_.data()};
+        fabric_.get(),       mass_.data(),       pinned_.data(), limit.max_strain, strain_maybe_over_.data(),
+        strain_pull_.data(), holds_compression()};
     const bool accelerate = frame_.solver.kind != CLOTH_SOLVER_EXPLICIT;  // strain_limit.h
     // The passes past those asked for are quality the budget cannot
     // predict: a cloth a quality policy has taken below its floor runs
