@@ -63,6 +63,37 @@ CLOTH_API cloth_result cloth_body_set_pose(cloth_body_id id, const float positio
     });
 }
 
+CLOTH_API cloth_result cloth_world_set_body_poses(cloth_world_id world_id, const cloth_body_id* bodies,
+                                                  const float* positions_xyz, const float* rotations_xyzw,
+                                                  uint32_t count) {
+    return with_world(__func__, world_id, [&](World& world) -> Status {
+        if (!bodies) return null_error("bodies");
+        if (!positions_xyz) return null_error("positions_xyz");
+        if (!rotations_xyzw) return null_error("rotations_xyzw");
+        if (count == 0 || count > CLOTH_MAX_BODIES) {
+            return Status::error(CLOTH_ERROR_INVALID_COUNT, "count %u is not in 1..%u", count,
+                                 static_cast<uint32_t>(CLOTH_MAX_BODIES));
+        }
+        // Every entry first: a rejected call moves no body.
+        for (uint32_t k = 0; k < count; ++k) {
+            Status s = check_same_world(bodies[k], world_id, "body", "the call's world");
+            if (s.ok() && !find_object(world, bodies[k])) s = no_object_error("body");
+            Pose pose;
+            if (s.ok())
+                s = check_pose(positions_xyz + 3 * k, rotations_xyzw + 4 * k, "positions_xyz",
+                               "rotations_xyzw", &pose);
+            if (!s.ok()) return Status::error(s.code, "entry %u: %s", k, s.message);
+        }
+        for (uint32_t k = 0; k < count; ++k) {
+            Pose pose;
+            check_pose(positions_xyz + 3 * k, rotations_xyzw + 4 * k, "positions_xyz", "rotations_xyzw",
+                       &pose);
+            find_object(world, bodies[k])->body.target = pose;
+        }
+        return {};
+    });
+}
+
 CLOTH_API cloth_result cloth_body_teleport(cloth_body_id id, const float position[3],
                                            const float rotation[4]) {
     return with_body(__func__, id, [&](BodyState& body) -> Status {

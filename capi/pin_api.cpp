@@ -38,6 +38,10 @@ CLOTH_API cloth_result cloth_set_pin_targets(cloth_id id, const uint32_t* indice
             if (!cloth.is_pinned(fabric.particle(indices[k]))) {
                 return Status::error(CLOTH_ERROR_INVALID_VALUE, "particle %u is not pinned", indices[k]);
             }
+            if (cloth.skin_pins(fabric.particle(indices[k]))) {
+                return Status::error(CLOTH_ERROR_INVALID_VALUE,
+                                     "particle %u follows its skinned position (max distance 0)", indices[k]);
+            }
             if (cloth.contact().is_attached(fabric.particle(indices[k]))) {
                 return Status::error(CLOTH_ERROR_INVALID_VALUE, "particle %u is attached to a body",
                                      indices[k]);

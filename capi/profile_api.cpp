@@ -14,9 +14,14 @@ using namespace cloth::api;
 static_assert(static_cast<int>(CLOTH_STAGE_AIR) == static_cast<int>(Stage::kAir) &&
                   static_cast<int>(CLOTH_STAGE_SELF_COLLISION) == static_cast<int>(Stage::kSelfCollision) &&
                   static_cast<int>(CLOTH_STAGE_SELF_RESPOND) == static_cast<int>(Stage::kSelfRespond) &&
-                  static_cast<int>(CLOTH_STAGE_LIMIT_COLLISIONS) == static_cast<int>(Stage::kLimitCollisions),
+                  static_cast<int>(CLOTH_STAGE_LIMIT_COLLISIONS) ==
+                      static_cast<int>(Stage::kLimitCollisions) &&
+                  static_cast<int>(CLOTH_STAGE_SKINNING) == static_cast<int>(Stage::kSkinning) &&
+                  static_cast<int>(CLOTH_STAGE_SKIN_CONSTRAINTS) == static_cast<int>(Stage::kSkinConstraints),
               "cloth_stage mirrors cloth::Stage");
-static_assert(kStageCount <= CLOTH_MAX_STAGES, "the profile has room for every stage");
+// cloth_frame_profile's arrays hold the first CLOTH_MAX_STAGES stages;
+// cloth_world_get_stage_profile reads every one.
+static_assert(kStageCount >= CLOTH_MAX_STAGES, "the profile's arrays are filled");
 static_assert(kMaxWorkers <= CLOTH_MAX_WORKERS, "the profile has room for every worker");
 
 extern "C" {
@@ -34,6 +39,22 @@ CLOTH_API cloth_result cloth_world_set_profiling(cloth_world_id id, uint32_t max
                                  max_tasks_per_frame, CLOTH_MAX_PROFILED_TASKS);
         }
         world.set_profiling(max_tasks_per_frame);
+        return {};
+    });
+}
+
+CLOTH_API cloth_result cloth_world_get_stage_profile(cloth_world_id id, cloth_stage stage, double* out_ms,
+                                                     uint32_t* out_tasks) {
+    return with_world(__func__, id, [&](World& world) -> Status {
+        if (!out_ms) return null_error("out_ms");
+        if (!out_tasks) return null_error("out_tasks");
+        const int32_t bits = enum_bits(stage);
+        if (bits < 0 || static_cast<uint32_t>(bits) >= kStageCount) {
+            return Status::error(CLOTH_ERROR_INVALID_VALUE, "stage %d is not a cloth_stage", bits);
+        }
+        const FrameProfile& p = world.frame_profile();
+        *out_ms = static_cast<double>(p.stage_ns[bits]) * 1e-6;
+        *out_tasks = p.stage_tasks[bits];
         return {};
     });
 }
@@ -57,7 +78,7 @@ CLOTH_API cloth_result cloth_world_get_frame_profile(cloth_world_id id, cloth_fr
         r.overrun = p.overrun;
         r.awake_cloths = p.awake_cloths;
         r.sleeping_cloths = p.sleeping_cloths;
-        for (uint32_t st = 0; st < kStageCount; ++st) {
+        for (uint32_t st = 0; st < CLOTH_MAX_STAGES; ++st) {
             r.stage_ms[st] = static_cast<double>(p.stage_ns[st]) * 1e-6;
             r.stage_tasks[st] = p.stage_tasks[st];
         }

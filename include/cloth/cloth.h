@@ -179,7 +179,7 @@ extern "C" {
 #define CLOTH_VERSION_MAJOR 1
 /// Minor version of this header: a library of the same major and at least
 /// this minor version has every function and struct of this header.
-#define CLOTH_VERSION_MINOR 7
+#define CLOTH_VERSION_MINOR 8
 /// Patch version of this header (fixes that change no interface).
 #define CLOTH_VERSION_PATCH 0
 
@@ -254,6 +254,8 @@ typedef enum cloth_struct_kind {
     CLOTH_STRUCT_SELF_COLLISION_DESC = 25,
     /// cloth_self_collision_stats
     CLOTH_STRUCT_SELF_COLLISION_STATS = 26,
+    /// cloth_skin_desc
+    CLOTH_STRUCT_SKIN_DESC = 27,
     /// forces the enum to 32 bits; not a struct
     CLOTH_STRUCT_KIND_FORCE_U32 = 0x7FFFFFFF
 } cloth_struct_kind;
@@ -967,8 +969,10 @@ typedef struct cloth_stats {
     cloth_result last_step_result;
     /// how far the structural spring farthest from its rest length is past
     /// the strain limit the last step ran with: the largest
-    /// |L - l0| / l0 - max_strain, or 0 when every one is within it or no
-    /// limit ran (see cloth_strain_limit). Since 1.7.
+    /// |L - l0| / l0 - max_strain (CLOTH_SOLVER_DEFAULT, which holds
+    /// structural springs against compression too; since 1.8 the other kinds,
+    /// which hold them against stretch only, count (L - l0) / l0), or 0 when
+    /// every one is within it or no limit ran (see cloth_strain_limit). Since 1.7.
     float strain_limit_excess;
     /// 1 when strain_limit_excess is above 0.02, the slack the strain limit
     /// promises after every step: the last step could not meet its
@@ -1052,11 +1056,20 @@ typedef enum cloth_stage {
     /// and after each of its passes while the substep touches a collider.
     /// Since 1.7.
     CLOTH_STAGE_LIMIT_COLLISIONS = 15,
+    /// the frame's skinned positions and normals (cloth_set_skin), in its
+    /// first substep. Since 1.8; in cloth_world_get_stage_profile only.
+    CLOTH_STAGE_SKINNING = 16,
+    /// free particles into their max distances and out of their backstops
+    /// (cloth_set_max_distances, cloth_set_backstops). Since 1.8; in
+    /// cloth_world_get_stage_profile only.
+    CLOTH_STAGE_SKIN_CONSTRAINTS = 17,
     /// forces the enum to 32 bits
     CLOTH_STAGE_FORCE_U32 = 0x7FFFFFFF
 } cloth_stage;
 
-/// Entries of the per-stage arrays of cloth_frame_profile (more than cloth_stage has).
+/// Entries of the per-stage arrays of cloth_frame_profile: the stages
+/// 0..CLOTH_MAX_STAGES-1. Every stage, later ones included, through
+/// cloth_world_get_stage_profile.
 #define CLOTH_MAX_STAGES 16
 /// Entries of the per-worker arrays of cloth_frame_profile: the most workers a world has.
 #define CLOTH_MAX_WORKERS 256
@@ -1134,6 +1147,12 @@ CLOTH_API cloth_result CLOTH_CALL cloth_world_set_profiling(cloth_world_id world
 /// The profile of the last cloth_step.
 CLOTH_API cloth_result CLOTH_CALL cloth_world_get_frame_profile(cloth_world_id world,
                                                                 cloth_frame_profile* out_profile);
+/// One stage's wall time in the last cloth_step (ms, summed over its rounds)
+/// and the tasks it ran, for any cloth_stage (cloth_frame_profile holds
+/// the first CLOTH_MAX_STAGES). A value that is no cloth_stage is
+/// CLOTH_ERROR_INVALID_VALUE. Since 1.8.
+CLOTH_API cloth_result CLOTH_CALL cloth_world_get_stage_profile(cloth_world_id world, cloth_stage stage,
+                                                                double* out_ms, uint32_t* out_tasks);
 /// Copy the last frame's task records (at most `capacity`); *out_count
 /// receives the number copied.
 CLOTH_API cloth_result CLOTH_CALL cloth_world_read_task_records(cloth_world_id world,
@@ -1348,6 +1367,16 @@ CLOTH_API cloth_result CLOTH_CALL cloth_body_destroy(cloth_body_id body);
 /// there from its current pose across the step's substeps.
 CLOTH_API cloth_result CLOTH_CALL cloth_body_set_pose(cloth_body_id body, const float position[3],
                                                       const float rotation[4]);
+/// Many bodies' poses in one call, as cloth_body_set_pose gives each (a
+/// character's bones each frame): body k reaches positions_xyz[3k..3k+2]
+/// and rotations_xyzw[4k..4k+3] at the end of the next cloth_step. Every
+/// body must live in `world`; a body listed twice takes its last pose.
+/// Every entry is checked before any body moves: a rejected call moves none
+/// and its message names the entry. count: 1..CLOTH_MAX_BODIES. Since 1.8.
+CLOTH_API cloth_result CLOTH_CALL cloth_world_set_body_poses(cloth_world_id world,
+                                                             const cloth_body_id* bodies,
+                                                             const float* positions_xyz,
+                                                             const float* rotations_xyzw, uint32_t count);
 /// Jump to a pose: the next step starts there (no sweep, no interpolation).
 /// Attachments jump with it; free particles stay where they are unless the
 /// cloth's carrier teleport handling moves them (cloth_carrier_desc).
@@ -1546,6 +1575,108 @@ CLOTH_API cloth_result CLOTH_CALL cloth_set_carrier(cloth_id cloth, cloth_body_i
 /// Whether the carrier teleport handling fired in the last step of this
 /// cloth. *out_teleported is one byte (C99 bool), 1 or 0.
 CLOTH_API cloth_result CLOTH_CALL cloth_get_teleported(cloth_id cloth, bool* out_teleported);
+
+/* ------------------------------------------------------------------ */
+/* Character cloth: skin, max distance, backstop                      */
+/* ------------------------------------------------------------------ */
+
+/* Cloth worn by an animated character (a cape, a skirt) follows a skinned
+ * position per particle: the fabric's rest positions and normals (the bind
+ * pose) skinned by the character's joints inside the step (linear blend
+ * skinning, up to 4 joints per particle), or positions and normals the
+ * host skinned itself. Over a frame's substeps the skinned positions move
+ * linearly from where the last frame left them to this frame's, as pins
+ * do. Two constraints hold a particle near its skinned position, checked
+ * at the end of every substep and so of every step:
+ *  - max distance: the particle stays within it of its skinned position.
+ *    0 makes it a pin whose target is its skinned position (it costs what
+ *    a pin costs and is not solved; cloth_is_pinned reports it);
+ *  - backstop (distance d, radius r): the particle stays outside the
+ *    sphere of radius r centred d behind its skinned position along the
+ *    skinned normal, so a cape cannot pass into the back it hangs on where
+ *    the body's colliders are coarse. With r <= d the skinned position
+ *    itself is outside it.
+ * They run after the colliders and the strain limit in each substep: where
+ * they conflict, the max distance wins, then the backstop (a collider or
+ * the strain limit may be left unmet there). A cloth without a skin pays
+ * nothing for any of this; with one, the skinning costs a pass over the
+ * particles once a frame and the constraints a pass per substep over the
+ * particles while some particle has a max distance above 0 or a backstop.
+ * Joint matrices map the bind pose to the world and may carry a uniform
+ * scale; normals are rotated by them and renormalised. Skin data is not
+ * part of snapshots. All since 1.8. */
+
+/// A cloth's skin: the joints each particle follows.
+typedef struct cloth_skin_desc {
+    /// sizeof(cloth_skin_desc)
+    uint32_t struct_size;
+    /// the particles the arrays give, which must be the cloth's particle count
+    uint32_t particle_count;
+    /// joints the matrices of cloth_set_joint_matrices give: 1..CLOTH_MAX_JOINTS
+    uint32_t joint_count;
+    /// joints per particle, 1..4
+    uint32_t influences;
+    /// particle_count x influences joint indices, by vertex (each < joint_count)
+    const uint32_t* joints;
+    /// particle_count x influences weights, each >= 0 and each particle's
+    /// summing to 1 within 1e-3; NULL with influences 1 (weight 1)
+    const float* weights;
+    /// set by the struct\'s cloth_default_*() function; do not change
+    uint32_t internal_cookie;
+} cloth_skin_desc;
+
+/// The most joints a skin has.
+#define CLOTH_MAX_JOINTS 65535
+
+/// How cloth_set_joint_matrices reads a matrix.
+typedef enum cloth_matrix_layout {
+    /// 16 floats, column-major 4x4 (OpenGL, Eigen, glm); the last row is
+    /// (0, 0, 0, 1) and is not read
+    CLOTH_MATRIX_COLUMN_MAJOR_4X4 = 0,
+    /// 12 floats, row-major 3x4: rows (r00 r01 r02 tx), (r10 r11 r12 ty),
+    /// (r20 r21 r22 tz)
+    CLOTH_MATRIX_ROW_MAJOR_3X4 = 1,
+    /// forces the enum to 32 bits
+    CLOTH_MATRIX_LAYOUT_FORCE_U32 = 0x7FFFFFFF
+} cloth_matrix_layout;
+
+/// A skin description with every default set (and its cookie); no arrays.
+CLOTH_API cloth_skin_desc CLOTH_CALL cloth_default_skin_desc(void);
+/// Bind the cloth to joints (replacing any skin); the joint matrices start
+/// as identities (the rest pose). Wakes the cloth.
+CLOTH_API cloth_result CLOTH_CALL cloth_set_skin(cloth_id cloth, const cloth_skin_desc* desc);
+/// This frame's joint matrices: matrix_count (at least the skin's
+/// joint_count) matrices in `layout`, each finite. The next cloth_step
+/// skins the particles with them; the skin follows the joints from now on.
+/// Wakes the cloth.
+CLOTH_API cloth_result CLOTH_CALL cloth_set_joint_matrices(cloth_id cloth, const float* matrices,
+                                                           uint32_t matrix_count, cloth_matrix_layout layout);
+/// Positions and normals the host skinned, for the end of the next
+/// cloth_step: count (the cloth's particle count) points and normals by
+/// vertex, finite, each normal of length above 1e-6 (it is normalised).
+/// The skin follows them from now on. Wakes the cloth.
+CLOTH_API cloth_result CLOTH_CALL cloth_set_skinned_positions(cloth_id cloth, const float* positions_xyz,
+                                                              const float* normals_xyz, uint32_t count);
+/// The skinned positions and normals of the last step's end, by vertex
+/// (capacity: floats in each array, at least 3 x the particle count);
+/// out_normals_xyz may be NULL. CLOTH_ERROR_INVALID_VALUE before a step
+/// has skinned the cloth.
+CLOTH_API cloth_result CLOTH_CALL cloth_read_skinned_positions(cloth_id cloth, float* out_positions_xyz,
+                                                               float* out_normals_xyz, uint32_t capacity);
+/// Every particle's max distance (m, by vertex, count = the particle
+/// count): >= 0, +INFINITY for none (the default). 0 pins the particle to
+/// its skinned position; a particle a max distance of 0 pinned is unpinned
+/// when its max distance becomes positive. The cloth needs a skin
+/// (cloth_set_skin or cloth_set_skinned_positions); a particle attached to
+/// a body cannot have 0. Wakes the cloth.
+CLOTH_API cloth_result CLOTH_CALL cloth_set_max_distances(cloth_id cloth, const float* distances,
+                                                          uint32_t count);
+/// Every particle's backstop (by vertex, count = the particle count):
+/// distance >= 0 and radius >= 0, finite; radius 0 (with distance 0) for
+/// none, the default. A radius of 0 with a positive distance is
+/// CLOTH_ERROR_INVALID_VALUE. The cloth needs a skin. Wakes the cloth.
+CLOTH_API cloth_result CLOTH_CALL cloth_set_backstops(cloth_id cloth, const float* distances,
+                                                      const float* radii, uint32_t count);
 
 /* ------------------------------------------------------------------ */
 /* Self-collision                                                     */

@@ -40,7 +40,8 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       strain_maybe_over_(HostAllocator<uint8_t>(memory)),
       strain_pull_(HostAllocator<float>(memory)),
       frame_(memory),
-      contact_(memory) {
+      contact_(memory),
+      skin_(memory) {
     const Fabric& f = *fabric_;
     const uint32_t n = f.particle_count();
     for (Vec3Soa* a : {&x_, &v_, &pin_target_, &external_force_, &rhs_, &dv_, &dv_scratch_, &normals_}) {
@@ -166,6 +167,45 @@ void ClothInstance::shift_origin(const Vec3& shift) {
         for (float& c : a->y) c -= shift.y();
         for (float& c : a->z) c -= shift.z();
     }
+    skin_.shift_origin(shift);
+}
+
+void ClothInstance::bind_skin(uint32_t joint_count, uint32_t influences, const uint32_t* joints,
+                              const float* weights) {
+    skin_.bind(*fabric_, joint_count, influences, joints, weights);
+    wake();
+}
+
+void ClothInstance::set_joint_matrices(const float* matrices, bool column_major_4x4) {
+    skin_.set_joint_matrices(matrices, column_major_4x4);
+    wake();
+}
+
+void ClothInstance::set_skinned(const float* positions, const float* normals) {
+    skin_.set_skinned(*fabric_, positions, normals);
+    wake();
+}
+
+void ClothInstance::set_max_distances(const float* distances) {
+    const uint32_t n = particle_count();
+    skin_.size_for(n);
+    HostVector<uint32_t> pins(HostAllocator<uint32_t>(fabric_->memory)), releases(pins.get_allocator());
+    for (uint32_t i = 0; i < n; ++i) {
+        const bool was_pin = skin_pins(i);
+        skin_.set_max_distance(i, distances[i]);
+        if (distances[i] == 0.0f && !is_pinned(i)) pins.push_back(i);
+        if (distances[i] != 0.0f && was_pin && is_pinned(i)) releases.push_back(i);
+    }
+    if (!pins.empty()) set_pinned(pins.data(), static_cast<uint32_t>(pins.size()), true);
+    if (!releases.empty()) set_pinned(releases.data(), static_cast<uint32_t>(releases.size()), false);
+    wake();
+}
+
+void ClothInstance::set_backstops(const float* distances, const float* radii) {
+    const uint32_t n = particle_count();
+    skin_.size_for(n);
+    for (uint32_t i = 0; i < n; ++i) skin_.set_backstop(i, distances[i], radii[i]);
+    wake();
 }
 
 void ClothInstance::update_sleep() {

@@ -26,6 +26,7 @@
 #include "forces/material.h"
 #include "forces/springs.h"
 #include "jobs/task_system.h"
+#include "solve/skin.h"
 #include "solve/solver_settings.h"
 #include "solve/solvers.h"
 #include "solve/strain_limit.h"
@@ -178,6 +179,22 @@ class ClothInstance {
     const SolveReport& last_solve() const { return last_solve_; }
     cloth_result last_step_result() const { return last_step_result_; }
 
+    // The skin (skin.h): skinned positions, max distances and backstops.
+    // Setters that change what the cloth would do wake it.
+    const Skin& skin() const { return skin_; }
+    void bind_skin(uint32_t joint_count, uint32_t influences, const uint32_t* joints, const float* weights);
+    void set_joint_matrices(const float* matrices, bool column_major_4x4);
+    // By vertex, as the C API takes them.
+    void set_skinned(const float* positions, const float* normals);
+    // Max distances in particle order: 0 pins the particle to its skinned
+    // position; a particle leaving 0 is unpinned.
+    void set_max_distances(const float* distances);
+    void set_backstops(const float* distances, const float* radii);
+    // Whether particle i is a pin whose target the skin writes (max distance 0).
+    bool skin_pins(uint32_t i) const {
+        return skin_.active() && skin_.sized_for(particle_count()) && skin_.max_distance(i) == 0.0f;
+    }
+
   private:
     // ---- The plan of a substep and the machine that runs it (frame_plan.cpp)
     // Writes this substep's stages into frame_.plan, in run order.
@@ -197,6 +214,10 @@ class ClothInstance {
     // ---- The stages (cloth_stages.cpp), in plan order; each runs one group.
     /// Pinned particles get the velocity that lands them on this substep's targets (serial).
     void move_pins();
+    /// The frame's skinned positions and normals (first substep only); the
+    /// skin's pins get them as targets.
+    void skin_particles(const GroupTask& task);
+    void finish_skinning();
     /// Wind drag and lift per triangle, a share for each corner.
     void apply_air(const GroupTask& task);
     /// External forces (air gather, gravity, linear drag), then each spring's f~, J and A_s.
@@ -224,6 +245,8 @@ class ClothInstance {
     void limit_strain(const GroupTask& task);
     /// After the strain limiter's last round: whether it ended past its promise.
     void note_strain();
+    /// Free particles into their max distances, out of their backstops.
+    void constrain_to_skin(const GroupTask& task);
     /// One round of self-collision (hash, sort, contacts, project, respond).
     void resolve_self_contacts(const GroupTask& task);
     /// Checks the group's new state for NaN and Inf (in the frame's last round).
@@ -300,6 +323,7 @@ class ClothInstance {
     uint32_t rest_frames_ = 0;  // consecutive frames below sleep_.max_speed
 
     ClothContact contact_;  // colliders, attachments, carrier
+    Skin skin_;             // sized only once the host gives the cloth a skin
 };
 
 }  // namespace cloth

@@ -65,6 +65,17 @@ void ClothInstance::move_pins() {
     for (uint32_t i : pinned_list_) v_.set(i, (pin_position(i, fraction_end) - x_.get(i)) / frame_.h);
 }
 
+void ClothInstance::skin_particles(const GroupTask& task) {
+    expect_stage(Stage::kSkinning);
+    skin_.skin(task.begin, task.end);
+    if (!skin_.sized_for(particle_count())) return;
+    for (uint32_t i = task.begin; i < task.end; ++i) {
+        if (is_pinned(i) && skin_pins(i)) pin_target_.set(i, skin_.position(i, 1.0f));
+    }
+}
+
+void ClothInstance::finish_skinning() { skin_.finish_skinning(); }
+
 void ClothInstance::apply_air(const GroupTask& task) {
     expect_stage(Stage::kAir);
     uint32_t begin, end;
@@ -157,6 +168,13 @@ void ClothInstance::adopt_first_integration() {
     x_.swap_buffers(frame_.backup_x);
     v_.swap_buffers(frame_.backup_v);
     frame_.backup = FrameBackup::kSwapped;
+}
+
+void ClothInstance::constrain_to_skin(const GroupTask& task) {
+    expect_stage(Stage::kSkinConstraints);
+    const float fraction_end =
+        static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.solver.substeps);
+    skin_.constrain(task.begin, task.end, fraction_end, frame_.h, pinned_.data(), x_, v_);
 }
 
 void ClothInstance::collide_stage(const GroupTask& task) {

@@ -100,6 +100,7 @@ struct FrameContext {
     // The plan of the current substep, and where the frame is in it.
     PlannedStage plan[kMaxPlannedStages] = {};
     uint32_t plan_size = 0;
+    uint32_t pins_move_at = 0;  // the plan entry before which the pins move (after the skinning)
     uint32_t substep = 0, entry = 0, round = 0;  // substep, entry of plan, round within it
     bool done = true;
 };

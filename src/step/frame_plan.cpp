@@ -42,6 +42,9 @@ void ClothInstance::plan_substep() {
     frame_.theta = frame_.strained ? 1.0f : frame_.solver.theta;
     frame_.touching = false;
     const cloth_solver_kind kind = frame_.solver.kind;
+    if (frame_.substep == 0 && skin_.active())
+        plan(Stage::kSkinning, &C::skin_particles, &C::finish_skinning);
+    frame_.pins_move_at = frame_.plan_size;  // the skin gives its pins their targets first
     if (has_air()) plan(Stage::kAir, &C::apply_air);
     plan(Stage::kForces, &C::evaluate_forces);
     if (kind == CLOTH_SOLVER_EXPLICIT) {
@@ -59,6 +62,7 @@ void ClothInstance::plan_substep() {
     // After integration, where contact plugs in.
     if (frame_.collides) plan(Stage::kCollisions, &C::collide_stage, &C::note_contacts);
     if (limits_strain()) plan(Stage::kStrainLimit, &C::limit_strain, &C::note_strain, begin_strain_limit());
+    if (skin_.active() && skin_.constrains()) plan(Stage::kSkinConstraints, &C::constrain_to_skin);
     if (self_collision_) {
         self_collision_->begin(x_, v_, mass_.data(), pinned_.data());
         plan(Stage::kSelfCollision, &C::resolve_self_contacts, nullptr, self_collision_.get());
@@ -154,6 +158,7 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
         tethers_.plan(*fabric_, pinned_.data());
         tethers_follow_pins_ = true;
     }
+    if (skin_.active()) skin_.begin_frame();
     frame_.h = dt / static_cast<float>(frame_.solver.substeps);
     frame_.gravity = gravity;
     frame_.converged = true;
@@ -183,7 +188,7 @@ Stage ClothInstance::stage() const {
 }
 
 void ClothInstance::prepare_stage() {
-    if (frame_.entry == 0 && frame_.round == 0) move_pins();
+    if (frame_.entry == frame_.pins_move_at && frame_.round == 0) move_pins();
 }
 
 uint32_t ClothInstance::task_count() const {

@@ -26,6 +26,8 @@ enum class Stage : uint8_t {
     kIterativeSolve,
     kStrainLimit,
     kLimitCollisions,
+    kSkinning,
+    kSkinConstraints,
     kCount
 };
 
@@ -56,6 +58,10 @@ inline const char* stage_name(Stage stage) {
             return "strain_limit";
         case Stage::kLimitCollisions:
             return "limit_collisions";
+        case Stage::kSkinning:
+            return "skinning";
+        case Stage::kSkinConstraints:
+            return "skin_constraints";
         case Stage::kIntegrate:
             return "integrate";
         case Stage::kExplicit:

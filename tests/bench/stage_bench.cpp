@@ -1,9 +1,11 @@
 // Per-stage cost of one JACOBI k=1 substep on the 64x64 flag, from the
-// core's own stage functions: where the step's time goes, for tuning. And
-// what the tethers' plan costs after a change of the pin set.
+// core's own stage functions: where the step's time goes, for tuning. What
+// the tethers' plan costs after a change of the pin set. And what the skin
+// costs per particle: skinning once a frame, its constraints per substep.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -11,6 +13,7 @@
 #include "forces/material.h"
 #include "forces/spring_terms.h"
 #include "solve/linear_system.h"
+#include "solve/skin.h"
 #include "solve/solver_settings.h"
 #include "solve/solvers.h"
 #include "solve/tethers.h"
@@ -149,6 +152,63 @@ BENCHMARK(BM_Tethers_Plan)
     ->ArgNames({"res", "mesh", "row"})
     ->ArgsProduct({{64, 128}, {0, 1}, {0, 1}})
     ->Unit(benchmark::kMillisecond);
+
+// A 64x64 cloth skinned to 16 joints, `influences` per particle, turned
+// and moved; per particle: the skinning (range 1 = 0) or the max-distance
+// and backstop projection of every particle (range 1 = 1, the skinned
+// positions of a frame, the particles scattered about them).
+void BM_Skin(benchmark::State& state) {
+    const uint32_t influences = static_cast<uint32_t>(state.range(0));
+    const bool constraints = state.range(1) != 0;
+    StageFixture f(64);
+    Skin skin(&f.memory);
+    const uint32_t joints = 16;
+    std::vector<uint32_t> joint(size_t{f.n} * influences);
+    std::vector<float> weight(size_t{f.n} * influences, 1.0f / static_cast<float>(influences));
+    for (size_t e = 0; e < joint.size(); ++e) joint[e] = static_cast<uint32_t>((e * 7) % joints);
+    skin.bind(*f.fabric, joints, influences, joint.data(), weight.data());
+    std::vector<float> m(size_t{joints} * Skin::kMatrixFloats);
+    for (uint32_t j = 0; j < joints; ++j) {
+        const float a = 0.1f * static_cast<float>(j), c = std::cos(a), s = std::sin(a);
+        const float row[12] = {c, 0, s, 0.1f * j, 0, 1, 0, 0, -s, 0, c, 0};
+        std::copy(row, row + 12, m.begin() + size_t{j} * Skin::kMatrixFloats);
+    }
+    skin.set_joint_matrices(m.data(), false);
+    skin.begin_frame();
+    skin.skin(0, f.n);
+    skin.finish_skinning();
+    for (uint32_t i = 0; i < f.n; ++i) {
+        skin.set_max_distance(i, 0.05f);
+        skin.set_backstop(i, 0.05f, 0.04f);
+    }
+    std::vector<float> pinned(f.n, 0.0f);
+    Vec3Soa x(&f.memory), v(&f.memory);
+    x.resize(f.n);
+    v.resize(f.n);
+    for (auto _ : state) {
+        if (constraints) {
+            state.PauseTiming();
+            for (uint32_t i = 0; i < f.n; ++i) {  // around the skin, some outside either sphere
+                const float k = 0.02f * static_cast<float>(i % 7) - 0.06f;
+                x.set(i, skin.position(i, 1.0f) + Vec3(k, -k, 0.5f * k));
+            }
+            state.ResumeTiming();
+            skin.constrain(0, f.n, 1.0f, StageFixture::kH, pinned.data(), x, v);
+        } else {
+            skin.skin(0, f.n);
+        }
+        benchmark::DoNotOptimize(x.x.data());
+    }
+    state.counters["per_particle"] =
+        benchmark::Counter(f.n, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+BENCHMARK(BM_Skin)
+    ->ArgNames({"influences", "constraints"})
+    ->Args({1, 0})
+    ->Args({4, 0})
+    ->Args({1, 1})
+    ->Unit(benchmark::kMicrosecond);
 
 BENCHMARK(BM_Stage_Air)->Arg(64)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Stage_AirGather)->Arg(64)->Unit(benchmark::kMicrosecond);

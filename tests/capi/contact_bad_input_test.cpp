@@ -12,9 +12,11 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "support/contract.h"
 #include "support/contract_gtest.h"
@@ -158,6 +160,36 @@ TEST_F(ContactBadInput, BodyCallsRejectBadHandlesPosesAndDescriptions) {
     foreign.world1 = a_.body.world1;
     foreign.world_generation = static_cast<uint16_t>(a_.body.world_generation + 1);
     EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, cloth_body_set_pose(foreign, kOrigin, kIdentity));
+}
+
+// The batch call checks every entry before it moves any body: entry 0 is
+// the watched body with a new pose, a later entry is bad, and the watched
+// body keeps its pose.
+TEST_F(ContactBadInput, BodyPosesInOneCallRejectABadEntryAndMoveNoBody) {
+    const float moved[3] = {0.5f, 0.0f, 0.0f};
+    const auto poses = [&](const cloth_body_id(&ids)[2], const float(&p)[6], const float(&q)[8],
+                           uint32_t count) { return cloth_world_set_body_poses(a_.world, ids, p, q, count); };
+    const cloth_body_id good[2] = {a_.body, a_.spare};
+    const float p_ok[6] = {moved[0], moved[1], moved[2], 0, 0, 0};
+    const float q_ok[8] = {0, 0, 0, 1, 0, 0, 0, 1};
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_world_set_body_poses(a_.world, nullptr, p_ok, q_ok, 2));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_world_set_body_poses(a_.world, good, nullptr, q_ok, 2));
+    EXPECT_REJECTED(CLOTH_ERROR_NULL_POINTER, cloth_world_set_body_poses(a_.world, good, p_ok, nullptr, 2));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_COUNT, poses(good, p_ok, q_ok, 0));
+    EXPECT_REJECTED_NOT_LOGGED(CLOTH_ERROR_INVALID_HANDLE,
+                               cloth_world_set_body_poses(cloth_world_id{}, good, p_ok, q_ok, 2));
+    const cloth_body_id stale[2] = {a_.body, a_.stale_body};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, poses(stale, p_ok, q_ok, 2));
+    const cloth_body_id foreign[2] = {a_.body, b_.spare};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_HANDLE, poses(foreign, p_ok, q_ok, 2));
+    const float p_nan[6] = {moved[0], moved[1], moved[2], 0, kNaN, 0};
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, poses(good, p_nan, q_ok, 2));
+    const float q_long[8] = {0, 0, 0, 1, 1, 0, 0, 1};
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, poses(good, p_ok, q_long, 2));
+    ASSERT_EQ(poses(good, p_ok, q_long, 2), CLOTH_ERROR_INVALID_VALUE);
+    const std::string message = cloth_get_last_error();
+    EXPECT_NE(message.find("entry 1"), std::string::npos) << message;
+    EXPECT_NE(message.find("rotations_xyzw"), std::string::npos) << message;
 }
 
 TEST_F(ContactBadInput, ColliderCreationRejectsBadShapesAndChangesNothing) {
@@ -353,6 +385,51 @@ TEST(ContactApi, DestroyingABodyDetachesItsParticlesRemovesItsCollidersAndCarrie
     EXPECT_EQ(cloth_body_set_pose(body, kOrigin, kIdentity), CLOTH_ERROR_INVALID_HANDLE);
     EXPECT_EQ(cloth_step(world, kFrame), CLOTH_OK) << cloth_get_last_error();
     EXPECT_EQ(cloth_world_destroy(world), CLOTH_OK);
+}
+
+// One call for many bodies is the same as one cloth_body_set_pose each: a
+// cloth attached to one moving body and pushed by a sphere on another ends
+// bit-identical either way.
+TEST(ContactApi, BodyPosesInOneCallMoveTheBodiesAsOneCallEach) {
+    struct World {
+        cloth_world_id world{};
+        cloth_id cloth{};
+        cloth_body_id bodies[2]{};
+    } one_each, batched;
+    for (World* w : {&one_each, &batched}) {
+        cloth_world_desc wd = cloth_default_world_desc();
+        ASSERT_EQ(cloth_world_create(&wd, &w->world), CLOTH_OK);
+        cloth_grid_desc grid = cloth_default_grid_desc();
+        grid.columns = grid.rows = 8;
+        cloth_fabric_id fabric;
+        ASSERT_EQ(cloth_fabric_create_grid(w->world, &grid, &fabric), CLOTH_OK);
+        cloth_desc cd = cloth_default_desc();
+        cd.fabric = fabric;
+        ASSERT_EQ(cloth_create(w->world, &cd, &w->cloth), CLOTH_OK);
+        const cloth_body_desc bd = cloth_default_body_desc();
+        for (cloth_body_id& b : w->bodies) ASSERT_EQ(cloth_body_create(w->world, &bd, &b), CLOTH_OK);
+        const uint32_t corners[] = {0, 7};
+        ASSERT_EQ(cloth_attach(w->cloth, w->bodies[0], corners, nullptr, 2), CLOTH_OK);
+        cloth_collider_desc c = cloth_default_collider_desc();
+        c.body = w->bodies[1];
+        cloth_collider_id sphere;
+        ASSERT_EQ(cloth_collider_create_sphere(w->world, &c, 0.2f, &sphere), CLOTH_OK);
+    }
+    for (int frame = 0; frame < 30; ++frame) {
+        const float t = static_cast<float>(frame) * kFrame;
+        const float p[6] = {0.5f * t, 0.0f, 0.0f, 0.5f, -0.6f + t, 0.3f - t};
+        const float q[8] = {0, 0, std::sin(t), std::cos(t), 0, 0, 0, 1};
+        for (int k = 0; k < 2; ++k)
+            ASSERT_EQ(cloth_body_set_pose(one_each.bodies[k], p + 3 * k, q + 4 * k), CLOTH_OK);
+        ASSERT_EQ(cloth_world_set_body_poses(batched.world, batched.bodies, p, q, 2), CLOTH_OK);
+        for (World* w : {&one_each, &batched}) ASSERT_EQ(cloth_step(w->world, kFrame), CLOTH_OK);
+    }
+    std::vector<float> a(3 * 64), b(3 * 64), start(3 * 64);
+    ASSERT_EQ(cloth_read_positions(one_each.cloth, a.data(), 3 * 64), CLOTH_OK);
+    ASSERT_EQ(cloth_read_positions(batched.cloth, b.data(), 3 * 64), CLOTH_OK);
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
+    EXPECT_GT(std::fabs(a[0]), 0.1f) << "the attached corner followed its body";
+    for (World* w : {&one_each, &batched}) EXPECT_EQ(cloth_world_destroy(w->world), CLOTH_OK);
 }
 
 }  // namespace

@@ -223,6 +223,7 @@ class Harness {
     void self_collision();
     void profiling();
     void body();
+    void character();
     void collider();
     void attachment();
     void snapshot();
@@ -1255,6 +1256,113 @@ void Harness::profiling() {
     }
 }
 
+// Character cloth: a skin (joints past the count, weights off 1, another
+// particle count, five influences), joint matrices (too few, a bad
+// layout, any float), host-skinned positions and normals, max distances
+// and backstops (any float, a radius of 0), the skinned positions read
+// back, and many bodies' poses in one call. Buffers are exactly as long as
+// the count claims, so a count the library must refuse is never read past.
+void Harness::character() {
+    const cloth_id id = pick_cloth();
+    const uint8_t what = in_.u8();
+    const uint32_t particles = particles_of(id);
+    const uint32_t n = std::max(particles, 1u);
+    cloth_test::Watch watch = watch_of(id);
+    switch (what % 7) {
+        case 0: {
+            const uint32_t joints = 1 + in_.u8() % 4;
+            const uint32_t influences = (what & 0x40) ? 5 : 1 + in_.u8() % 4;
+            const uint32_t count = (what & 0x20) ? n + 1 : n;
+            std::vector<uint32_t> joint(size_t{count} * influences);
+            std::vector<float> weight(joint.size(), 1.0f / static_cast<float>(influences));
+            for (uint32_t& j : joint) j = in_.u8() % (joints + 1);  // joints itself is out of range
+            if (what & 0x10) weight[in_.u8() % weight.size()] = in_.any_float();
+            cloth_skin_desc d = cloth_default_skin_desc();
+            d.particle_count = count;
+            d.joint_count = joints;
+            d.influences = influences;
+            d.joints = joint.data();
+            d.weights = (what & 0x08) ? nullptr : weight.data();
+            if (what & 0x04) d.struct_size = in_.u8();
+            guarded(watch, "cloth_set_skin",
+                    [&] { return cloth_set_skin(id, (what & 0x80) ? nullptr : &d); });
+            break;
+        }
+        case 1: {
+            const uint32_t count = in_.u8() % 6;
+            std::vector<float> m(16 * size_t{std::max(count, 1u)}, 0.0f);
+            for (size_t k = 0; k < m.size(); k += 16) m[k] = m[k + 5] = m[k + 10] = m[k + 15] = 1.0f;
+            if (what & 0x10) m[in_.u8() % m.size()] = in_.any_float();
+            const auto layout = static_cast<cloth_matrix_layout>(in_.u8() % 3);
+            guarded(watch, "cloth_set_joint_matrices", [&] {
+                return cloth_set_joint_matrices(id, (what & 0x80) ? nullptr : m.data(), count, layout);
+            });
+            break;
+        }
+        case 2: {
+            const uint32_t count = (what & 0x20) ? n - 1 : n;
+            std::vector<float> x(3 * size_t{n}), normal(3 * size_t{n}, 0.0f);
+            for (size_t k = 0; k < x.size(); ++k) x[k] = 0.01f * static_cast<float>(k % 97);
+            for (size_t k = 2; k < normal.size(); k += 3) normal[k] = 1.0f;
+            if (what & 0x10) x[in_.u8() % x.size()] = in_.any_float();
+            if (what & 0x08) normal[in_.u8() % normal.size()] = in_.any_float();
+            guarded(watch, "cloth_set_skinned_positions", [&] {
+                return cloth_set_skinned_positions(id, (what & 0x80) ? nullptr : x.data(), normal.data(),
+                                                   count);
+            });
+            break;
+        }
+        case 3:
+        case 4: {
+            const uint32_t count = (what & 0x20) ? n - 1 : n;
+            std::vector<float> distance(n), radius(n);
+            for (uint32_t k = 0; k < n; ++k) {
+                distance[k] = 0.01f * static_cast<float>(k % 5);
+                radius[k] = distance[k] > 0.0f ? 0.5f * distance[k] : 0.0f;
+            }
+            if (what & 0x10) distance[in_.u8() % n] = in_.any_float();
+            if (what & 0x08) radius[in_.u8() % n] = in_.any_float();
+            if (what % 7 == 3) {
+                guarded(watch, "cloth_set_max_distances", [&] {
+                    return cloth_set_max_distances(id, (what & 0x80) ? nullptr : distance.data(), count);
+                });
+            } else {
+                guarded(watch, "cloth_set_backstops", [&] {
+                    return cloth_set_backstops(id, distance.data(), (what & 0x80) ? nullptr : radius.data(),
+                                               count);
+                });
+            }
+            break;
+        }
+        case 5: {
+            std::vector<float> x(3 * size_t{n} + 1, 7.0f), normal(3 * size_t{n} + 1, 7.0f);
+            const uint32_t capacity = (what & 0x20) ? 3 * n - 1 : 3 * n;
+            watch.outputs = {{x.data(), x.size() * sizeof(float), "the skinned positions"},
+                             {normal.data(), normal.size() * sizeof(float), "the skinned normals"}};
+            guarded(watch, "cloth_read_skinned_positions", [&] {
+                return cloth_read_skinned_positions(id, x.data(), (what & 0x10) ? nullptr : normal.data(),
+                                                    capacity);
+            });
+            break;
+        }
+        default: {
+            const uint32_t count = in_.u8() % (kBodySlots + 1);
+            cloth_body_id bodies[kBodySlots] = {};
+            float position[3 * kBodySlots], q[4 * kBodySlots];
+            for (uint32_t k = 0; k < kBodySlots; ++k) {
+                bodies[k] = pick_body();
+                in_.floats(position + 3 * k, 3);
+                rotation(q + 4 * k);
+            }
+            const cloth_world_id world = pick_world();
+            guarded(watch_of(world.index1, world.generation), "cloth_world_set_body_poses", [&] {
+                return cloth_world_set_body_poses(world, (what & 0x80) ? nullptr : bodies, position, q,
+                                                  count);
+            });
+        }
+    }
+}
+
 // ---------------------------------------------------------------- snapshots
 
 // A snapshot saved, then restored as it is, with bytes changed, cut short,
@@ -1391,6 +1499,9 @@ RunStats Harness::run() {
                 break;
             case kSnapshot:
                 snapshot();
+                break;
+            case kCharacter:
+                character();
                 break;
             case kOpCount:
                 break;

@@ -41,7 +41,8 @@ enum Op : uint8_t {
     kCollider,           // create each shape, destroy, group bits
     kAttachment,         // attach, detach, get attachment, collision params, carrier, teleported
     kWorldShiftOrigin,   // origin rebasing
-    kSnapshot,  // size, save (short capacity too), restore intact, damaged, cut, or into another cloth
+    kSnapshot,   // size, save (short capacity too), restore intact, damaged, cut, or into another cloth
+    kCharacter,  // skin, joint matrices, skinned positions (set, read), max distances, backstops, body poses
     kOpCount
 };
 

@@ -183,6 +183,19 @@ std::vector<std::vector<uint8_t>> seed_inputs() {
     snapshot.step(0, 2);
     seeds.push_back(snapshot.bytes);
 
+    // Character cloth: an 8x8 cloth skinned to two joints (the top row to
+    // joint 0), max distances (0 on every fifth particle: pins) and
+    // backstops, identity joint matrices, stepped, the skin read back.
+    Encoder character;
+    character.world(0, 2).grid(0, 8, 8).cloth(0, 0);
+    character.op(kCharacter).slot(0).u8(0).u8(1).u8(0);  // skin: 2 joints, 1 influence
+    for (int v = 0; v < 64; ++v) character.u8(v < 8 ? 0 : 1);
+    character.op(kCharacter).slot(0).u8(3);                         // max distances
+    character.op(kCharacter).slot(0).u8(4);                         // backstops
+    character.op(kCharacter).slot(0).u8(1).u8(2).u8(0).step(0, 4);  // two 4x4 matrices, stepped
+    character.op(kCharacter).slot(0).u8(5).step(0, 2);              // read the skin
+    seeds.push_back(character.bytes);
+
     return seeds;
 }
 

@@ -30,6 +30,7 @@ static class ClothTests
             GridCloth();
             Snapshot();
             Attachment();
+            Skin();
             ProfileAndZones();
             Allocator();
             Errors();
@@ -178,6 +179,62 @@ static class ClothTests
             cloth.RestoreSnapshot(span);
             cloth.ReadPositions(restored);
             Check(SameBits(saved, restored), "the intact snapshot restores again (ReadOnlySpan<byte> overload)");
+        }
+    }
+
+    // Character cloth through the binding: a skin description whose arrays
+    // are pointer fields, joint matrices, max distances (0 pins a particle
+    // to its skinned position), the skinned positions read back.
+    static unsafe void Skin()
+    {
+        using (var world = new World())
+        {
+            ClothGridDesc grid = ClothGridDesc.Default();
+            grid.Columns = 8;
+            grid.Rows = 8;
+            Fabric fabric = world.CreateGridFabric(grid);
+            Cloth cloth = world.CreateCloth(fabric);
+            var joints = new uint[64];
+            var reach = new float[64];
+            for (int v = 0; v < 64; ++v)
+            {
+                joints[v] = v < 8 ? 0u : 1u;
+                reach[v] = v < 8 ? 0.0f : 0.05f;
+            }
+            ClothSkinDesc skin = ClothSkinDesc.Default();
+            skin.ParticleCount = 64;
+            skin.JointCount = 2;
+            skin.Influences = 1;
+            fixed (uint* j = joints)
+            {
+                skin.Joints = (IntPtr)j;
+                ClothException.Check(Native.cloth_set_skin(cloth.Id, ref skin));
+            }
+            ClothException.Check(Native.cloth_set_max_distances(cloth.Id, ref reach[0], 64));
+            Check(cloth.IsPinned(3) && !cloth.IsPinned(8), "a max distance of 0 pins the top row");
+            // Both joints 1 m along x: column-major 4x4 matrices.
+            var m = new float[32];
+            for (int k = 0; k < 2; ++k)
+            {
+                m[16 * k] = m[16 * k + 5] = m[16 * k + 10] = m[16 * k + 15] = 1.0f;
+                m[16 * k + 12] = 1.0f;
+            }
+            ClothException.Check(Native.cloth_set_joint_matrices(cloth.Id, ref m[0], 2, ClothMatrixLayout.ColumnMajor4x4));
+            for (int frame = 0; frame < 10; ++frame) world.Step(1.0f / 60.0f);
+            var s = new float[192];
+            var n = new float[192];
+            var x = new float[192];
+            ClothException.Check(Native.cloth_read_skinned_positions(cloth.Id, out s[0], out n[0], 192));
+            cloth.ReadPositions(x);
+            float worst = 0.0f;
+            for (int v = 8; v < 64; ++v)
+            {
+                float dx = x[3 * v] - s[3 * v], dy = x[3 * v + 1] - s[3 * v + 1], dz = x[3 * v + 2] - s[3 * v + 2];
+                worst = Math.Max(worst, (float)Math.Sqrt(dx * dx + dy * dy + dz * dz) - reach[v]);
+            }
+            Check(Math.Abs(s[3 * 3] - (3.0f / 7.0f + 1.0f)) < 1e-5f && Math.Abs(x[3 * 3] - s[3 * 3]) < 1e-5f,
+                  "the skin moved 1 m with its joints and the pinned row with it");
+            Check(worst <= 1e-5f, "every other particle within its max distance of the skin (" + worst + " m past)");
         }
     }
 

@@ -1,0 +1,273 @@
+// Character cloth through the C API: linear blend skinning against a
+// reference computed here, a max distance of 0 as a pin, the max-distance
+// and backstop promises under a fast skeleton, and the same bits for any
+// worker count with the skin on.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "cloth/cloth.h"
+
+namespace {
+
+constexpr float kFrame = 1.0f / 60.0f;
+
+// A column-major 4x4 matrix: rotation by `angle` about the unit `axis`,
+// uniform `scale`, then translation `t`.
+std::vector<float> joint_matrix(const double axis[3], double angle, double scale, const double t[3]) {
+    const double c = std::cos(angle), s = std::sin(angle), k = 1.0 - c;
+    const double x = axis[0], y = axis[1], z = axis[2];
+    const double r[3][3] = {{c + x * x * k, x * y * k - z * s, x * z * k + y * s},
+                            {y * x * k + z * s, c + y * y * k, y * z * k - x * s},
+                            {z * x * k - y * s, z * y * k + x * s, c + z * z * k}};
+    std::vector<float> m(16, 0.0f);
+    for (int row = 0; row < 3; ++row) {
+        for (int col = 0; col < 3; ++col) m[4 * col + row] = static_cast<float>(scale * r[row][col]);
+        m[12 + row] = static_cast<float>(t[row]);
+    }
+    m[15] = 1.0f;
+    return m;
+}
+
+// A side x side cloth hanging in the x-y plane (1 m), skinned to two
+// joints: joint 0 holds the top rows, the weights move to joint 1 down the
+// cloth.
+struct SkinnedScene {
+    static constexpr uint32_t kJoints = 2;
+    uint32_t side = 16, count = 256;
+    cloth_world_id world{};
+    cloth_id cloth{};
+    std::vector<uint32_t> joints;
+    std::vector<float> weights;
+
+    SkinnedScene(uint32_t side_, uint32_t workers) : side(side_), count(side_ * side_) {
+        cloth_world_desc wd = cloth_default_world_desc();
+        wd.worker_count = workers;
+        EXPECT_EQ(cloth_world_create(&wd, &world), CLOTH_OK);
+        cloth_grid_desc grid = cloth_default_grid_desc();
+        grid.columns = grid.rows = side;
+        cloth_fabric_id fabric{};
+        EXPECT_EQ(cloth_fabric_create_grid(world, &grid, &fabric), CLOTH_OK);
+        cloth_desc desc = cloth_default_desc();
+        desc.fabric = fabric;
+        EXPECT_EQ(cloth_create(world, &desc, &cloth), CLOTH_OK);
+        for (uint32_t v = 0; v < count; ++v) {
+            const float down = static_cast<float>(v / side) / static_cast<float>(side - 1);
+            joints.push_back(0);
+            joints.push_back(1);
+            weights.push_back(1.0f - down);
+            weights.push_back(down);
+        }
+        cloth_skin_desc skin = cloth_default_skin_desc();
+        skin.particle_count = count;
+        skin.joint_count = kJoints;
+        skin.influences = 2;
+        skin.joints = joints.data();
+        skin.weights = weights.data();
+        EXPECT_EQ(cloth_set_skin(cloth, &skin), CLOTH_OK);
+    }
+    ~SkinnedScene() { cloth_world_destroy(world); }
+
+    // The clip at frame f: the body turns about y at 4 rad/s and runs along
+    // x at 5 m/s; joint 1 (the lower cloth) swings about x besides.
+    void pose(int f) {
+        const double t = f * static_cast<double>(kFrame);
+        const double up[3] = {0, 1, 0}, side_axis[3] = {1, 0, 0};
+        const double at[3] = {5.0 * t, 0.0, 0.0};
+        std::vector<float> m = joint_matrix(up, 4.0 * t, 1.0, at);
+        const std::vector<float> m1 = joint_matrix(side_axis, 0.8 * std::sin(6.0 * t), 1.0, at);
+        m.insert(m.end(), m1.begin(), m1.end());
+        ASSERT_EQ(cloth_set_joint_matrices(cloth, m.data(), kJoints, CLOTH_MATRIX_COLUMN_MAJOR_4X4),
+                  CLOTH_OK);
+    }
+    std::vector<float> read(cloth_result (*f)(cloth_id, float*, uint32_t)) const {
+        std::vector<float> out(3 * count);
+        EXPECT_EQ(f(cloth, out.data(), 3 * count), CLOTH_OK);
+        return out;
+    }
+};
+
+float distance(const float* a, const float* b) {
+    return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                     (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+// Skinned positions are sum_k w_k M_k (b, 1) of the rest position b, and
+// normals the unit sum_k w_k R_k n_b: to a micrometre of a double-precision
+// reference, with three joints, three influences and a scaled joint, in
+// either matrix layout.
+TEST(Skin, LinearBlendSkinningMatchesAReferenceWithinAMicrometre) {
+    for (cloth_matrix_layout layout : {CLOTH_MATRIX_COLUMN_MAJOR_4X4, CLOTH_MATRIX_ROW_MAJOR_3X4}) {
+        cloth_world_desc wd = cloth_default_world_desc();
+        cloth_world_id world{};
+        ASSERT_EQ(cloth_world_create(&wd, &world), CLOTH_OK);
+        cloth_grid_desc grid = cloth_default_grid_desc();
+        grid.columns = grid.rows = 8;
+        cloth_fabric_id fabric{};
+        ASSERT_EQ(cloth_fabric_create_grid(world, &grid, &fabric), CLOTH_OK);
+        cloth_desc desc = cloth_default_desc();
+        desc.fabric = fabric;
+        cloth_id cloth{};
+        ASSERT_EQ(cloth_create(world, &desc, &cloth), CLOTH_OK);
+        const uint32_t n = 64;
+        std::vector<float> rest(3 * n), rest_normals(3 * n);
+        ASSERT_EQ(cloth_read_positions(cloth, rest.data(), 3 * n), CLOTH_OK);
+        ASSERT_EQ(cloth_read_normals(cloth, rest_normals.data(), 3 * n), CLOTH_OK);
+        std::vector<uint32_t> joints;
+        std::vector<float> weights;
+        for (uint32_t v = 0; v < n; ++v) {
+            const float a = 0.2f + 0.6f * static_cast<float>(v % 8) / 7.0f;
+            const float b = 0.5f * (1.0f - a) * static_cast<float>(v / 8) / 7.0f;
+            joints.insert(joints.end(), {v % 3, (v + 1) % 3, (v + 2) % 3});
+            weights.insert(weights.end(), {a, b, 1.0f - a - b});
+        }
+        cloth_skin_desc skin = cloth_default_skin_desc();
+        skin.particle_count = n;
+        skin.joint_count = 3;
+        skin.influences = 3;
+        skin.joints = joints.data();
+        skin.weights = weights.data();
+        ASSERT_EQ(cloth_set_skin(cloth, &skin), CLOTH_OK);
+        const double axes[3][3] = {{0, 1, 0}, {0.6, 0, 0.8}, {0, 0, 1}};
+        const double angles[3] = {0.7, -1.9, 2.5}, scales[3] = {1.0, 1.0, 1.5};
+        const double moves[3][3] = {{1, 2, 3}, {-0.5, 0.25, 4}, {0.1, -3, 0.2}};
+        std::vector<std::vector<float>> m;
+        std::vector<float> given;
+        for (int j = 0; j < 3; ++j) {
+            m.push_back(joint_matrix(axes[j], angles[j], scales[j], moves[j]));
+            for (int r = 0; r < 3 && layout == CLOTH_MATRIX_ROW_MAJOR_3X4; ++r) {
+                for (int c = 0; c < 4; ++c) given.push_back(m[j][4 * c + r]);
+            }
+            if (layout == CLOTH_MATRIX_COLUMN_MAJOR_4X4) given.insert(given.end(), m[j].begin(), m[j].end());
+        }
+        ASSERT_EQ(cloth_set_joint_matrices(cloth, given.data(), 3, layout), CLOTH_OK);
+        ASSERT_EQ(cloth_step(world, kFrame), CLOTH_OK);
+        std::vector<float> x(3 * n), normals(3 * n);
+        ASSERT_EQ(cloth_read_skinned_positions(cloth, x.data(), normals.data(), 3 * n), CLOTH_OK);
+        for (uint32_t v = 0; v < n; ++v) {
+            double p[3] = {0, 0, 0}, q[3] = {0, 0, 0};
+            for (int k = 0; k < 3; ++k) {
+                const std::vector<float>& mj = m[joints[3 * v + k]];
+                const double w = weights[3 * v + k];
+                for (int r = 0; r < 3; ++r) {
+                    double pr = mj[12 + r], qr = 0;
+                    for (int c = 0; c < 3; ++c) {
+                        pr += double(mj[4 * c + r]) * rest[3 * v + c];
+                        qr += double(mj[4 * c + r]) * rest_normals[3 * v + c];
+                    }
+                    p[r] += w * pr;
+                    q[r] += w * qr;
+                }
+            }
+            const double length = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+            for (int r = 0; r < 3; ++r) {
+                EXPECT_NEAR(x[3 * v + r], p[r], 1e-6) << "vertex " << v << ", layout " << layout;
+                EXPECT_NEAR(normals[3 * v + r], q[r] / length, 1e-5)
+                    << "vertex " << v << ", layout " << layout;
+            }
+        }
+        cloth_world_destroy(world);
+    }
+}
+
+// A particle with a max distance of 0 is a pin whose target is its skinned
+// position: the same cloth with those particles pinned by cloth_pin and
+// given the skinned positions as targets ends every frame bit-identical.
+TEST(Skin, AMaxDistanceOfZeroIsAPinBitForBit) {
+    SkinnedScene skinned(12, 1), pinned(12, 1);
+    const uint32_t side = 12;
+    std::vector<float> reach(side * side, INFINITY);
+    std::vector<uint32_t> top;
+    for (uint32_t c = 0; c < side; ++c) {
+        reach[c] = 0.0f;
+        top.push_back(c);
+    }
+    ASSERT_EQ(cloth_set_max_distances(skinned.cloth, reach.data(), side * side), CLOTH_OK);
+    ASSERT_EQ(cloth_pin(pinned.cloth, top.data(), side), CLOTH_OK);
+    bool pin = false;
+    ASSERT_EQ(cloth_is_pinned(skinned.cloth, 3, &pin), CLOTH_OK);
+    EXPECT_TRUE(pin) << "a max distance of 0 pins";
+    const float elsewhere[3] = {0, 0, 0};
+    EXPECT_EQ(cloth_set_pin_targets(skinned.cloth, top.data(), elsewhere, 1), CLOTH_ERROR_INVALID_VALUE)
+        << "the skin sets its pins' targets";
+    for (int f = 0; f < 60; ++f) {
+        skinned.pose(f);
+        ASSERT_EQ(cloth_step(skinned.world, kFrame), CLOTH_OK);
+        std::vector<float> s(3 * side * side), targets;
+        ASSERT_EQ(cloth_read_skinned_positions(skinned.cloth, s.data(), nullptr, 3 * side * side), CLOTH_OK);
+        targets.assign(s.begin(), s.begin() + 3 * side);
+        ASSERT_EQ(cloth_set_pin_targets(pinned.cloth, top.data(), targets.data(), side), CLOTH_OK);
+        ASSERT_EQ(cloth_step(pinned.world, kFrame), CLOTH_OK);
+        const std::vector<float> a = skinned.read(cloth_read_positions),
+                                 b = pinned.read(cloth_read_positions);
+        ASSERT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << "frame " << f;
+        for (uint32_t c = 0; c < side; ++c) ASSERT_LT(distance(&a[3 * c], &s[3 * c]), 1e-5f) << "pin " << c;
+    }
+}
+
+// Under a skeleton that runs at 5 m/s and turns at 4 rad/s, every free
+// particle ends every step within its max distance of its skinned position
+// and outside its backstop sphere; the constraints are at work (particles
+// end on their spheres).
+TEST(Skin, MaxDistanceAndBackstopHoldAfterEveryStepUnderAFastSkeleton) {
+    SkinnedScene scene(16, 2);
+    const uint32_t n = scene.count;
+    std::vector<float> reach(n), back_distance(n, 0.05f), back_radius(n, 0.04f);
+    for (uint32_t v = 0; v < n; ++v)
+        reach[v] = 0.1f * static_cast<float>(v / 16) / 15.0f;  // 0 on the top row
+    ASSERT_EQ(cloth_set_max_distances(scene.cloth, reach.data(), n), CLOTH_OK);
+    ASSERT_EQ(cloth_set_backstops(scene.cloth, back_distance.data(), back_radius.data(), n), CLOTH_OK);
+    uint32_t on_max_distance = 0, on_backstop = 0;
+    for (int f = 0; f < 120; ++f) {
+        scene.pose(f);
+        ASSERT_EQ(cloth_step(scene.world, kFrame), CLOTH_OK) << "frame " << f;
+        const std::vector<float> x = scene.read(cloth_read_positions);
+        std::vector<float> s(3 * n), normal(3 * n);
+        ASSERT_EQ(cloth_read_skinned_positions(scene.cloth, s.data(), normal.data(), 3 * n), CLOTH_OK);
+        for (uint32_t v = 16; v < n; ++v) {
+            const float d = distance(&x[3 * v], &s[3 * v]);
+            EXPECT_LE(d, reach[v] + 1e-5f) << "frame " << f << ", vertex " << v;
+            const float centre[3] = {s[3 * v] - 0.05f * normal[3 * v],
+                                     s[3 * v + 1] - 0.05f * normal[3 * v + 1],
+                                     s[3 * v + 2] - 0.05f * normal[3 * v + 2]};
+            const float out = distance(&x[3 * v], centre);
+            EXPECT_GE(out, 0.04f - 1e-5f) << "frame " << f << ", vertex " << v;
+            on_max_distance += d > reach[v] - 1e-4f;
+            on_backstop += out < 0.04f + 1e-4f;
+        }
+    }
+    EXPECT_GT(on_max_distance, 100u);
+    EXPECT_GT(on_backstop, 10u);
+}
+
+// The skin's stages are per particle: a skinned cloth with max distances
+// and backstops ends bit-identical on 1, 2 and 4 workers.
+TEST(Determinism, ASkinnedClothIsBitIdenticalForAnyWorkerCount) {
+    std::vector<float> first;
+    for (uint32_t workers : {1u, 2u, 4u}) {
+        SkinnedScene scene(24, workers);
+        const uint32_t n = scene.count;
+        std::vector<float> reach(n), back_distance(n, 0.05f), back_radius(n, 0.04f);
+        for (uint32_t v = 0; v < n; ++v) reach[v] = 0.1f * static_cast<float>(v / 24) / 23.0f;
+        ASSERT_EQ(cloth_set_max_distances(scene.cloth, reach.data(), n), CLOTH_OK);
+        ASSERT_EQ(cloth_set_backstops(scene.cloth, back_distance.data(), back_radius.data(), n), CLOTH_OK);
+        for (int f = 0; f < 40; ++f) {
+            scene.pose(f);
+            ASSERT_EQ(cloth_step(scene.world, kFrame), CLOTH_OK);
+        }
+        const std::vector<float> x = scene.read(cloth_read_positions);
+        if (first.empty()) {
+            first = x;
+            EXPECT_GT(std::fabs(x[3 * (n - 1)]), 0.5f) << "the cloth moved with its skeleton";
+        } else {
+            EXPECT_EQ(std::memcmp(first.data(), x.data(), x.size() * sizeof(float)), 0)
+                << workers << " workers";
+        }
+    }
+}
+
+}  // namespace
