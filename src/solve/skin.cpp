@@ -184,8 +184,8 @@ void Skin::constrain(uint32_t begin, uint32_t end, float fraction, float h, cons
         // particle in: both hold wherever the skinned position is outside
         // the backstop (radius <= distance); elsewhere the max distance does.
         const float radius = backstop_radius_[i];
+        const Vec3 n = radius > 0.0f ? normal(i, fraction) : Vec3::Zero();
         if (radius > 0.0f) {
-            const Vec3 n = normal(i, fraction);
             const Vec3 centre = s - n * backstop_distance_[i];
             const Vec3 out = p - centre;
             const float distance = out.norm();
@@ -196,7 +196,7 @@ void Skin::constrain(uint32_t begin, uint32_t end, float fraction, float h, cons
         const float distance = away.norm();
         if (distance > reach) {
             p = s + away * (reach / distance);
-            if (radius > 0.0f) p = back_out_towards(p, s, normal(i, fraction), i);
+            if (radius > 0.0f) p = back_out_towards(p, s, n, i);
         }
         if (p == before) continue;
         x.set(i, p);
