@@ -105,8 +105,7 @@ void Skin::set_skinned(const Fabric& fabric, const float* positions, const float
 }
 
 void Skin::count_constrained(uint32_t particle, bool before) {
-    const float d = max_distance_[particle];
-    const bool now = (d > 0.0f && d < kNoMaxDistance) || backstop_radius_[particle] > 0.0f;
+    const bool now = constrained(particle);
     if (now != before) constrained_count_ = now ? constrained_count_ + 1 : constrained_count_ - 1;
 }
 
