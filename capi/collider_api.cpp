@@ -99,6 +99,21 @@ CLOTH_API cloth_result cloth_collider_create_capsule(cloth_world_id world, const
     });
 }
 
+CLOTH_API cloth_result cloth_collider_create_tapered_capsule(cloth_world_id world,
+                                                             const cloth_collider_desc* desc,
+                                                             float bottom_radius, float top_radius,
+                                                             float half_height, cloth_collider_id* out) {
+    return create_collider(__func__, world, desc, out, [&](Shape& shape) {
+        Status s = check_finite(bottom_radius, "bottom_radius");
+        if (s.ok()) s = check_finite(top_radius, "top_radius");
+        if (s.ok()) s = check_finite(half_height, "half_height");
+        if (s.ok()) s = check_coordinate(bottom_radius, "bottom_radius");
+        if (s.ok()) s = check_coordinate(top_radius, "top_radius");
+        if (s.ok()) s = check_coordinate(half_height, "half_height");
+        return s.ok() ? build_tapered_capsule(bottom_radius, top_radius, half_height, shape) : s;
+    });
+}
+
 CLOTH_API cloth_result cloth_collider_create_box(cloth_world_id world, const cloth_collider_desc* desc,
                                                  const float half_extents[3], cloth_collider_id* out) {
     return create_collider(__func__, world, desc, out, [&](Shape& shape) {

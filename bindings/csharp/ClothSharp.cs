@@ -308,6 +308,13 @@ namespace ClothSharp
             return new Collider(this, c);
         }
 
+        public Collider CreateTaperedCapsule(ClothColliderDesc desc, float bottomRadius, float topRadius, float halfHeight)
+        {
+            ClothColliderId c;
+            ClothException.Check(Native.cloth_collider_create_tapered_capsule(id, ref desc, bottomRadius, topRadius, halfHeight, out c));
+            return new Collider(this, c);
+        }
+
         public Collider CreateBox(ClothColliderDesc desc, Float3 halfExtents)
         {
             ClothColliderId c;

@@ -179,7 +179,7 @@ extern "C" {
 #define CLOTH_VERSION_MAJOR 1
 /// Minor version of this header: a library of the same major and at least
 /// this minor version has every function and struct of this header.
-#define CLOTH_VERSION_MINOR 8
+#define CLOTH_VERSION_MINOR 9
 /// Patch version of this header (fixes that change no interface).
 #define CLOTH_VERSION_PATCH 0
 
@@ -814,7 +814,12 @@ CLOTH_API cloth_solver_settings CLOTH_CALL cloth_default_solver_settings(void);
 /// CLOTH_SOLVER_DEFAULT limits strain to 0.08 for itself until
 /// cloth_set_strain_limit is called; from then on the limit set applies to
 /// every solver kind, and a max_strain of 0 turns limiting off for
-/// CLOTH_SOLVER_DEFAULT too. cloth_set_solver keeps it.
+/// CLOTH_SOLVER_DEFAULT too. cloth_set_solver keeps it. Where pins or
+/// attachments are moved apart farther than the cloth reaches within the
+/// limit in one step (a spring between two pins, or two pins a particle is
+/// tethered to), no state meets it: for that substep the cable and the
+/// passes hold the strain the pins ask instead, so the stretch spreads
+/// over the cloth between them, and cloth_get_stats reports the step unmet.
 typedef struct cloth_strain_limit {
     /// sizeof(cloth_strain_limit)
     uint32_t struct_size;
@@ -1421,6 +1426,18 @@ CLOTH_API cloth_result CLOTH_CALL cloth_collider_create_capsule(cloth_world_id w
                                                                 const cloth_collider_desc* desc, float radius,
                                                                 float half_height,
                                                                 cloth_collider_id* out_collider);
+/// A tapered capsule along the local y axis: the convex hull of a sphere of
+/// `bottom_radius` at (0, -half_height, 0) and one of `top_radius` at
+/// (0, half_height, 0), a limb's shape (Jolt's TaperedCapsuleShape, NvCloth's
+/// cone between two spheres). Radii > 0, half_height >= 0, and the radii
+/// differ by less than 2 * half_height (else one sphere holds the other:
+/// CLOTH_ERROR_INVALID_VALUE; use a sphere). Exact and swept like the other
+/// shapes; equal radii give the capsule. Since 1.9.
+CLOTH_API cloth_result CLOTH_CALL cloth_collider_create_tapered_capsule(cloth_world_id world,
+                                                                        const cloth_collider_desc* desc,
+                                                                        float bottom_radius, float top_radius,
+                                                                        float half_height,
+                                                                        cloth_collider_id* out_collider);
 /// A box with the given half extents (each > 0) centred on the local origin.
 CLOTH_API cloth_result CLOTH_CALL cloth_collider_create_box(cloth_world_id world,
                                                             const cloth_collider_desc* desc,

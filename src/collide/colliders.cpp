@@ -1,4 +1,4 @@
-// The analytic shapes (sphere, capsule, box, plane), the shape dispatch,
+// The analytic shapes (sphere, capsule, tapered capsule, box, plane), the shape dispatch,
 // and the collision stage. Hulls are in collider_hull.cpp, triangle meshes
 // and height fields in collider_mesh.cpp.
 #include "collide/colliders.h"
@@ -29,6 +29,30 @@ SurfaceQuery query_capsule(float radius, float half_height, const Vec3& p) {
     const Vec3 axis_point(0.0f, std::clamp(p.y(), -half_height, half_height), 0.0f);
     SurfaceQuery q = query_sphere(radius, p - axis_point);
     if (p.x() == 0 && p.z() == 0 && std::abs(p.y()) <= half_height) q.normal = Vec3::UnitX();
+    return q;
+}
+
+// The convex hull of two spheres on the y axis (a round cone): in the
+// plane of the axis and p, with q = (distance from the axis, height above
+// the bottom centre), the side is the line at distance r_b from the bottom
+// centre along the unit normal (a, s), s = (r_b - r_t) / L the slope the
+// radii fall by over the centres' distance L. Points whose foot on that
+// line lies below the bottom centre's tangent point are nearest the bottom
+// sphere, past the top's the top sphere, else the side: the exact signed
+// distance (Quilez's round cone).
+SurfaceQuery query_tapered_capsule(float bottom_radius, float top_radius, float half_height, const Vec3& p) {
+    const float length = 2.0f * half_height;
+    const float slope = (bottom_radius - top_radius) / length;
+    const float across = std::sqrt(1.0f - slope * slope);
+    const float radial = std::hypot(p.x(), p.z());
+    const float up = p.y() + half_height;
+    const float along = up * across - radial * slope;  // the foot's position along the side
+    if (along < 0.0f) return query_sphere(bottom_radius, p - Vec3(0.0f, -half_height, 0.0f));
+    if (along > across * length) return query_sphere(top_radius, p - Vec3(0.0f, half_height, 0.0f));
+    const Vec3 out = radial > 0 ? Vec3(p.x() / radial, 0.0f, p.z() / radial) : Vec3(Vec3::UnitX());
+    SurfaceQuery q;
+    q.distance = radial * across + up * slope - bottom_radius;
+    q.normal = across * out + slope * Vec3::UnitY();
     return q;
 }
 
@@ -83,6 +107,25 @@ Status build_capsule(float radius, float half_height, Shape& shape) {
     return {};
 }
 
+Status build_tapered_capsule(float bottom_radius, float top_radius, float half_height, Shape& shape) {
+    if (!std::isfinite(bottom_radius) || !std::isfinite(top_radius))
+        return not_finite("tapered capsule radius");
+    if (!std::isfinite(half_height)) return not_finite("tapered capsule half_height");
+    if (!positive_finite(bottom_radius) || !positive_finite(top_radius))
+        return Status::error(CLOTH_ERROR_INVALID_VALUE, "tapered capsule radii must be > 0");
+    // One sphere inside the other has no side: that is a sphere.
+    if (!(std::abs(bottom_radius - top_radius) < 2.0f * half_height))
+        return Status::error(CLOTH_ERROR_INVALID_VALUE,
+                             "tapered capsule: the radii must differ by less than 2 * half_height "
+                             "(else one sphere holds the other: use a sphere)");
+    shape.kind = ShapeKind::kTaperedCapsule;
+    shape.radius = bottom_radius;
+    shape.top_radius = top_radius;
+    shape.half_height = half_height;
+    shape.bound_radius = half_height + std::max(bottom_radius, top_radius);
+    return {};
+}
+
 Status build_box(const Vec3& half_extents, Shape& shape) {
     if (!half_extents.allFinite()) return not_finite("box half extents");
     for (int k = 0; k < 3; ++k) {
@@ -124,6 +167,8 @@ SurfaceQuery query_shape(const Shape& shape, const Vec3& p, float radius) {
             return query_sphere(shape.radius, p);
         case ShapeKind::kCapsule:
             return query_capsule(shape.radius, shape.half_height, p);
+        case ShapeKind::kTaperedCapsule:
+            return query_tapered_capsule(shape.radius, shape.top_radius, shape.half_height, p);
         case ShapeKind::kBox:
             return query_box(shape.half_extents, p);
         case ShapeKind::kPlane:
@@ -177,7 +222,7 @@ bool heightfield_clear(const MovingCollider& c, const RangeBounds& b, float thic
     return lo.y() - highest_sample(f, cells) > radius + kCullMargin;
 }
 
-// Whether a sphere, capsule or box (shapes whose query is the exact
+// Whether a sphere, capsule, tapered capsule or box (shapes whose query is the exact
 // distance) is clear of the whole range, from two queries: at the centre
 // c_s of the range's start box (radius r_s) in the collider's frame at the
 // substep's start, and at the centre c_e of its end box (radius r_e) in
@@ -197,7 +242,7 @@ bool heightfield_clear(const MovingCollider& c, const RangeBounds& b, float thic
 bool exact_distance_clear(const MovingCollider& collider, float thickness, const RangeBounds& b) {
     const Shape& shape = *collider.shape;
     if (shape.kind != ShapeKind::kSphere && shape.kind != ShapeKind::kCapsule &&
-        shape.kind != ShapeKind::kBox)
+        shape.kind != ShapeKind::kTaperedCapsule && shape.kind != ShapeKind::kBox)
         return false;
     const float r_start = 0.5f * (b.start_hi - b.start_lo).norm();
     const float r_end = 0.5f * (b.end_hi - b.end_lo).norm();

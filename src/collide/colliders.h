@@ -27,7 +27,16 @@
 
 namespace cloth {
 
-enum class ShapeKind : uint8_t { kSphere, kCapsule, kBox, kPlane, kConvexHull, kTriangleMesh, kHeightfield };
+enum class ShapeKind : uint8_t {
+    kSphere,
+    kCapsule,
+    kTaperedCapsule,
+    kBox,
+    kPlane,
+    kConvexHull,
+    kTriangleMesh,
+    kHeightfield
+};
 
 // Closest-surface answer of a shape query.
 struct SurfaceQuery {
@@ -79,8 +88,9 @@ struct Shape {
     explicit Shape(const HostMemory* memory) : hull(memory), mesh(memory), heightfield(memory) {}
 
     ShapeKind kind = ShapeKind::kSphere;
-    float radius = 0;                   // sphere, capsule
-    float half_height = 0;              // capsule (along local y)
+    float radius = 0;                   // sphere, capsule; tapered capsule: at y = -half_height
+    float top_radius = 0;               // tapered capsule: at y = +half_height
+    float half_height = 0;              // capsule, tapered capsule (along local y)
     Vec3 half_extents = Vec3::Zero();   // box
     Vec3 plane_normal = Vec3::UnitY();  // plane (unit)
     float plane_offset = 0;             // plane: dot(n, p) <= offset is inside
@@ -104,6 +114,7 @@ SurfaceQuery query_shape(const Shape& shape, const Vec3& p, float radius);
 // return the error and leave `shape` unusable. Defined with their shapes.
 Status build_sphere(float radius, Shape& shape);
 Status build_capsule(float radius, float half_height, Shape& shape);
+Status build_tapered_capsule(float bottom_radius, float top_radius, float half_height, Shape& shape);
 Status build_box(const Vec3& half_extents, Shape& shape);
 Status build_plane(const Vec3& normal, float offset, Shape& shape);
 Status build_convex_hull(const float* points_xyz, uint32_t point_count, Shape& shape);
@@ -202,7 +213,7 @@ RangeBounds range_bounds(float h, const float* kinematic, uint32_t begin, uint32
 // substep, decided from the range's bounds alone: a static height field
 // whose highest sample under the range is far enough below it, a bounded
 // shape whose swept bound is far enough away, or a sphere, capsule or box
-// whose distance from the range's box (two shape queries) leaves every
+// (tapered or not) whose distance from the range's box (two shape queries) leaves every
 // particle's path clear of it. Exact:
 // where it says yes, collide_particles would change nothing (tests check
 // the two paths give the same bits).

@@ -175,6 +175,7 @@ void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, floa
     max_iterations_ = tethers_ != nullptr ? std::max(iterations, max_iterations) : iterations;
     first_pass_round_ = tethers_ != nullptr ? 1 : 0;
     pass_ = pass;
+    asked_strain_ = pass.max_strain;
     iterations_ = asked_ = iterations;
     past_promise_ = false;
     round_ = 0;
@@ -186,6 +187,8 @@ void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, floa
     omega_ = schedule_omega_ = 1.0f;
     accelerate_ = accelerate;
 }
+
+void StrainLimiter::hold_at_least(float demand) { pass_.max_strain = std::max(asked_strain_, demand); }
 
 void StrainLimiter::run(const GroupTask& task) {
     if (tether_round()) {

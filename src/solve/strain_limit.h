@@ -158,6 +158,9 @@ class StrainLimiter final : public StagedAlgorithm {
     void begin(const StrainLimitPass& pass, uint32_t iterations, float h, Vec3Soa& x, Vec3Soa& v,
                Vec3Soa& correction, Vec3Soa& previous, bool accelerate, GridStrainTerms* grid = nullptr,
                const Tethers* tethers = nullptr, StretchCount* counts = nullptr, uint32_t max_iterations = 0);
+    // The limit its passes hold: the one asked for, or `demand` where
+    // that is more (Tethers::strain_pins_demand). Before its first round.
+    void hold_at_least(float demand);
     // Passes run so far (the last frame's, after it).
     uint32_t passes() const { return iterations_; }
     // The last pass asked for found a spring longer than the limit plus
@@ -177,6 +180,7 @@ class StrainLimiter final : public StagedAlgorithm {
     uint32_t round_count() const { return first_pass_round_ + 2 * iterations_; }
 
     StrainLimitPass pass_{};
+    float asked_strain_ = 0;
     const Tethers* tethers_ = nullptr;
     uint32_t iterations_ = 0, max_iterations_ = 0, asked_ = 0, round_ = 0, first_pass_round_ = 0;
     bool past_promise_ = false;

@@ -31,8 +31,10 @@ void Tethers::resize(const Fabric& fabric) {
     settled_.assign(n, 0);
     // Each particle is settled at most kAnchors times, and each settling
     // pushes at most one entry per incident spring: the heap never holds
-    // more than kAnchors * (n + 2 * springs) entries.
-    frontier_.reserve(kAnchors * (n + 2 * size_t{fabric.spring_count()}));
+    // more than kAnchors * (n + 2 * springs) entries; the pairs of pins
+    // take at most one per two anchors of each particle.
+    const size_t pairs = n * kAnchors * (kAnchors - 1) / 2 + fabric.spring_count();
+    frontier_.reserve(std::max(pairs, kAnchors * (n + 2 * size_t{fabric.spring_count()})));
     pins_.reserve(n);
     for (HostVector<float>* a : {&pin_x_, &pin_y_, &pin_z_, &pin_distance_}) a->assign(n, 0.0f);
     any_ = false;
@@ -50,6 +52,7 @@ void Tethers::plan(const Fabric& f, const float* pinned) {
         plan_by_paths(f, pinned);
     }
     choose_lengths(f, pinned);
+    pair_pins(f, pinned);
 }
 
 bool Tethers::by_straight_distance(const Fabric& f, uint32_t pins) {
@@ -166,6 +169,53 @@ void Tethers::choose_lengths(const Fabric& f, const float* pinned) {
             any_ = true;
         }
     }
+}
+
+void Tethers::pair_pins(const Fabric& f, const float* pinned) {
+    // Every spring between two pins, and every pair of one particle's
+    // anchors, into the search's heap storage (free now, and sized for
+    // them), skipping a pair the previous particle had with as short a
+    // reach, since neighbours mostly share their anchors; then sorted, and
+    // the shortest reach of each pair kept at the front.
+    frontier_.clear();
+    for (uint32_t s = 0; s < f.spring_count(); ++s) {
+        const uint32_t a = f.spring_first[s], b = f.spring_second[s];
+        if (pinned[a] != 0.0f && pinned[b] != 0.0f && f.spring_rest_length[s] > 0.0f)
+            frontier_.push_back(Reach{f.spring_rest_length[s], std::min(a, b), std::max(a, b)});
+    }
+    for (uint32_t i = 0; i < count_; ++i) {
+        if (pinned[i] != 0.0f) continue;
+        for (uint32_t k = 0; k < used_; ++k) {
+            for (uint32_t l = k + 1; l < used_; ++l) {
+                const uint32_t a = anchor(i, k), b = anchor(i, l);
+                if (a == kNoAnchor || b == kNoAnchor) continue;
+                const Reach pair{length(i, k) + length(i, l), std::min(a, b), std::max(a, b)};
+                const bool repeat = !frontier_.empty() && frontier_.back().particle == pair.particle &&
+                                    frontier_.back().anchor == pair.anchor &&
+                                    frontier_.back().path <= pair.path;
+                if (!repeat && pair.path > 0.0f) frontier_.push_back(pair);
+            }
+        }
+    }
+    std::sort(frontier_.begin(), frontier_.end(), [](const Reach& p, const Reach& q) {
+        if (p.particle != q.particle) return p.particle < q.particle;
+        if (p.anchor != q.anchor) return p.anchor < q.anchor;
+        return p.path < q.path;
+    });
+    const auto same_pins = [](const Reach& p, const Reach& q) {
+        return p.particle == q.particle && p.anchor == q.anchor;
+    };
+    frontier_.erase(std::unique(frontier_.begin(), frontier_.end(), same_pins), frontier_.end());
+}
+
+float Tethers::strain_pins_demand(const Vec3Soa& x, const Vec3Soa& v, float h) const {
+    float most = 0.0f;
+    for (const Reach& pair : frontier_) {
+        const uint32_t a = pair.particle, b = pair.anchor;
+        const Vec3 apart = x.get(a) - x.get(b) + h * (v.get(a) - v.get(b));
+        most = std::max(most, apart.norm() / pair.path - 1.0f);
+    }
+    return most;
 }
 
 namespace {

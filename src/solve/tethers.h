@@ -66,6 +66,17 @@ class Tethers {
     // own, so groups run in parallel.
     void clamp(float max_strain, uint32_t begin, uint32_t end, Vec3Soa& x, Vec3Soa& v) const;
 
+    // The least strain at which every spring between two pins and every
+    // particle's tethers can hold at once with the pins at x + h v:
+    // |x_a - x_b| / reach - 1, the largest over the pairs of pins a and b
+    // that a spring joins (reach: its rest length) or that anchor one
+    // particle (the length to a plus the length to b), or 0. Pins moved
+    // apart farther than the cloth reaches ask more than any limit gives;
+    // the strain limit then holds this instead for the substep
+    // (docs/method.md, "When the pins ask for more"). One distance per
+    // pair of pins.
+    float strain_pins_demand(const Vec3Soa& x, const Vec3Soa& v, float h) const;
+
     // How many distance-and-compare steps of a grid's plan cost as much as
     // one heap step of the search (cloth_bench Tethers/Plan;
     // docs/measurements.md, "What a change of the pin set costs").
@@ -77,6 +88,8 @@ class Tethers {
     void plan_by_paths(const Fabric& fabric, const float* pinned);
     // From found_, path_ and settled_: anchor_, length_, used_, any_.
     void choose_lengths(const Fabric& fabric, const float* pinned);
+    // From the springs, anchor_ and length_: the pairs of pins in frontier_.
+    void pair_pins(const Fabric& fabric, const float* pinned);
 
     // Anchor k of every particle, then anchor k + 1 (so the clamp is a
     // contiguous loop per k); a missing anchor is the particle itself at
@@ -97,8 +110,12 @@ class Tethers {
     HostVector<uint32_t> found_;   // the plan's anchors, kAnchors per particle (particle-major)
     HostVector<float> path_;       // and their path lengths (on a grid: straight distances)
     HostVector<uint8_t> settled_;  // anchors found per particle
-    HostVector<Reach> frontier_;   // the search's heap
-    HostVector<uint32_t> pins_;    // the pinned particles, in index order
+    // The search's heap; after plan, the pairs of pins (particle < anchor)
+    // joined by a spring or sharing a particle, each with its reach (path):
+    // the spring's rest length, or the least length to one plus length to
+    // the other over the particles they share.
+    HostVector<Reach> frontier_;
+    HostVector<uint32_t> pins_;  // the pinned particles, in index order
     HostVector<float> pin_x_, pin_y_, pin_z_,
         pin_distance_;  // the straight plan's: pins' rest positions, squared distances
     bool any_ = false;

@@ -31,7 +31,8 @@ SpringModel ClothInstance::spring_model() const {
     // solver; the explicit integrator, whose step a spring 100 times
     // stiffer would blow up, relies on the projection passes alone.
     if (frame_.solver.strain_limit.max_strain > 0 && frame_.solver.kind != CLOTH_SOLVER_EXPLICIT) {
-        model.cable_stretch = 1.0f + frame_.solver.strain_limit.max_strain;
+        model.cable_stretch =
+            1.0f + std::max(frame_.solver.strain_limit.max_strain, frame_.strain_pins_demand);
         model.cable_factor = kStrainCableStiffness;
     }
     return model;
@@ -63,6 +64,7 @@ void ClothInstance::move_pins() {
     const float fraction_end =
         static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.solver.substeps);
     for (uint32_t i : pinned_list_) v_.set(i, (pin_position(i, fraction_end) - x_.get(i)) / frame_.h);
+    frame_.strain_pins_demand = limits_strain() ? tethers_.strain_pins_demand(x_, v_, frame_.h) : 0.0f;
 }
 
 void ClothInstance::skin_particles(const GroupTask& task) {

@@ -73,7 +73,10 @@ struct FrameContext {
 
     float h = 0;  // substep length, s
     Vec3 gravity = Vec3::Zero();
-    float theta = 1.0f;     // this substep's (integrate.h)
+    float theta = 1.0f;  // this substep's (integrate.h)
+    // The strain the pins ask of this substep (Tethers::strain_pins_demand):
+    // past the limit, the limit gives way to it in the solve and the passes.
+    float strain_pins_demand = 0;
     bool strained = false;  // a substep of this frame ended past the strain limit's promise
     bool collides = false;  // this frame runs the collision stage
     bool touching = false;  // this substep's collision stage found a contact

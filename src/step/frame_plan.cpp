@@ -189,6 +189,8 @@ Stage ClothInstance::stage() const {
 
 void ClothInstance::prepare_stage() {
     if (frame_.entry == frame_.pins_move_at && frame_.round == 0) move_pins();
+    if (planned().stage == Stage::kStrainLimit && frame_.round == 0)
+        frame_.strain_limiter.hold_at_least(frame_.strain_pins_demand);
 }
 
 uint32_t ClothInstance::task_count() const {

@@ -221,6 +221,14 @@ TEST_F(ContactBadInput, ColliderCreationRejectsBadShapesAndChangesNothing) {
                     cloth_collider_create_capsule(a_.world, &d, -1.0f, 1.0f, &out));
     EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE,
                     cloth_collider_create_capsule(a_.world, &d, 1.0f, -1.0f, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE,
+                    cloth_collider_create_tapered_capsule(a_.world, &d, 0.0f, 0.1f, 1.0f, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE,
+                    cloth_collider_create_tapered_capsule(a_.world, &d, 0.1f, 0.2f, -1.0f, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE,  // the bottom sphere holds the top one: a sphere
+                    cloth_collider_create_tapered_capsule(a_.world, &d, 0.5f, 0.1f, 0.1f, &out));
+    EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE,
+                    cloth_collider_create_tapered_capsule(a_.world, &d, 0.1f, kNaN, 1.0f, &out));
     const float flat[3] = {1, 0, 1}, nan_box[3] = {1, kNaN, 1};
     EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE, cloth_collider_create_box(a_.world, &d, flat, &out));
     EXPECT_REJECTED(CLOTH_ERROR_NOT_FINITE, cloth_collider_create_box(a_.world, &d, nan_box, &out));

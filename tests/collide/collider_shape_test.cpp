@@ -65,6 +65,48 @@ TEST(ColliderShapes, SphereCapsuleBoxAndPlaneDistancesMatchTheirClosedForms) {
     }
 }
 
+// A tapered capsule is the union of the spheres along its axis whose radius
+// runs linearly from the bottom's to the top's: outside, its distance is
+// the least |p - c(t)| - r(t) over them (sampled finely here); inside, the
+// foot point lies on the surface and the depth is no more than the least
+// sphere's. With equal radii it is the capsule.
+TEST(ColliderShapes, ATaperedCapsulesDistanceIsTheNearestOfTheSpheresAlongItsAxis) {
+    const float bottom = 0.35f, top = 0.12f, half = 0.5f;
+    Shape tapered(heap()), even(heap()), capsule(heap());
+    ASSERT_TRUE(build_tapered_capsule(bottom, top, half, tapered).ok());
+    ASSERT_TRUE(build_tapered_capsule(0.3f, 0.3f, 0.6f, even).ok());
+    ASSERT_TRUE(build_capsule(0.3f, 0.6f, capsule).ok());
+    int inside = 0, outside = 0;
+    for (const Vec3& p : random_points(3000, 0.8f, 7)) {
+        float nearest = INFINITY;
+        for (int k = 0; k <= 20000; ++k) {
+            const float t = float(k) / 20000.0f;
+            const Vec3 centre(0.0f, -half + 2.0f * half * t, 0.0f);
+            nearest = std::min(nearest, (p - centre).norm() - (bottom + (top - bottom) * t));
+        }
+        const SurfaceQuery q = query_shape(tapered, p, 10);
+        EXPECT_NEAR(q.normal.norm(), 1.0f, 1e-5f);
+        EXPECT_NEAR(query_shape(tapered, p - q.normal * q.distance, 10).distance, 0.0f, 2e-5f)
+            << "the foot point is not on the surface";
+        EXPECT_EQ(q.distance < 0, nearest < 0) << p.transpose();
+        if (nearest >= 0) {
+            ++outside;
+            EXPECT_NEAR(q.distance, nearest, 1e-4f) << p.transpose();
+        } else {
+            ++inside;
+            EXPECT_GE(q.distance, nearest - 1e-4f) << p.transpose();
+        }
+        EXPECT_NEAR(query_shape(even, p, 10).distance, query_shape(capsule, p, 10).distance, 1e-5f);
+    }
+    EXPECT_GT(inside, 100);
+    EXPECT_GT(outside, 100);
+    // One sphere inside the other is a sphere, not a tapered capsule.
+    Shape bad(heap());
+    EXPECT_FALSE(build_tapered_capsule(0.5f, 0.1f, 0.1f, bad).ok());
+    EXPECT_FALSE(build_tapered_capsule(0.0f, 0.1f, 0.5f, bad).ok());
+    EXPECT_FALSE(build_tapered_capsule(0.2f, NAN, 0.5f, bad).ok());
+}
+
 TEST(ColliderShapes, ConvexHullOfABoxGivesTheBoxAnswerInsideAndNearOutside) {
     Shape hull(heap()), box(heap());
     ASSERT_TRUE(build_convex_hull(kBoxCorners, 8, hull).ok());

@@ -59,11 +59,12 @@ TEST(CollisionCulling, WhereARangeIsCulledTheFullStageChangesNoBitOfIt) {
         for (uint32_t c = 0; c < 12; ++c)
             heights[r * 12 + c] = 0.2f * std::sin(1.3f * c) * std::cos(0.9f * r) + 0.2f;
     }
-    Shape field(heap()), box(heap()), capsule(heap()), sphere(heap());
+    Shape field(heap()), box(heap()), capsule(heap()), sphere(heap()), limb(heap());
     ASSERT_TRUE(build_heightfield(12, 10, 0.5f, 0.5f, heights.data(), field).ok());
     ASSERT_TRUE(build_box(Vec3(0.6f, 0.3f, 0.4f), box).ok());
     ASSERT_TRUE(build_capsule(0.05f, 0.8f, capsule).ok());
     ASSERT_TRUE(build_sphere(0.3f, sphere).ok());
+    ASSERT_TRUE(build_tapered_capsule(0.25f, 0.1f, 0.5f, limb).ok());
 
     struct Case {
         const char* name;
@@ -80,6 +81,8 @@ TEST(CollisionCulling, WhereARangeIsCulledTheFullStageChangesNoBitOfIt) {
          {&capsule, {Vec3(2.0f, 1.2f, 2.5f), Quat::Identity()}, {Vec3(2.0f, 1.2f, 2.5f), Quat::Identity()}}},
         {"moving sphere",
          {&sphere, {Vec3(2.0f, 1.0f, 2.0f), Quat::Identity()}, {Vec3(2.4f, 1.1f, 2.2f), turned}}},
+        {"moving tapered capsule",
+         {&limb, {Vec3(2.5f, 1.0f, 2.5f), turned}, {Vec3(2.2f, 1.2f, 2.8f), Quat::Identity()}}},
     };
     CollisionParams params;
     const float h = 1.0f / 120.0f;

@@ -1075,6 +1075,11 @@ void Harness::collider() {
             });
             break;
         }
+        case 7:
+            r = guarded(of_world, "cloth_collider_create_tapered_capsule", [&] {
+                return cloth_collider_create_tapered_capsule(world, desc, a, v[0], v[1], &id);
+            });
+            break;
     }
     if (r == CLOTH_OK) colliders_[next_collider_++ % kColliderSlots] = id;
 }

@@ -56,6 +56,41 @@ TEST(Tethers, OnAFlatGridAParticlesAnchorsArePinsNearestFirstAtTheirStraightRest
     }
 }
 
+// Where the pins are farther apart than the cloth reaches, no strain
+// limit can hold: the tethers say what strain would. Two pins at the ends
+// of a grid's top row reach each other along it (the particles between
+// them have tethers to both whose lengths add up to the row), and two
+// pins a spring joins reach each other by its rest length. Where the pins
+// are at step's end is x + h v.
+TEST(Tethers, ThePinsDemandTheStrainAtWhichEveryTetherAndSpringBetweenPinsCanHold) {
+    auto fabric = cloth::testing::make_grid(16, 16);
+    const uint32_t n = fabric->particle_count();
+    auto demand_with_pins = [&](std::vector<uint32_t> pins, uint32_t moved, const Vec3& by, float h) {
+        std::vector<float> pinned(n, 0.0f);
+        for (uint32_t p : pins) pinned[p] = 1.0f;
+        Tethers tethers(cloth::testing::heap());
+        tethers.resize(*fabric);
+        tethers.plan(*fabric, pinned.data());
+        cloth::Vec3Soa x(cloth::testing::heap()), v(cloth::testing::heap());
+        x.resize(n);
+        v.resize(n);
+        for (uint32_t i = 0; i < n; ++i) {
+            x.set(i, fabric->rest_positions[i]);
+            v.set(i, Vec3::Zero());
+        }
+        v.set(moved, by / h);
+        return tethers.strain_pins_demand(x, v, h);
+    };
+    const Vec3 row = fabric->rest_positions[15] - fabric->rest_positions[0];
+    EXPECT_EQ(demand_with_pins({0, 15}, 15, Vec3::Zero(), 0.01f), 0.0f) << "at rest the pins ask nothing";
+    EXPECT_NEAR(demand_with_pins({0, 15}, 15, 2.0f * row, 0.01f), 2.0f, 1e-4f)
+        << "the top row three times its length";
+    EXPECT_EQ(demand_with_pins({0, 15}, 15, -0.5f * row, 0.01f), 0.0f) << "closer: nothing asked";
+    const Vec3 spring = fabric->rest_positions[1] - fabric->rest_positions[0];
+    EXPECT_NEAR(demand_with_pins({0, 1, 255}, 1, 9.0f * spring, 0.5f), 9.0f, 1e-3f)
+        << "a spring between two pins";
+}
+
 // A grid's plan takes every free particle's kAnchors nearest pins by
 // straight rest distance (the geodesic on a flat rectangle), nearest first,
 // the lower index first between pins at the same distance.

@@ -458,6 +458,18 @@ static class ClothTests
                 Check(e.Result == ClothResult.ErrorInvalidDesc, "a description made with new is refused (INVALID_DESC): start from Default()");
             }
 
+            world.CreateTaperedCapsule(ClothColliderDesc.Default(), 0.1f, 0.05f, 0.3f);
+            try
+            {
+                world.CreateTaperedCapsule(ClothColliderDesc.Default(), 0.5f, 0.1f, 0.1f);
+                Check(false, "a tapered capsule whose bottom sphere holds its top one is refused");
+            }
+            catch (ClothException e)
+            {
+                Check(e.Result == ClothResult.ErrorInvalidValue && e.Message.Contains("sphere"),
+                      "a tapered capsule whose bottom sphere holds its top one is refused (INVALID_VALUE: use a sphere)");
+            }
+
             string path = "/nonexistent/\u00e9toffe-\u5e03.obj";
             try
             {

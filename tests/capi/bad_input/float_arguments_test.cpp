@@ -330,6 +330,15 @@ std::vector<FloatArgument> FloatArguments::Table() {
                  [=](float r) { return cloth_collider_create_capsule(world, &collider, r, 1.0f, out); }});
     t.push_back({"cloth_collider_create_capsule half_height", true, Logged::kYes,
                  [=](float h) { return cloth_collider_create_capsule(world, &collider, 0.5f, h, out); }});
+    t.push_back({"cloth_collider_create_tapered_capsule bottom_radius", true, Logged::kYes, [=](float r) {
+                     return cloth_collider_create_tapered_capsule(world, &collider, r, 0.5f, 1.0f, out);
+                 }});
+    t.push_back({"cloth_collider_create_tapered_capsule top_radius", true, Logged::kYes, [=](float r) {
+                     return cloth_collider_create_tapered_capsule(world, &collider, 0.5f, r, 1.0f, out);
+                 }});
+    t.push_back({"cloth_collider_create_tapered_capsule half_height", true, Logged::kYes, [=](float h) {
+                     return cloth_collider_create_tapered_capsule(world, &collider, 0.5f, 0.5f, h, out);
+                 }});
     const float extents[3] = {1.0f, 2.0f, 3.0f};
     AddArray(t, "cloth_collider_create_box half_extents", true, extents, 3,
              [=](const float* e) { return cloth_collider_create_box(world, &collider, e, out); });
