@@ -1603,8 +1603,12 @@ CLOTH_API cloth_result CLOTH_CALL cloth_get_teleported(cloth_id cloth, bool* out
  * skinning, up to 4 joints per particle), or positions and normals the
  * host skinned itself. Over a frame's substeps the skinned positions move
  * linearly from where the last frame left them to this frame's, as pins
- * do. Two constraints hold a particle near its skinned position, checked
- * at the end of every substep and so of every step:
+ * do, except across a teleport of the cloth's carrier (cloth_set_carrier:
+ * make the character's root body the carrier, with teleport thresholds or
+ * cloth_body_teleport): there the skin jumps, the particles pinned to it
+ * start the frame on it, and the carrier moves the rest (since 1.9). Two
+ * constraints hold a particle near its skinned position, checked at the
+ * end of every substep and so of every step:
  *  - max distance: the particle stays within it of its skinned position.
  *    0 makes it a pin whose target is its skinned position (it costs what
  *    a pin costs and is not solved; cloth_is_pinned reports it);

@@ -24,10 +24,14 @@
 #include "flag_rig.h"
 #include "flag_trailing.h"
 #include "scene_render.h"
+#include "timing_table.h"
 #include "trace_writer.h"
 #include "video_writer.h"
 
 using namespace vehicle_flag;
+using cloth_samples::print_timing_row;
+using cloth_samples::TraceWriter;
+using cloth_samples::VideoWriter;
 
 namespace {
 
@@ -93,18 +97,6 @@ struct Timings {
     std::vector<double> bullet, cloth, frame;
     std::vector<double> stages[CLOTH_MAX_STAGES];  // per cloth_stage, frames where it ran
 };
-
-double percentile(std::vector<double> values, double p) {
-    if (values.empty()) return 0.0;
-    std::sort(values.begin(), values.end());
-    return values[static_cast<size_t>(std::lround(p * static_cast<double>(values.size() - 1)))];
-}
-
-void print_timing_row(const char* name, const std::vector<double>& ms, double budget_ms) {
-    const auto overruns = std::count_if(ms.begin(), ms.end(), [&](double v) { return v > budget_ms; });
-    std::printf("%-18s %9.3f %9.3f %9.3f %9.3f %9ld\n", name, percentile(ms, 0.5), percentile(ms, 0.95),
-                percentile(ms, 0.99), percentile(ms, 1.0), static_cast<long>(overruns));
-}
 
 bool write_obj(const std::string& path, const std::vector<float>& positions,
                const std::vector<uint32_t>& triangles) {
@@ -443,14 +435,14 @@ int main(int argc, char** argv) {
         driver.done() ? "course complete" : "course cut short by --frames");
     std::printf("\nframe timings, ms (shared machine: noisy); budget %.2f ms\n", o.budget_ms);
     std::printf("%-18s %9s %9s %9s %9s %9s\n", "stage", "p50", "p95", "p99", "max", "overruns");
-    print_timing_row("bullet step", timings.bullet, o.budget_ms);
+    print_timing_row("bullet step", timings.bullet, o.budget_ms, 18);
     for (int stage = 0; stage < CLOTH_MAX_STAGES; ++stage) {
         if (timings.stages[stage].empty()) continue;
         const std::string name = std::string("  ") + cloth_stage_name(static_cast<cloth_stage>(stage));
-        print_timing_row(name.c_str(), timings.stages[stage], o.budget_ms);
+        print_timing_row(name.c_str(), timings.stages[stage], o.budget_ms, 18);
     }
-    print_timing_row("cloth step", timings.cloth, o.budget_ms);
-    print_timing_row("frame", timings.frame, o.budget_ms);
+    print_timing_row("cloth step", timings.cloth, o.budget_ms, 18);
+    print_timing_row("frame", timings.frame, o.budget_ms, 18);
 
     std::printf("\nchecks over %d frames:\n", frames_run);
     std::printf("  attached particles: worst distance to target %.3g m (limit %.3g)\n", worst_attach,
@@ -480,19 +472,8 @@ int main(int argc, char** argv) {
         // trace viewer opens comfortably: by default the second around the
         // take-off of the jump, where every stage runs and the flag works
         // hardest, with every task of every round.
-        int first = 0, last = 0;
-        if (o.trace_frames.empty() || std::sscanf(o.trace_frames.c_str(), "%d:%d", &first, &last) != 2) {
-            const int centre = jump_frame >= 0 ? jump_frame : std::max(0, frames_run - 30);
-            first = centre - 30;
-            last = centre + 29;
-        }
-        if (trace.write(o.trace, first, last)) {
-            std::printf("wrote %s (frames %d to %d, %zu events)\n", o.trace.c_str(), first, last,
-                        trace.written());
-        } else {
-            std::fprintf(stderr, "cannot write %s\n", o.trace.c_str());
-            status = 1;
-        }
+        const int centre = jump_frame >= 0 ? jump_frame : std::max(0, frames_run - 30);
+        if (!trace.write_window(o.trace, o.trace_frames, centre)) status = 1;
     }
     if (video.is_open()) {
         const int frames = video.frames();

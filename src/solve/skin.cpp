@@ -127,9 +127,10 @@ void Skin::set_backstop(uint32_t particle, float distance, float radius) {
     count_constrained(particle, before);
 }
 
-void Skin::begin_frame() {
+void Skin::begin_frame(bool jump) {
     from_x_.swap_buffers(to_x_);
     from_n_.swap_buffers(to_n_);
+    jump_ = jump;
 }
 
 void Skin::skin(uint32_t begin, uint32_t end) {
@@ -158,7 +159,7 @@ void Skin::skin(uint32_t begin, uint32_t end) {
         }
         to_x_.set(i, x);
         to_n_.set(i, n);
-        if (!primed_) {  // the first skinned frame starts where it ends
+        if (!primed_ || jump_) {  // the first skinned frame, or a jump, starts where it ends
             from_x_.set(i, x);
             from_n_.set(i, n);
         }

@@ -70,11 +70,18 @@ class Skin {
     bool constrains() const { return constrained_count_ > 0; }
 
     // The frame: begin_frame (serial) makes the last frame's end this
-    // frame's start; skin() then writes this frame's end for a range;
-    // finish_skinning (serial) after every range ran.
-    void begin_frame();
+    // frame's start, or with `jump` (the character teleported) this
+    // frame's end, so that nothing moves across the jump; skin() then
+    // writes this frame's end for a range; finish_skinning (serial) after
+    // every range ran.
+    void begin_frame(bool jump);
     void skin(uint32_t begin, uint32_t end);
-    void finish_skinning() { primed_ = true; }
+    void finish_skinning() {
+        primed_ = true;
+        jump_ = false;
+    }
+    // This frame's skin jumped (begin_frame), until finish_skinning.
+    bool jumping() const { return jump_; }
     // Whether a frame has been skinned (the skinned positions exist).
     bool primed() const { return primed_; }
     // The skinned position and unit normal at `fraction` of the frame.
@@ -105,7 +112,7 @@ class Skin {
     Vec3Soa bind_x_, bind_n_;
     Vec3Soa host_x_, host_n_;                // the host's skinned positions and normals (Source::kHost)
     Vec3Soa from_x_, from_n_, to_x_, to_n_;  // the frame's start and end
-    bool primed_ = false;
+    bool primed_ = false, jump_ = false;
     HostVector<float> max_distance_, backstop_distance_, backstop_radius_;
     uint32_t constrained_count_ = 0;  // particles with a finite max distance above 0 or a backstop
 };

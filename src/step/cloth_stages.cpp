@@ -71,8 +71,16 @@ void ClothInstance::skin_particles(const GroupTask& task) {
     expect_stage(Stage::kSkinning);
     skin_.skin(task.begin, task.end);
     if (!skin_.sized_for(particle_count())) return;
+    // Across a jump the particles pinned to the skin start the frame on it.
+    const bool jump = skin_.jumping();
     for (uint32_t i = task.begin; i < task.end; ++i) {
-        if (is_pinned(i) && skin_pins(i)) pin_target_.set(i, skin_.position(i, 1.0f));
+        if (!is_pinned(i) || !skin_pins(i)) continue;
+        const Vec3 target = skin_.position(i, 1.0f);
+        pin_target_.set(i, target);
+        if (jump) {
+            x_.set(i, target);
+            frame_.pin_start.set(i, target);
+        }
     }
 }
 

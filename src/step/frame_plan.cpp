@@ -158,7 +158,8 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
         tethers_.plan(*fabric_, pinned_.data());
         tethers_follow_pins_ = true;
     }
-    if (skin_.active()) skin_.begin_frame();
+    // A teleport of the carrier is one of the character the skin is on.
+    if (skin_.active()) skin_.begin_frame(contact_.carrier().teleported());
     frame_.h = dt / static_cast<float>(frame_.solver.substeps);
     frame_.gravity = gravity;
     frame_.converged = true;

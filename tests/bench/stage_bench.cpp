@@ -174,7 +174,7 @@ void BM_Skin(benchmark::State& state) {
         std::copy(row, row + 12, m.begin() + size_t{j} * Skin::kMatrixFloats);
     }
     skin.set_joint_matrices(m.data(), false);
-    skin.begin_frame();
+    skin.begin_frame(false);
     skin.skin(0, f.n);
     skin.finish_skinning();
     for (uint32_t i = 0; i < f.n; ++i) {

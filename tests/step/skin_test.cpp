@@ -244,6 +244,83 @@ TEST(Skin, MaxDistanceAndBackstopHoldAfterEveryStepUnderAFastSkeleton) {
     EXPECT_GT(on_backstop, 10u);
 }
 
+// A character teleported 20 m: its root body is the cloth's carrier, so
+// the jump is a carrier teleport, and the skin jumps with it rather than
+// dragging the particles pinned to it across 20 m within the frame's
+// substeps. From the jump's frame on the jumped cloth keeps its max
+// distances, stretches and moves no more than its twin that did not jump,
+// and a second later hangs as the twin does, 20 m away.
+TEST(Skin, ACarrierTeleportJumpsTheSkinAndTheClothWithIt) {
+    SkinnedScene jumped(16, 1), twin(16, 1);
+    const uint32_t n = jumped.count;
+    std::vector<float> reach(n);
+    for (uint32_t v = 0; v < n; ++v) reach[v] = 0.3f * static_cast<float>(v / 16) / 15.0f;  // top row 0
+    cloth_body_id body[2]{};
+    SkinnedScene* scenes[2] = {&jumped, &twin};
+    for (int k = 0; k < 2; ++k) {
+        ASSERT_EQ(cloth_set_max_distances(scenes[k]->cloth, reach.data(), n), CLOTH_OK);
+        cloth_body_desc bd = cloth_default_body_desc();
+        ASSERT_EQ(cloth_body_create(scenes[k]->world, &bd, &body[k]), CLOTH_OK);
+        cloth_carrier_desc carrier = cloth_default_carrier_desc();
+        carrier.teleport_distance = 1.0f;
+        ASSERT_EQ(cloth_set_carrier(scenes[k]->cloth, body[k], &carrier), CLOTH_OK);
+    }
+    const float jump = 20.0f;
+    auto frame = [&](int f, int k, float shift) {
+        std::vector<float> m(32);
+        scenes[k]->pose(f);  // then the same matrices moved by `shift` along z
+        const double t = f * static_cast<double>(kFrame);
+        const double up[3] = {0, 1, 0}, side_axis[3] = {1, 0, 0};
+        const double at[3] = {5.0 * t, 0.0, shift};
+        std::vector<float> m0 = joint_matrix(up, 4.0 * t, 1.0, at);
+        const std::vector<float> m1 = joint_matrix(side_axis, 0.8 * std::sin(6.0 * t), 1.0, at);
+        m0.insert(m0.end(), m1.begin(), m1.end());
+        ASSERT_EQ(cloth_set_joint_matrices(scenes[k]->cloth, m0.data(), 2, CLOTH_MATRIX_COLUMN_MAJOR_4X4),
+                  CLOTH_OK);
+        const float position[3] = {static_cast<float>(at[0]), 0.0f, static_cast<float>(at[2])};
+        const float rotation[4] = {0.0f, static_cast<float>(std::sin(2.0 * t)), 0.0f,
+                                   static_cast<float>(std::cos(2.0 * t))};
+        ASSERT_EQ(cloth_body_set_pose(body[k], position, rotation), CLOTH_OK);
+        ASSERT_EQ(cloth_step(scenes[k]->world, kFrame), CLOTH_OK);
+    };
+    auto stats = [](cloth_id cloth) {
+        cloth_stats s{};
+        s.struct_size = sizeof s;
+        EXPECT_EQ(cloth_get_stats(cloth, &s), CLOTH_OK);
+        return s;
+    };
+    for (int f = 0; f < 60; ++f) {
+        frame(f, 0, 0.0f);
+        frame(f, 1, 0.0f);
+    }
+    for (int f = 60; f < 120; ++f) {
+        frame(f, 0, jump);
+        frame(f, 1, 0.0f);
+        const cloth_stats a = stats(jumped.cloth), b = stats(twin.cloth);
+        // This fast skeleton stretches the skin itself (its constraints win
+        // over the strain limit): the jumped cloth stretches as its twin does.
+        EXPECT_LE(a.max_strain, b.max_strain + 0.05f) << "frame " << f;
+        EXPECT_LT(a.max_speed, 2.0f * b.max_speed + 1.0f) << "frame " << f;
+        const std::vector<float> x = jumped.read(cloth_read_positions);
+        std::vector<float> s(3 * n), normal(3 * n);
+        ASSERT_EQ(cloth_read_skinned_positions(jumped.cloth, s.data(), normal.data(), 3 * n), CLOTH_OK);
+        for (uint32_t v = 0; v < n; ++v)
+            ASSERT_LE(distance(&x[3 * v], &s[3 * v]), reach[v] + 1e-4f) << "frame " << f << ", vertex " << v;
+        if (f == 60) {
+            bool teleported = false;
+            ASSERT_EQ(cloth_get_teleported(jumped.cloth, &teleported), CLOTH_OK);
+            EXPECT_TRUE(teleported) << "the carrier saw the jump";
+        }
+    }
+    const std::vector<float> a = jumped.read(cloth_read_positions), b = twin.read(cloth_read_positions);
+    float farthest = 0.0f;
+    for (uint32_t v = 0; v < n; ++v) {
+        const float moved[3] = {b[3 * v], b[3 * v + 1], b[3 * v + 2] + jump};
+        farthest = std::max(farthest, distance(&a[3 * v], moved));
+    }
+    EXPECT_LT(farthest, 0.1f) << "a second after the jump the cloth hangs as its twin does";
+}
+
 // The skin's stages are per particle: a skinned cloth with max distances
 // and backstops ends bit-identical on 1, 2 and 4 workers.
 TEST(Determinism, ASkinnedClothIsBitIdenticalForAnyWorkerCount) {

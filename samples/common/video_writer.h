@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace vehicle_flag {
+namespace cloth_samples {
 
 class VideoWriter {
   public:
@@ -35,4 +35,4 @@ class VideoWriter {
     int frames_ = 0;
 };
 
-}  // namespace vehicle_flag
+}  // namespace cloth_samples

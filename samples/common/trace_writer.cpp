@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-namespace vehicle_flag {
+namespace cloth_samples {
 
 double TraceWriter::now_us() const {
     return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - origin_).count();
@@ -44,4 +44,18 @@ bool TraceWriter::write(const std::string& path, int first, int last) {
     return std::fclose(out) == 0;
 }
 
-}  // namespace vehicle_flag
+bool TraceWriter::write_window(const std::string& path, const std::string& window, int centre) {
+    int first = centre - 30, last = centre + 29;
+    if (std::sscanf(window.c_str(), "%d:%d", &first, &last) != 2) {
+        first = centre - 30;
+        last = centre + 29;
+    }
+    if (!write(path, first, last)) {
+        std::fprintf(stderr, "cannot write %s\n", path.c_str());
+        return false;
+    }
+    std::printf("wrote %s (frames %d to %d, %zu events)\n", path.c_str(), first, last, written_);
+    return true;
+}
+
+}  // namespace cloth_samples

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace vehicle_flag {
+namespace cloth_samples {
 
 class TraceWriter {
   public:
@@ -28,6 +28,10 @@ class TraceWriter {
     bool write(const std::string& path, int first, int last);
     // Events the last write wrote.
     size_t written() const { return written_; }
+    // Writes the frames `window` names ("FIRST:LAST"), or if it names none
+    // the second of frames around `centre`, and says so on stdout; false
+    // (with a message on stderr) if the file cannot be written.
+    bool write_window(const std::string& path, const std::string& window, int centre);
 
   private:
     struct Event {
@@ -43,4 +47,4 @@ class TraceWriter {
     size_t written_ = 0;
 };
 
-}  // namespace vehicle_flag
+}  // namespace cloth_samples

@@ -1,6 +1,6 @@
 #include "video_writer.h"
 
-namespace vehicle_flag {
+namespace cloth_samples {
 
 VideoWriter::~VideoWriter() {
     if (pipe_) pclose(pipe_);
@@ -43,4 +43,4 @@ bool VideoWriter::close(std::string* error) {
     return true;
 }
 
-}  // namespace vehicle_flag
+}  // namespace cloth_samples
