@@ -174,28 +174,37 @@ void Tethers::choose_lengths(const Fabric& f, const float* pinned) {
 void Tethers::pair_pins(const Fabric& f, const float* pinned) {
     // Every spring between two pins, and every pair of one particle's
     // anchors, into the search's heap storage (free now, and sized for
-    // them), skipping a pair the previous particle had with as short a
-    // reach, since neighbours mostly share their anchors; then sorted, and
-    // the shortest reach of each pair kept at the front.
+    // them), skipping a pair the previous free particle had with as short
+    // a reach (pushed, or skipped for one as short), since neighbours
+    // mostly share their anchors; then sorted, and the shortest reach of
+    // each pair kept at the front.
     frontier_.clear();
     for (uint32_t s = 0; s < f.spring_count(); ++s) {
         const uint32_t a = f.spring_first[s], b = f.spring_second[s];
         if (pinned[a] != 0.0f && pinned[b] != 0.0f && f.spring_rest_length[s] > 0.0f)
             frontier_.push_back(Reach{f.spring_rest_length[s], std::min(a, b), std::max(a, b)});
     }
+    constexpr uint32_t kPairs = kAnchors * (kAnchors - 1) / 2;
+    Reach previous[kPairs], current[kPairs];  // the last free particle's pairs, and this one's
+    uint32_t previous_count = 0;
     for (uint32_t i = 0; i < count_; ++i) {
         if (pinned[i] != 0.0f) continue;
+        uint32_t count = 0;
         for (uint32_t k = 0; k < used_; ++k) {
             for (uint32_t l = k + 1; l < used_; ++l) {
                 const uint32_t a = anchor(i, k), b = anchor(i, l);
                 if (a == kNoAnchor || b == kNoAnchor) continue;
                 const Reach pair{length(i, k) + length(i, l), std::min(a, b), std::max(a, b)};
-                const bool repeat = !frontier_.empty() && frontier_.back().particle == pair.particle &&
-                                    frontier_.back().anchor == pair.anchor &&
-                                    frontier_.back().path <= pair.path;
-                if (!repeat && pair.path > 0.0f) frontier_.push_back(pair);
+                if (!(pair.path > 0.0f)) continue;
+                current[count++] = pair;
+                const bool repeat = std::any_of(previous, previous + previous_count, [&](const Reach& p) {
+                    return p.particle == pair.particle && p.anchor == pair.anchor && p.path <= pair.path;
+                });
+                if (!repeat) frontier_.push_back(pair);
             }
         }
+        std::copy(current, current + count, previous);
+        previous_count = count;
     }
     std::sort(frontier_.begin(), frontier_.end(), [](const Reach& p, const Reach& q) {
         if (p.particle != q.particle) return p.particle < q.particle;
