@@ -123,11 +123,12 @@ class JumpScene {
 // What a jump and return did: the frames after the pin's return until the
 // stretch is back within the promise (limit 0.08 + 0.02), or -1; the
 // energy the jump's step added; and the distance to the twin and the
-// promise's stat 60 frames after the return.
+// promise's stat and kinetic energy 60 frames after the return.
 struct JumpOutcome {
     int back_within = -1;
     double jump_energy = 0;
     float distance_after_60 = 0;
+    double kinetic_after_60 = 0;
     uint8_t unmet_after_60 = 1;
 };
 
@@ -165,6 +166,7 @@ JumpOutcome jump_and_return(const JumpCase& c) {
     }
     out.distance_after_60 = scene.distance_to_twin();
     out.unmet_after_60 = scene.stats().strain_limit_unmet;
+    out.kinetic_after_60 = scene.stats().kinetic_energy;
     return out;
 }
 
@@ -186,11 +188,18 @@ const JumpCase kKinds[] = {
 // hangs from its pins: no particle farther from its twin than the two
 // cloths can be apart while both hang within the limit from the same pins
 // (2.2 m for a 1 m cloth; the jumped cloth may come back folded over,
-// which is as far from the twin as a cloth can be).
-TEST(PinJump, OnePinMovedTenMetresForOneFrameLeavesEveryKindFiniteAndHangingFromItsPins) {
+// which is as far from the twin as a cloth can be). It comes to rest
+// there: 60 frames after the return its kinetic energy is under 1 J of
+// the 1e5 J the jump put in (docs/accuracy.md: creased or turned over,
+// not swinging). The explicit step, past its stability bound here, never
+// settles.
+TEST(PinJump, OnePinMovedTenMetresForOneFrameLeavesEveryKindFiniteAndRestingFromItsPins) {
     for (const JumpCase& c : kKinds) {
         const JumpOutcome out = jump_and_return(c);
         EXPECT_LT(out.distance_after_60, 2.5f) << "kind " << c.kind << (c.whole_edge ? ", whole edge" : "");
+        if (c.kind != CLOTH_SOLVER_EXPLICIT) {
+            EXPECT_LT(out.kinetic_after_60, 1.0) << "kind " << c.kind << (c.whole_edge ? ", whole edge" : "");
+        }
     }
 }
 
@@ -224,6 +233,7 @@ TEST(PinJump, ACurvedClothIsBackWithinTheLimitsPromiseWithinThirtyFramesOfThePin
                 EXPECT_LE(out.back_within, 30) << library_defaults << set_positions << whole_edge;
                 EXPECT_EQ(out.unmet_after_60, 0) << library_defaults << set_positions << whole_edge;
                 EXPECT_LT(out.distance_after_60, 2.5f);
+                EXPECT_LT(out.kinetic_after_60, 1.0) << library_defaults << set_positions << whole_edge;
             }
         }
     }
