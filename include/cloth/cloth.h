@@ -1617,9 +1617,10 @@ CLOTH_API cloth_result CLOTH_CALL cloth_get_teleported(cloth_id cloth, bool* out
  *    skinned normal, so a cape cannot pass into the back it hangs on where
  *    the body's colliders are coarse. With r <= d the skinned position
  *    itself is outside it.
- * They run after the colliders and the strain limit in each substep: where
- * they conflict, the max distance wins, then the backstop (a collider or
- * the strain limit may be left unmet there). A cloth without a skin pays
+ * They run after each of the strain limiter's passes, so its next pass
+ * works where they hold the particles, and last in each substep, after the
+ * colliders: where they conflict, the max distance wins, then the backstop
+ * (a collider or the strain limit may be left unmet there). A cloth without a skin pays
  * nothing for any of this; with one, the skinning costs a pass over the
  * particles once a frame and the constraints a pass per substep over the
  * particles while some particle has a max distance above 0 or a backstop.

@@ -81,11 +81,13 @@ bool check_garment(const Garment& g, const Pose& pose, const Options& o, Garment
             if (depth > o.tolerance) ++c->inside_body, ok = false;
         }
     }
+    float stretch = 0;  // this frame's
     for (size_t k = 0; k < g.structural.size(); ++k) {
         const Eigen::Vector3f a(&x[3 * g.structural[k].first]), b(&x[3 * g.structural[k].second]);
-        c->worst_strain = std::max(c->worst_strain, (a - b).norm() / g.rest_length[k] - 1.0f);
+        stretch = std::max(stretch, (a - b).norm() / g.rest_length[k] - 1.0f);
     }
-    return ok && c->worst_strain <= o.max_strain;
+    c->worst_strain = std::max(c->worst_strain, stretch);
+    return ok && stretch <= o.max_strain;
 }
 
 // One moment of the run, drawn after the fact.

@@ -245,8 +245,10 @@ class ClothInstance {
     void limit_strain(const GroupTask& task);
     /// After the strain limiter's last round: whether it ended past its promise.
     void note_strain();
-    /// Free particles into their max distances, out of their backstops.
+    /// Free particles into their max distances, out of their backstops
+    /// (after the colliders, so the skin wins; also after each strain-limit pass).
     void constrain_to_skin(const GroupTask& task);
+    void hold_to_skin(const GroupTask& task);
     /// One round of self-collision (hash, sort, contacts, project, respond).
     void resolve_self_contacts(const GroupTask& task);
     /// Checks the group's new state for NaN and Inf (in the frame's last round).

@@ -182,6 +182,10 @@ void ClothInstance::adopt_first_integration() {
 
 void ClothInstance::constrain_to_skin(const GroupTask& task) {
     expect_stage(Stage::kSkinConstraints);
+    hold_to_skin(task);
+}
+
+void ClothInstance::hold_to_skin(const GroupTask& task) {
     const float fraction_end =
         static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.solver.substeps);
     skin_.constrain(task.begin, task.end, fraction_end, frame_.h, pinned_.data(), x_, v_);
@@ -210,7 +214,16 @@ void ClothInstance::limit_strain(const GroupTask& task) {
     if (frame_.limit_rounds.colliding()) {
         collide(task);  // limit_rounds.h: when and why
     } else {
+        // The skin's constraints follow every pass that moved particles, as
+        // in Jolt's and NvCloth's iterations, so the next pass limits the
+        // springs where the skin holds their ends: run only after the last
+        // pass, they undid it and left the cape stretched 25-fold in a
+        // fast turn (docs/measurements.md, "The skin's constraints between
+        // the strain limiter's passes"). They touch only this group's
+        // particles, so they share the pass's task.
+        const bool applying = frame_.strain_limiter.applying();
         frame_.strain_limiter.run(task);
+        if (applying && skin_.active() && skin_.constrains()) hold_to_skin(task);
     }
 }
 

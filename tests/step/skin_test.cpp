@@ -74,12 +74,14 @@ struct SkinnedScene {
 
     // The clip at frame f: the body turns about y at 4 rad/s and runs along
     // x at 5 m/s; joint 1 (the lower cloth) swings about x besides.
-    void pose(int f) {
+    // `rigid`: joint 1 follows joint 0, so the skin moves as one body;
+    // `turn`: the body's turn, rad/s.
+    void pose(int f, bool rigid = false, double turn = 4.0) {
         const double t = f * static_cast<double>(kFrame);
         const double up[3] = {0, 1, 0}, side_axis[3] = {1, 0, 0};
         const double at[3] = {5.0 * t, 0.0, 0.0};
-        std::vector<float> m = joint_matrix(up, 4.0 * t, 1.0, at);
-        const std::vector<float> m1 = joint_matrix(side_axis, 0.8 * std::sin(6.0 * t), 1.0, at);
+        std::vector<float> m = joint_matrix(up, turn * t, 1.0, at);
+        const std::vector<float> m1 = rigid ? m : joint_matrix(side_axis, 0.8 * std::sin(6.0 * t), 1.0, at);
         m.insert(m.end(), m1.begin(), m1.end());
         ASSERT_EQ(cloth_set_joint_matrices(cloth, m.data(), kJoints, CLOTH_MATRIX_COLUMN_MAJOR_4X4),
                   CLOTH_OK);
@@ -242,6 +244,34 @@ TEST(Skin, MaxDistanceAndBackstopHoldAfterEveryStepUnderAFastSkeleton) {
     }
     EXPECT_GT(on_max_distance, 100u);
     EXPECT_GT(on_backstop, 10u);
+}
+
+// A cape's constraints (max distance growing to 0.5 m at the hem, a
+// backstop sphere of 0.29 m 0.3 m behind the skinned position) on a 32x32
+// cloth whose skin turns at 8 rad/s as one body: the skin's constraints
+// run after each of the strain limiter's passes, so the limiter works
+// where they hold the particles. Run only after its last pass they undid
+// it: neighbours ended on different parts of their backstop spheres and
+// the springs between them stretched 12-fold. The passes still do not
+// reach the limit here (0.28, 0.16 with four times the passes:
+// docs/character_cloth.md); the bound checks the order.
+TEST(Skin, ItsConstraintsBetweenTheStrainLimitersPassesKeepAFastTurnFromStretchingTheCloth) {
+    SkinnedScene scene(32, 2);
+    const uint32_t n = scene.count;
+    std::vector<float> reach(n), back_distance(n, 0.3f), back_radius(n, 0.29f);
+    for (uint32_t v = 0; v < n; ++v) reach[v] = 0.5f * static_cast<float>(v / 32) / 31.0f;
+    ASSERT_EQ(cloth_set_max_distances(scene.cloth, reach.data(), n), CLOTH_OK);
+    ASSERT_EQ(cloth_set_backstops(scene.cloth, back_distance.data(), back_radius.data(), n), CLOTH_OK);
+    float worst = 0;
+    for (int f = 0; f < 240; ++f) {
+        scene.pose(f, true, 8.0);
+        ASSERT_EQ(cloth_step(scene.world, kFrame), CLOTH_OK) << "frame " << f;
+        cloth_stats stats{};
+        stats.struct_size = sizeof stats;
+        ASSERT_EQ(cloth_get_stats(scene.cloth, &stats), CLOTH_OK);
+        worst = std::max(worst, stats.max_strain);
+    }
+    EXPECT_LT(worst, 0.5f);
 }
 
 // A character teleported 20 m: its root body is the cloth's carrier, so
