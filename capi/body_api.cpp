@@ -82,7 +82,7 @@ CLOTH_API cloth_result cloth_world_set_body_poses(cloth_world_id world_id, const
             if (s.ok())
                 s = check_pose(positions_xyz + 3 * k, rotations_xyzw + 4 * k, "positions_xyz",
                                "rotations_xyzw", &pose);
-            if (!s.ok()) return Status::error(s.code, "entry %u: %s", k, s.message);
+            if (!s.ok()) return Status::error(s.code, "entry %u: %.360s", k, s.message);  // fits the message
         }
         for (uint32_t k = 0; k < count; ++k) {
             Pose pose;

@@ -363,22 +363,12 @@ int main(int argc, char** argv) {
         const int centre = jump_frame >= 0 ? jump_frame : std::max(0, frames_run - 30);
         if (!trace.write_window(o.trace, o.trace_frames, centre)) status = 1;
     }
-    if (video.is_open()) {
-        const int written = video.frames();
-        if (video.close(&error)) {
-            std::printf("wrote %s (%d frames at %d fps)\n", o.video.c_str(), written, kVideoFps);
-        } else {
-            std::fprintf(stderr, "%s\n", error.c_str());
-            status = 1;
-        }
-    }
+    if (video.is_open() && !video.close_and_report(o.video, kVideoFps)) status = 1;
     if (!o.png.empty()) {
         if (moments.empty())
             moments.push_back({"last frame", frames_run * kDt, pose, positions(cape), positions(skirt)});
         if (write_moments(o.png, moments, cape, skirt, &error)) {
-            std::printf("wrote %s:", o.png.c_str());
-            for (const Moment& m : moments) std::printf(" [%s, t=%.2f s]", m.label.c_str(), m.time);
-            std::printf("\n");
+            cloth_samples::print_written_moments(o.png, moments);
         } else {
             std::fprintf(stderr, "%s\n", error.c_str());
             status = 1;

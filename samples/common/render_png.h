@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -52,5 +53,15 @@ bool render_png(const std::string& path, const Camera& camera, const RenderMesh*
 // into one picture). Same validation as render_png; on failure *rgb is unchanged.
 bool render_rgb(const Camera& camera, const RenderMesh* meshes, size_t mesh_count,
                 const RenderOptions& options, std::vector<uint8_t>* rgb, std::string* error);
+
+// Prints "wrote PATH: [label, t=T s] ..." for moments with a `label`
+// string and a `time` in seconds.
+template <class Moments>
+void print_written_moments(const std::string& path, const Moments& moments) {
+    std::printf("wrote %s:", path.c_str());
+    for (const auto& m : moments)
+        std::printf(" [%s, t=%.2f s]", m.label.c_str(), static_cast<double>(m.time));
+    std::printf("\n");
+}
 
 }  // namespace cloth_samples

@@ -1,5 +1,6 @@
 #include "trace_writer.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -45,10 +46,11 @@ bool TraceWriter::write(const std::string& path, int first, int last) {
 }
 
 bool TraceWriter::write_window(const std::string& path, const std::string& window, int centre) {
-    int first = centre - 30, last = centre + 29;
+    // A second of frames around the centre, none before the run's first.
+    int first = std::max(0, centre - 30), last = first + 59;
     if (std::sscanf(window.c_str(), "%d:%d", &first, &last) != 2) {
-        first = centre - 30;
-        last = centre + 29;
+        first = std::max(0, centre - 30);
+        last = first + 59;
     }
     if (!write(path, first, last)) {
         std::fprintf(stderr, "cannot write %s\n", path.c_str());

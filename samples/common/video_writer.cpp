@@ -43,4 +43,15 @@ bool VideoWriter::close(std::string* error) {
     return true;
 }
 
+bool VideoWriter::close_and_report(const std::string& path, int fps) {
+    const int written = frames_;
+    std::string error;
+    if (!close(&error)) {
+        std::fprintf(stderr, "%s\n", error.c_str());
+        return false;
+    }
+    std::printf("wrote %s (%d frames at %d fps)\n", path.c_str(), written, fps);
+    return true;
+}
+
 }  // namespace cloth_samples

@@ -27,6 +27,9 @@ class VideoWriter {
     bool add(const std::vector<uint8_t>& rgb);
     // Ends the stream and waits for ffmpeg; false if it failed.
     bool close(std::string* error);
+    // close(), then "wrote PATH (N frames at F fps)" on stdout, or the
+    // error on stderr; false if it failed.
+    bool close_and_report(const std::string& path, int fps);
     int frames() const { return frames_; }
 
   private:

@@ -23,6 +23,7 @@
 #include "course_checks.h"
 #include "flag_rig.h"
 #include "flag_trailing.h"
+#include "render_png.h"
 #include "scene_render.h"
 #include "timing_table.h"
 #include "trace_writer.h"
@@ -475,24 +476,14 @@ int main(int argc, char** argv) {
         const int centre = jump_frame >= 0 ? jump_frame : std::max(0, frames_run - 30);
         if (!trace.write_window(o.trace, o.trace_frames, centre)) status = 1;
     }
-    if (video.is_open()) {
-        const int frames = video.frames();
-        if (video.close(&video_error)) {
-            std::printf("wrote %s (%d frames at %d fps)\n", o.video.c_str(), frames, kVideoFps);
-        } else {
-            std::fprintf(stderr, "%s\n", video_error.c_str());
-            status = 1;
-        }
-    }
+    if (video.is_open() && !video.close_and_report(o.video, kVideoFps)) status = 1;
     if (!o.png.empty()) {
         std::string error;
         if (moments.empty())
             moments.push_back(
                 capture_moment("last frame", frames_run * kDt, vehicle, flag.positions(), flag.normals()));
         if (render_moments(o.png, moments, terrain, vehicle.layout(), flag.triangles(), 480, 360, &error)) {
-            std::printf("wrote %s:", o.png.c_str());
-            for (const Moment& m : moments) std::printf(" [%s, t=%.2f s]", m.label.c_str(), m.time);
-            std::printf("\n");
+            cloth_samples::print_written_moments(o.png, moments);
         } else {
             std::fprintf(stderr, "%s\n", error.c_str());
             status = 1;
