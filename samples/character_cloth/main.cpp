@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "body.h"
+#include "motion_checks.h"
 #include "render_png.h"
 #include "skeleton.h"
 #include "timing_table.h"
@@ -47,8 +48,10 @@ struct Options {
     std::string trace_frames;  // "FIRST:LAST"; empty: the second around the jump
     float max_strain = 0.12f;
     float max_speed = 40.0f;
-    float tolerance = 1e-3f;       // m: a particle this far inside the body or past a constraint
-    float body_clearance = 5e-3f;  // m: the colliders' thickness less what the check forgives
+    float max_energy_factor = 10.0f;  // relative kinetic energy after the walk, of the steady walk's peak
+    float hem_trailing = 0.9f;        // fraction of running frames with the cape's hem behind
+    float tolerance = 1e-3f;          // m: a particle this far inside the body or past a constraint
+    float body_clearance = 5e-3f;     // m: the colliders' thickness less what the check forgives
 };
 
 // What the checks found in one garment over the run.
@@ -192,6 +195,11 @@ int main(int argc, char** argv) {
                    "frames the trace keeps, FIRST:LAST (default: the second around the jump)");
     app.add_option("--max-strain", o.max_strain, "check: bound on the garments' max stretch");
     app.add_option("--max-speed", o.max_speed, "check: bound on the garments' max particle speed, m/s");
+    app.add_option("--max-energy-factor", o.max_energy_factor,
+                   "check: bound on the garments' kinetic energy relative to the character after the walk, "
+                   "in multiples of the steady walk's peak");
+    app.add_option("--hem-trailing", o.hem_trailing,
+                   "check: fraction of running frames with the cape's hem behind the shoulders");
     app.add_option("--tolerance", o.tolerance,
                    "check: how far past a max distance, into a backstop or into the body, m");
     CLI11_PARSE(app, argc, argv);
@@ -236,6 +244,7 @@ int main(int argc, char** argv) {
     std::vector<cloth_task_record> tasks(kProfileTasks);
     std::vector<double> step_ms, stage_ms[kStages];
     GarmentChecks checks[2];
+    MotionChecks motion(kDt, o.max_energy_factor);
     std::vector<Moment> moments;
     size_t next_moment = 0;
     int failed_calls = 0, bad_frames = 0, frames_run = 0, jump_frame = -1;
@@ -304,11 +313,12 @@ int main(int argc, char** argv) {
             speed = std::max(speed, std::isfinite(stats.max_speed) ? stats.max_speed : INFINITY);
         }
         worst_speed = std::max(worst_speed, speed);
+        const Phase phase = clip.phase(time);
+        ok = motion.observe(pose, phase, time, teleported, cape, skirt) && ok;
         ok = ok && speed <= o.max_speed;
         bad_frames += !ok;
         ++frames_run;
         trace.add("checks", check_track, check_us, trace.now_us() - check_us);
-        const Phase phase = clip.phase(time);
         if (phase == Phase::kJump && jump_frame < 0) jump_frame = frame;
         if (frame % 60 == 0 || (!ok && bad_frames <= 5)) {
             std::printf("%6d %7.2f %-11s %10.3f %10.3f %9.2f%s\n", frame, time, phase_name(phase),
@@ -357,7 +367,18 @@ int main(int argc, char** argv) {
     std::printf(
         "  max speed %.2f m/s (limit %.3g); cloth calls that failed: %d; frames failing a check: %d\n",
         worst_speed, o.max_speed, failed_calls, bad_frames);
-    int status = failed_calls == 0 && bad_frames == 0 ? 0 : 1;
+    const bool trails = motion.hem_trails(o.hem_trailing);
+    std::printf(
+        "  kinetic energy relative to the character: steady walk's peak %.3g J, after it at most %.2fx "
+        "(limit %.3gx)\n",
+        motion.walk_energy(), motion.worst_energy_ratio(), o.max_energy_factor);
+    std::printf(
+        "  the cape's hem behind the shoulders in %d of %d running frames (%.1f %%, at least %.0f %% "
+        "asked)%s\n",
+        motion.hem_behind_frames(), motion.running_frames(),
+        100.0 * motion.hem_behind_frames() / std::max(motion.running_frames(), 1), 100.0 * o.hem_trailing,
+        trails ? "" : "  CHECK FAILED");
+    int status = failed_calls == 0 && bad_frames == 0 && trails ? 0 : 1;
 
     if (!o.trace.empty()) {
         const int centre = jump_frame >= 0 ? jump_frame : std::max(0, frames_run - 30);

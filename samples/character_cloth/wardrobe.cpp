@@ -30,7 +30,7 @@ bool dress(cloth_world_id world, cloth_body_id root, cloth_fabric_id fabric, con
     cloth_desc desc = cloth_default_desc();
     desc.fabric = fabric;
     desc.initial_positions = rest.data();
-    desc.particle_mass = mass / static_cast<float>(g->count);
+    desc.particle_mass = g->particle_mass = mass / static_cast<float>(g->count);
     if (cloth_create(world, &desc, &g->cloth) != CLOTH_OK) return fail("cloth_create");
     cloth_skin_desc skin = cloth_default_skin_desc();
     skin.particle_count = g->count;
@@ -123,6 +123,8 @@ bool make_cape(cloth_world_id world, cloth_body_id root, Garment* cape, std::str
             joints[2 * i + 1] = kPelvis;
             weights[2 * i] = 1.0f - 0.6f * down;
             weights[2 * i + 1] = 0.6f * down;
+            if (r == 0) cape->top.push_back(i);
+            if (r + 1 == kCapeRows) cape->hem.push_back(i);
             cape->max_distance[i] = r == 0 ? 0.0f : 0.02f + 0.5f * std::pow(down, 1.5f);
             if (r > 0) {
                 cape->back_distance[i] = 0.3f;  // 1 cm of the way to the back allowed

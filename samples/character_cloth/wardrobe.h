@@ -24,7 +24,9 @@ struct Garment {
         structural;  // pairs at their rest distance, for the strain check
     std::vector<float> rest_length;
     std::vector<float> max_distance, back_distance, back_radius;
-    uint32_t collider_mask = 0;  // the body's collider groups it meets (body.h)
+    uint32_t collider_mask = 0;      // the body's collider groups it meets (body.h)
+    float particle_mass = 0;         // kg
+    std::vector<uint32_t> top, hem;  // the cape's top row and its hem (none for the skirt)
 };
 
 // Both in `world` on the skeleton's bind pose, carried by `root`; false with a message.
