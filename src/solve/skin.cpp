@@ -36,13 +36,15 @@ Skin::Skin(const HostMemory* memory)
       from_n_(memory),
       to_x_(memory),
       to_n_(memory),
+      held_x_(memory),
+      held_n_(memory),
       max_distance_(HostAllocator<float>(memory)),
       backstop_distance_(HostAllocator<float>(memory)),
       backstop_radius_(HostAllocator<float>(memory)) {}
 
 void Skin::size_for(uint32_t n) {
     if (from_x_.size() == n) return;
-    for (Vec3Soa* a : {&from_x_, &from_n_, &to_x_, &to_n_}) a->resize(n);
+    for (Vec3Soa* a : {&from_x_, &from_n_, &to_x_, &to_n_, &held_x_, &held_n_}) a->resize(n);
     max_distance_.assign(n, kNoMaxDistance);
     backstop_distance_.assign(n, 0.0f);
     backstop_radius_.assign(n, 0.0f);
@@ -172,19 +174,27 @@ Vec3 Skin::normal(uint32_t i, float fraction) const {
     return unit_or(lerp(from_n_, to_n_, i, fraction), to_n_.get(i));
 }
 
+void Skin::prepare(uint32_t begin, uint32_t end, float fraction) {
+    for (uint32_t i = begin; i < end; ++i) {
+        if (!constrained(i)) continue;
+        held_x_.set(i, position(i, fraction));
+        if (backstop_radius_[i] > 0.0f) held_n_.set(i, normal(i, fraction));
+    }
+}
+
 void Skin::constrain(uint32_t begin, uint32_t end, float fraction, float h, const float* pinned, Vec3Soa& x,
-                     Vec3Soa& v) const {
+                     Vec3Soa& v, bool prepared) const {
     const float inverse_h = 1.0f / h;
     for (uint32_t i = begin; i < end; ++i) {
         if (pinned[i] != 0.0f || !constrained(i)) continue;
-        const Vec3 s = position(i, fraction), before = x.get(i);
+        const Vec3 s = prepared ? held_x_.get(i) : position(i, fraction), before = x.get(i);
         Vec3 p = before;
         // The backstop, then the max distance, then back out of the backstop
         // towards the skinned position if the max distance pulled the
         // particle in: both hold wherever the skinned position is outside
         // the backstop (radius <= distance); elsewhere the max distance does.
         const float radius = backstop_radius_[i];
-        const Vec3 n = radius > 0.0f ? normal(i, fraction) : Vec3::Zero();
+        const Vec3 n = radius <= 0.0f ? Vec3::Zero() : prepared ? held_n_.get(i) : normal(i, fraction);
         if (radius > 0.0f) {
             const Vec3 centre = s - n * backstop_distance_[i];
             const Vec3 out = p - centre;

@@ -87,11 +87,16 @@ class Skin {
     // The skinned position and unit normal at `fraction` of the frame.
     Vec3 position(uint32_t i, float fraction) const;
     Vec3 normal(uint32_t i, float fraction) const;
+    // Keeps the skinned positions and normals of the constrained particles
+    // of [begin, end) at `fraction` of the frame, for constrain() to use
+    // while the substep runs its constraints more than once.
+    void prepare(uint32_t begin, uint32_t end, float fraction);
     // Moves free particles [begin, end) into their max-distance spheres
-    // and out of their backstop spheres at `fraction` of the frame; what
+    // and out of their backstop spheres at `fraction` of the frame (with
+    // `prepared`, from what prepare() kept for it: the same values); what
     // a particle moves is added to its velocity over h.
     void constrain(uint32_t begin, uint32_t end, float fraction, float h, const float* pinned, Vec3Soa& x,
-                   Vec3Soa& v) const;
+                   Vec3Soa& v, bool prepared = false) const;
 
     // Origin rebasing: positions and matrices move by -shift.
     void shift_origin(const Vec3& shift);
@@ -112,6 +117,7 @@ class Skin {
     Vec3Soa bind_x_, bind_n_;
     Vec3Soa host_x_, host_n_;                // the host's skinned positions and normals (Source::kHost)
     Vec3Soa from_x_, from_n_, to_x_, to_n_;  // the frame's start and end
+    Vec3Soa held_x_, held_n_;                // prepare()'s: one substep's, constrained particles only
     bool primed_ = false, jump_ = false;
     HostVector<float> max_distance_, backstop_distance_, backstop_radius_;
     uint32_t constrained_count_ = 0;  // particles with a finite max distance above 0 or a backstop

@@ -248,7 +248,9 @@ class ClothInstance {
     /// Free particles into their max distances, out of their backstops
     /// (after the colliders, so the skin wins; also after each strain-limit pass).
     void constrain_to_skin(const GroupTask& task);
-    void hold_to_skin(const GroupTask& task);
+    void hold_to_skin(const GroupTask& task, bool prepared);
+    // The fraction of the frame at this substep's end.
+    float substep_end_fraction() const;
     /// One round of self-collision (hash, sort, contacts, project, respond).
     void resolve_self_contacts(const GroupTask& task);
     /// Checks the group's new state for NaN and Inf (in the frame's last round).

@@ -49,8 +49,7 @@ Vec3 ClothInstance::pin_position(uint32_t i, float frame_fraction) const {
 
 void ClothInstance::land_pins(uint32_t begin, uint32_t end, Vec3Soa& x) {
     // Pinned particles land exactly on their substep targets.
-    const float fraction_end =
-        static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.solver.substeps);
+    const float fraction_end = substep_end_fraction();
     auto first = std::lower_bound(pinned_list_.begin(), pinned_list_.end(), begin);
     for (auto it = first; it != pinned_list_.end() && *it < end; ++it) {
         x.set(*it, pin_position(*it, fraction_end));
@@ -61,8 +60,7 @@ void ClothInstance::land_pins(uint32_t begin, uint32_t end, Vec3Soa& x) {
 
 void ClothInstance::move_pins() {
     // Pinned particles move linearly towards their frame-end targets.
-    const float fraction_end =
-        static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.solver.substeps);
+    const float fraction_end = substep_end_fraction();
     for (uint32_t i : pinned_list_) v_.set(i, (pin_position(i, fraction_end) - x_.get(i)) / frame_.h);
     frame_.strain_pins_demand = limits_strain() ? tethers_.strain_pins_demand(x_, v_, frame_.h) : 0.0f;
 }
@@ -182,13 +180,15 @@ void ClothInstance::adopt_first_integration() {
 
 void ClothInstance::constrain_to_skin(const GroupTask& task) {
     expect_stage(Stage::kSkinConstraints);
-    hold_to_skin(task);
+    hold_to_skin(task, limits_strain());  // the limiter's first round prepared the skin
 }
 
-void ClothInstance::hold_to_skin(const GroupTask& task) {
-    const float fraction_end =
-        static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.solver.substeps);
-    skin_.constrain(task.begin, task.end, fraction_end, frame_.h, pinned_.data(), x_, v_);
+void ClothInstance::hold_to_skin(const GroupTask& task, bool prepared) {
+    skin_.constrain(task.begin, task.end, substep_end_fraction(), frame_.h, pinned_.data(), x_, v_, prepared);
+}
+
+float ClothInstance::substep_end_fraction() const {
+    return static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.solver.substeps);
 }
 
 void ClothInstance::collide_stage(const GroupTask& task) {
@@ -204,7 +204,7 @@ void ClothInstance::note_contacts() {
 void ClothInstance::collide(const GroupTask& task, uint32_t* contacts) {
     // Particles against the world's colliders over this substep (colliders.h).
     const float from = static_cast<float>(frame_.substep) / static_cast<float>(frame_.solver.substeps);
-    const float to = static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.solver.substeps);
+    const float to = substep_end_fraction();
     const uint32_t found = contact_.collide(frame_.h, from, to, pinned_.data(), task.begin, task.end, x_, v_);
     if (contacts) *contacts = found;
 }
@@ -214,6 +214,10 @@ void ClothInstance::limit_strain(const GroupTask& task) {
     if (frame_.limit_rounds.colliding()) {
         collide(task);  // limit_rounds.h: when and why
     } else {
+        // The skin's constraints run several times in the substep: its
+        // skinned positions and normals are worked out once, in the first round.
+        const bool skin = skin_.active() && skin_.constrains();
+        if (skin && frame_.round == 0) skin_.prepare(task.begin, task.end, substep_end_fraction());
         // The skin's constraints follow every pass that moved particles, as
         // in Jolt's and NvCloth's iterations, so the next pass limits the
         // springs where the skin holds their ends: run only after the last
@@ -223,7 +227,7 @@ void ClothInstance::limit_strain(const GroupTask& task) {
         // particles, so they share the pass's task.
         const bool applying = frame_.strain_limiter.applying();
         frame_.strain_limiter.run(task);
-        if (applying && skin_.active() && skin_.constrains()) hold_to_skin(task);
+        if (applying && skin) hold_to_skin(task, true);
     }
 }
 

@@ -154,12 +154,14 @@ BENCHMARK(BM_Tethers_Plan)
     ->Unit(benchmark::kMillisecond);
 
 // A 64x64 cloth skinned to 16 joints, `influences` per particle, turned
-// and moved; per particle: the skinning (range 1 = 0) or the max-distance
-// and backstop projection of every particle (range 1 = 1, the skinned
-// positions of a frame, the particles scattered about them).
+// and moved; per particle, by range 1: 0 the skinning; 1 the max-distance
+// and backstop projection of every particle (the skinned positions of a
+// frame, the particles scattered about them); 2 the same from what
+// prepare() kept (each run after a substep's first); 3 prepare() itself.
 void BM_Skin(benchmark::State& state) {
     const uint32_t influences = static_cast<uint32_t>(state.range(0));
-    const bool constraints = state.range(1) != 0;
+    const int64_t mode = state.range(1);
+    const bool constraints = mode == 1 || mode == 2;
     StageFixture f(64);
     Skin skin(&f.memory);
     const uint32_t joints = 16;
@@ -185,15 +187,18 @@ void BM_Skin(benchmark::State& state) {
     Vec3Soa x(&f.memory), v(&f.memory);
     x.resize(f.n);
     v.resize(f.n);
+    skin.prepare(0, f.n, 1.0f);
     for (auto _ : state) {
-        if (constraints) {
+        if (mode == 3) {
+            skin.prepare(0, f.n, 1.0f);
+        } else if (constraints) {
             state.PauseTiming();
             for (uint32_t i = 0; i < f.n; ++i) {  // around the skin, some outside either sphere
                 const float k = 0.02f * static_cast<float>(i % 7) - 0.06f;
                 x.set(i, skin.position(i, 1.0f) + Vec3(k, -k, 0.5f * k));
             }
             state.ResumeTiming();
-            skin.constrain(0, f.n, 1.0f, StageFixture::kH, pinned.data(), x, v);
+            skin.constrain(0, f.n, 1.0f, StageFixture::kH, pinned.data(), x, v, mode == 2);
         } else {
             skin.skin(0, f.n);
         }
@@ -208,6 +213,8 @@ BENCHMARK(BM_Skin)
     ->Args({1, 0})
     ->Args({4, 0})
     ->Args({1, 1})
+    ->Args({1, 2})
+    ->Args({1, 3})
     ->Unit(benchmark::kMicrosecond);
 
 BENCHMARK(BM_Stage_Air)->Arg(64)->Unit(benchmark::kMicrosecond);
