@@ -1620,10 +1620,12 @@ CLOTH_API cloth_result CLOTH_CALL cloth_get_teleported(cloth_id cloth, bool* out
  * They run after each of the strain limiter's passes, so its next pass
  * works where they hold the particles, and last in each substep, after the
  * colliders: where they conflict, the max distance wins, then the backstop
- * (a collider or the strain limit may be left unmet there). A cloth without a skin pays
- * nothing for any of this; with one, the skinning costs a pass over the
- * particles once a frame and the constraints a pass per substep over the
- * particles while some particle has a max distance above 0 or a backstop.
+ * (a collider or the strain limit may be left unmet there). A cloth
+ * without a skin pays nothing for any of this; with one, the skinning
+ * costs a pass over the particles once a frame, and the constraints a pass
+ * over the particles with a max distance above 0 or a backstop after each
+ * strain-limit pass that moves particles and once more at the end of each
+ * substep (docs/character_cloth.md gives the cost per particle).
  * Joint matrices map the bind pose to the world and may carry a uniform
  * scale; normals are rotated by them and renormalised. Skin data is not
  * part of snapshots. All since 1.8. */
