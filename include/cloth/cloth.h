@@ -1624,8 +1624,8 @@ CLOTH_API cloth_result CLOTH_CALL cloth_get_teleported(cloth_id cloth, bool* out
  * without a skin pays nothing for any of this; with one, the skinning
  * costs a pass over the particles once a frame, and the constraints a pass
  * over the particles with a max distance above 0 or a backstop after each
- * strain-limit pass that moves particles and once more at the end of each
- * substep (docs/character_cloth.md gives the cost per particle).
+ * strain-limit pass and once more at the end of each substep
+ * (docs/character_cloth.md gives the cost per particle).
  * Joint matrices map the bind pose to the world and may carry a uniform
  * scale; normals are rotated by them and renormalised. Skin data is not
  * part of snapshots. All since 1.8. */

@@ -218,7 +218,7 @@ void ClothInstance::limit_strain(const GroupTask& task) {
         // skinned positions and normals are worked out once, in the first round.
         const bool skin = skin_.active() && skin_.constrains();
         if (skin && frame_.round == 0) skin_.prepare(task.begin, task.end, substep_end_fraction());
-        // The skin's constraints follow every pass that moved particles, as
+        // The skin's constraints follow every pass's application, as
         // in Jolt's and NvCloth's iterations, so the next pass limits the
         // springs where the skin holds their ends: run only after the last
         // pass, they undid it and left the cape stretched 25-fold in a
