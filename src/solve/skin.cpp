@@ -42,38 +42,59 @@ Skin::Skin(const HostMemory* memory)
       backstop_distance_(HostAllocator<float>(memory)),
       backstop_radius_(HostAllocator<float>(memory)) {}
 
+// Every allocating setter sizes its buffers aside and swaps them in last,
+// so that an allocator returning NULL leaves the skin as it was.
 void Skin::size_for(uint32_t n) {
     if (from_x_.size() == n) return;
-    for (Vec3Soa* a : {&from_x_, &from_n_, &to_x_, &to_n_, &held_x_, &held_n_}) a->resize(n);
-    max_distance_.assign(n, kNoMaxDistance);
-    backstop_distance_.assign(n, 0.0f);
-    backstop_radius_.assign(n, 0.0f);
+    Skin sized(max_distance_.get_allocator().memory());
+    for (Vec3Soa* a :
+         {&sized.from_x_, &sized.from_n_, &sized.to_x_, &sized.to_n_, &sized.held_x_, &sized.held_n_})
+        a->resize(n);
+    sized.max_distance_.assign(n, kNoMaxDistance);
+    sized.backstop_distance_.assign(n, 0.0f);
+    sized.backstop_radius_.assign(n, 0.0f);
+    from_x_.swap_buffers(sized.from_x_);
+    from_n_.swap_buffers(sized.from_n_);
+    to_x_.swap_buffers(sized.to_x_);
+    to_n_.swap_buffers(sized.to_n_);
+    held_x_.swap_buffers(sized.held_x_);
+    held_n_.swap_buffers(sized.held_n_);
+    max_distance_.swap(sized.max_distance_);
+    backstop_distance_.swap(sized.backstop_distance_);
+    backstop_radius_.swap(sized.backstop_radius_);
     constrained_count_ = 0;
 }
 
 void Skin::bind(const Fabric& fabric, uint32_t joint_count, uint32_t influences, const uint32_t* joints,
                 const float* weights) {
     const uint32_t n = fabric.particle_count();
-    size_for(n);
-    joint_count_ = joint_count;
-    influences_ = influences;
-    joints_.assign(size_t{n} * kMaxInfluences, 0u);
-    weights_.assign(size_t{n} * kMaxInfluences, 0.0f);
+    Skin bound(max_distance_.get_allocator().memory());
+    bound.joints_.assign(size_t{n} * kMaxInfluences, 0u);
+    bound.weights_.assign(size_t{n} * kMaxInfluences, 0.0f);
     for (uint32_t i = 0; i < n; ++i) {
         for (uint32_t k = 0; k < influences; ++k) {
-            joints_[size_t{i} * kMaxInfluences + k] = joints[size_t{i} * influences + k];
-            weights_[size_t{i} * kMaxInfluences + k] = weights ? weights[size_t{i} * influences + k] : 1.0f;
+            bound.joints_[size_t{i} * kMaxInfluences + k] = joints[size_t{i} * influences + k];
+            bound.weights_[size_t{i} * kMaxInfluences + k] =
+                weights ? weights[size_t{i} * influences + k] : 1.0f;
         }
     }
-    bind_x_.resize(n);
-    for (uint32_t i = 0; i < n; ++i) bind_x_.set(i, fabric.rest_positions[i]);
-    bind_n_.resize(n);
-    compute_vertex_normals(fabric, bind_x_, 0, n, bind_n_);
-    matrices_.assign(size_t{joint_count} * kMatrixFloats, 0.0f);
+    bound.bind_x_.resize(n);
+    for (uint32_t i = 0; i < n; ++i) bound.bind_x_.set(i, fabric.rest_positions[i]);
+    bound.bind_n_.resize(n);
+    compute_vertex_normals(fabric, bound.bind_x_, 0, n, bound.bind_n_);
+    bound.matrices_.assign(size_t{joint_count} * kMatrixFloats, 0.0f);
     for (uint32_t j = 0; j < joint_count; ++j) {
-        float* m = matrices_.data() + size_t{j} * kMatrixFloats;
+        float* m = bound.matrices_.data() + size_t{j} * kMatrixFloats;
         m[0] = m[5] = m[10] = 1.0f;
     }
+    size_for(n);  // the last allocation
+    joints_.swap(bound.joints_);
+    weights_.swap(bound.weights_);
+    bind_x_.swap_buffers(bound.bind_x_);
+    bind_n_.swap_buffers(bound.bind_n_);
+    matrices_.swap(bound.matrices_);
+    joint_count_ = joint_count;
+    influences_ = influences;
     source_ = Source::kJoints;
     primed_ = false;
 }
@@ -94,9 +115,15 @@ void Skin::set_joint_matrices(const float* matrices, bool column_major_4x4) {
 
 void Skin::set_skinned(const Fabric& fabric, const float* positions, const float* normals) {
     const uint32_t n = fabric.particle_count();
-    size_for(n);
-    host_x_.resize(n);
-    host_n_.resize(n);
+    if (host_x_.size() != n) {
+        const HostMemory* memory = max_distance_.get_allocator().memory();
+        Vec3Soa x(memory), normal(memory);
+        x.resize(n);
+        normal.resize(n);
+        size_for(n);  // the last allocation
+        host_x_.swap_buffers(x);
+        host_n_.swap_buffers(normal);
+    }
     for (uint32_t v = 0; v < n; ++v) {
         const float *p = positions + 3 * size_t{v}, *d = normals + 3 * size_t{v};
         host_x_.set(fabric.particle(v), Vec3(p[0], p[1], p[2]));

@@ -58,6 +58,8 @@ class Skin {
 
     // Sizes the per-particle arrays for n particles (no max distance, no
     // backstop) unless they have that size; every setter below needs it.
+    // An allocation failure leaves the skin as it was, here and in bind()
+    // and set_skinned().
     void size_for(uint32_t n);
     bool sized_for(uint32_t n) const { return n > 0 && max_distance_.size() == n; }
     // Per particle (particle order). max_distance: +infinity for none;

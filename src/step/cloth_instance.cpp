@@ -188,8 +188,11 @@ void ClothInstance::set_skinned(const float* positions, const float* normals) {
 
 void ClothInstance::set_max_distances(const float* distances) {
     const uint32_t n = particle_count();
-    skin_.size_for(n);
+    // Everything allocated before anything changes: an allocation failure changes nothing.
     HostVector<uint32_t> pins(HostAllocator<uint32_t>(fabric_->memory)), releases(pins.get_allocator());
+    pins.reserve(n);
+    releases.reserve(n);
+    skin_.size_for(n);
     for (uint32_t i = 0; i < n; ++i) {
         const bool was_pin = skin_pins(i);
         skin_.set_max_distance(i, distances[i]);

@@ -4,6 +4,7 @@
 // the twin check at the end catches a skin, a matrix, a max distance or a
 // backstop that a failed call half set.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -172,6 +173,67 @@ TEST_F(SkinBadInput, MaxDistancesAndBackstopsRejectNaNNegativeAndARadiusOfZero) 
     distance[3] = -1.0f;
     EXPECT_REJECTED(CLOTH_ERROR_INVALID_VALUE,
                     cloth_set_backstops(c, distance.data(), radius.data(), kParticles));
+}
+
+// A skin setter that allocates (a new skin, the first host-skinned
+// positions, max distances that pin particles) and meets an allocator
+// returning NULL at any of its allocations reports CLOTH_ERROR_OUT_OF_MEMORY
+// and changes nothing: the cloths' state, the world's memory and the
+// skinned positions read back are as before, and the twin check at the end
+// finds the skin the same as the twin's after the same calls succeed.
+TEST_F(SkinBadInput, ASkinSetterWhoseAllocationFailsReturnsOutOfMemoryAndChangesNothing) {
+    std::vector<uint32_t> joints(kParticles, 1u);
+    cloth_skin_desc rebind = cloth_default_skin_desc();
+    rebind.particle_count = kParticles;
+    rebind.joint_count = kJoints;
+    rebind.joints = joints.data();
+    std::vector<float> x(kFloats, 0.5f), n(kFloats, 0.0f), reach(kParticles, 0.3f);
+    for (uint32_t v = 0; v < kParticles; ++v) n[3 * v + 2] = 1.0f;
+    reach[0] = reach[kColumns - 1] = 0.0f;  // pins two free particles
+    struct Setter {
+        const char* name;
+        std::function<cloth_result(cloth_id)> call;
+    };
+    const Setter setters[] = {
+        {"cloth_set_skin", [&](cloth_id c) { return cloth_set_skin(c, &rebind); }},
+        {"cloth_set_skinned_positions",
+         [&](cloth_id c) { return cloth_set_skinned_positions(c, x.data(), n.data(), kParticles); }},
+        {"cloth_set_max_distances",
+         [&](cloth_id c) { return cloth_set_max_distances(c, reach.data(), kParticles); }},
+    };
+    for (const Setter& setter : setters) {
+        SCOPED_TRACE(setter.name);
+        // A step skins both cloths, so that there are skinned positions to compare.
+        ASSERT_EQ(cloth_step(a_.world, kFrame), CLOTH_OK) << cloth_get_last_error();
+        ASSERT_EQ(cloth_step(b_.world, kFrame), CLOTH_OK) << cloth_get_last_error();
+        int failures = 0;
+        bool done = false;
+        for (long allowed = 0; allowed < 100 && !done; ++allowed) {
+            SCOPED_TRACE("allocator fails after " + std::to_string(allowed) + " allocations");
+            std::vector<float> skinned_before(kFloats), skinned_after(kFloats);
+            ASSERT_EQ(cloth_read_skinned_positions(a_.cloth, skinned_before.data(), nullptr, kFloats),
+                      CLOTH_OK);
+            const cloth_test::Unchanged unchanged(watch_);
+            a_.host.fail_after(allowed);
+            const cloth_result r = setter.call(a_.cloth);
+            a_.host.fail_after(-1);
+            if (r == CLOTH_OK) {
+                done = true;
+                break;
+            }
+            ++failures;
+            ++cloth_test::bad_inputs();
+            EXPECT_EQ(r, CLOTH_ERROR_OUT_OF_MEMORY) << cloth_get_last_error();
+            EXPECT_EQ(unchanged.what_changed(), "");
+            ASSERT_EQ(cloth_read_skinned_positions(a_.cloth, skinned_after.data(), nullptr, kFloats),
+                      CLOTH_OK);
+            EXPECT_EQ(skinned_before, skinned_after) << "the skin changed";
+            ASSERT_FALSE(HasFailure()) << "stopping at the first failing allocation count";
+        }
+        EXPECT_GE(failures, 1) << setter.name << " never used the world's allocator";
+        ASSERT_TRUE(done);
+        ASSERT_EQ(setter.call(b_.cloth), CLOTH_OK) << "the twin takes the same call";
+    }
 }
 
 }  // namespace
