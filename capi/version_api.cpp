@@ -68,6 +68,8 @@ CLOTH_API size_t cloth_struct_size(cloth_struct_kind kind) {
             return sizeof(cloth_self_collision_stats);
         case CLOTH_STRUCT_SKIN_DESC:
             return sizeof(cloth_skin_desc);
+        case CLOTH_STRUCT_CLOTH_CONTACT_DESC:
+            return sizeof(cloth_cloth_contact_desc);
         default:
             return 0;
     }

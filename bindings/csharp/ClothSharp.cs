@@ -878,6 +878,22 @@ namespace ClothSharp
             ClothException.Check(Native.cloth_get_self_collision_stats(Id, ref s));
             return s;
         }
+        /// <summary>Contact with another cloth of the same world (Enabled = 0: off).</summary>
+        public void SetContactWith(Cloth other, ClothClothContactDesc desc)
+        {
+            ClothException.Check(Native.cloth_set_cloth_contact(Id, other.Id, ref desc));
+        }
+        public ClothClothContactDesc GetContactWith(Cloth other)
+        {
+            ClothClothContactDesc s = ClothClothContactDesc.Default();
+            ClothException.Check(Native.cloth_get_cloth_contact(Id, other.Id, ref s));
+            return s;
+        }
+        /// <summary>Particles within the thickness of the other cloth in the last frame, and the passes run.</summary>
+        public void GetContactCount(Cloth other, out uint contacts, out uint passes)
+        {
+            ClothException.Check(Native.cloth_get_cloth_contact_count(Id, other.Id, out contacts, out passes));
+        }
         public void SetSpringParams(uint kinds, ClothSpringParams p) { ClothException.Check(Native.cloth_set_spring_params(Id, kinds, p)); }
         public void SetAero(ClothAeroParams p) { ClothException.Check(Native.cloth_set_aero(Id, ref p)); }
         public void SetWind(Float3 wind) { ClothException.Check(Native.cloth_set_wind(Id, ref wind)); }

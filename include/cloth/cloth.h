@@ -179,7 +179,7 @@ extern "C" {
 #define CLOTH_VERSION_MAJOR 1
 /// Minor version of this header: a library of the same major and at least
 /// this minor version has every function and struct of this header.
-#define CLOTH_VERSION_MINOR 9
+#define CLOTH_VERSION_MINOR 10
 /// Patch version of this header (fixes that change no interface).
 #define CLOTH_VERSION_PATCH 0
 
@@ -256,6 +256,8 @@ typedef enum cloth_struct_kind {
     CLOTH_STRUCT_SELF_COLLISION_STATS = 26,
     /// cloth_skin_desc
     CLOTH_STRUCT_SKIN_DESC = 27,
+    /// cloth_cloth_contact_desc
+    CLOTH_STRUCT_CLOTH_CONTACT_DESC = 28,
     /// forces the enum to 32 bits; not a struct
     CLOTH_STRUCT_KIND_FORCE_U32 = 0x7FFFFFFF
 } cloth_struct_kind;
@@ -1769,6 +1771,76 @@ typedef struct cloth_self_collision_stats {
 /// out_stats->struct_size first.
 CLOTH_API cloth_result CLOTH_CALL cloth_get_self_collision_stats(cloth_id cloth,
                                                                  cloth_self_collision_stats* out_stats);
+
+/* ------------------------------------------------------------------ */
+/* Contact between cloths                                             */
+/* ------------------------------------------------------------------ */
+
+/* Contact between two cloths of one world (since 1.10; NvCloth calls it
+ * inter-collision), for garments worn together: particles of one cloth
+ * closer than `thickness` to the other cloth's surface are pushed out to
+ * `thickness` and lose the approaching part of their relative velocity,
+ * with optional Coulomb friction on the sliding part, as in
+ * self-collision. Each end moves by its share of the depth (its inverse
+ * mass over the pair's); pinned particles, max-distance-0 particles
+ * included, do not move.
+ *
+ * The other cloth's surface is seen through its particles: each stands
+ * for the plane through it normal to the surface there, and a particle is
+ * kept on the side of it where the last frame left it, so a particle that
+ * crossed within the frame is pushed back. Cloths that intersect when the
+ * pair is turned on stay on the sides they are on then: turn it on with
+ * the cloths apart.
+ *
+ * It is resolved once per frame, after every cloth of the world has
+ * stepped, pair by pair in the order the pairs were turned on; then each
+ * cloth that was touched runs its strain-limit passes and its skin's max
+ * distances and backstops once more, so those still win. What contact
+ * pushes is not passed on to the cloth's neighbours within the frame: a
+ * fast impact on a fabric whose edges are shorter than the thickness
+ * stretches it where it is hit. Results are bit-identical for any thread
+ * count.
+ *
+ * Off for every pair by default. A pair costs nothing while it is off, and
+ * two bound computations a frame while the cloths' bounds, grown by
+ * `thickness` and the larger mean rest edge, do not meet. A pair is turned
+ * off when either cloth is destroyed; it is not part of either cloth's
+ * snapshot. */
+
+/// Contact settings of a pair of cloths.
+typedef struct cloth_cloth_contact_desc {
+    /// sizeof(cloth_cloth_contact_desc)
+    uint32_t struct_size;
+    /// 1: on; 0 or 1, default 0
+    uint8_t enabled;
+    /// m; > 0 and at most twice the larger of the two fabrics' mean rest edges; default 0.01
+    float thickness;
+    /// Coulomb coefficient on the sliding velocity, >= 0; default 0
+    float friction;
+    /// at most this many projection passes per frame, 1..CLOTH_MAX_SELF_COLLISION_PASSES; default 4
+    uint32_t passes;
+    /// set by the struct\'s cloth_default_*() function; do not change
+    uint32_t internal_cookie;
+} cloth_cloth_contact_desc;
+
+/// Contact settings with every default set (and its cookie); off. Since 1.10.
+CLOTH_API cloth_cloth_contact_desc CLOTH_CALL cloth_default_cloth_contact_desc(void);
+
+/// Turn on, change or turn off (desc->enabled = 0) contact between two
+/// cloths of one world; the order of `a` and `b` does not matter. Turning
+/// a pair on allocates (CLOTH_ERROR_OUT_OF_MEMORY changes nothing) and
+/// wakes both cloths. A cloth and itself is CLOTH_ERROR_INVALID_VALUE;
+/// cloths of two worlds, CLOTH_ERROR_INVALID_HANDLE. Since 1.10.
+CLOTH_API cloth_result CLOTH_CALL cloth_set_cloth_contact(cloth_id a, cloth_id b,
+                                                          const cloth_cloth_contact_desc* desc);
+/// The pair's settings (enabled = 0 and defaults while off). Since 1.10.
+CLOTH_API cloth_result CLOTH_CALL cloth_get_cloth_contact(cloth_id a, cloth_id b,
+                                                          cloth_cloth_contact_desc* out_desc);
+/// Particles of either cloth within `thickness` of the other cloth when
+/// the last frame looked (0 while the pair is off or the cloths were
+/// apart), and the projection passes it ran. Since 1.10.
+CLOTH_API cloth_result CLOTH_CALL cloth_get_cloth_contact_count(cloth_id a, cloth_id b,
+                                                                uint32_t* out_contacts, uint32_t* out_passes);
 
 #ifdef __cplusplus
 } /* extern "C" */

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "body.h"
+#include "contact_check.h"
 #include "motion_checks.h"
 #include "render_png.h"
 #include "skeleton.h"
@@ -52,6 +53,7 @@ struct Options {
     float hem_trailing = 0.9f;        // fraction of running frames with the cape's hem behind
     float tolerance = 1e-3f;          // m: a particle this far inside the body or past a constraint
     float body_clearance = 5e-3f;     // m: the colliders' thickness less what the check forgives
+    float garment_contact = 0.02f;    // m: the cape and the skirt's contact thickness (0: off)
 };
 
 // What the checks found in one garment over the run.
@@ -200,6 +202,10 @@ int main(int argc, char** argv) {
                    "in multiples of the steady walk's peak");
     app.add_option("--hem-trailing", o.hem_trailing,
                    "check: fraction of running frames with the cape's hem behind the shoulders");
+    app.add_option("--garment-contact", o.garment_contact,
+                   "contact thickness between the cape and the skirt, m (0: off; the check asks for half "
+                   "of it between any two of their particles)")
+        ->check(CLI::NonNegativeNumber);
     app.add_option("--tolerance", o.tolerance,
                    "check: how far past a max distance, into a backstop or into the body, m");
     CLI11_PARSE(app, argc, argv);
@@ -225,6 +231,15 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s\n", error.c_str());
         return 1;
     }
+    if (o.garment_contact > 0.0f) {
+        cloth_cloth_contact_desc contact = cloth_default_cloth_contact_desc();
+        contact.enabled = 1;
+        contact.thickness = o.garment_contact;
+        if (cloth_set_cloth_contact(cape.cloth, skirt.cloth, &contact) != CLOTH_OK) {
+            std::fprintf(stderr, "cloth_set_cloth_contact: %s\n", cloth_get_last_error());
+            return 1;
+        }
+    }
     const Garment* garments[] = {&cape, &skirt};
     uint32_t free_particles = 0;
     for (const Garment* g : garments) {
@@ -249,6 +264,11 @@ int main(int argc, char** argv) {
     size_t next_moment = 0;
     int failed_calls = 0, bad_frames = 0, frames_run = 0, jump_frame = -1;
     float worst_speed = 0.0f;
+    // The cape and the skirt: the closest two of their particles, and the
+    // frames they came within half the contact thickness (1 cm with it off).
+    const float garment_gap = 0.5f * (o.garment_contact > 0.0f ? o.garment_contact : 0.02f);
+    float closest_garments = INFINITY;
+    int garments_touching = 0;
     constexpr int kVideoWidth = 640, kVideoHeight = 400, kVideoFps = 30;
     cloth_samples::VideoWriter video;
     if (!o.video.empty() && !video.open(o.video, kVideoWidth, kVideoHeight, kVideoFps, &error)) {
@@ -313,6 +333,9 @@ int main(int argc, char** argv) {
             speed = std::max(speed, std::isfinite(stats.max_speed) ? stats.max_speed : INFINITY);
         }
         worst_speed = std::max(worst_speed, speed);
+        const float gap = closest_between(positions(cape), positions(skirt), 4.0f * garment_gap);
+        closest_garments = std::min(closest_garments, gap);
+        if (gap < garment_gap) ++garments_touching, ok = false;
         const Phase phase = clip.phase(time);
         ok = motion.observe(pose, phase, time, teleported, cape, skirt) && ok;
         ok = ok && speed <= o.max_speed;
@@ -364,6 +387,10 @@ int main(int argc, char** argv) {
             garments[k]->name.c_str(), c.past_max_distance, c.worst_max_distance, c.inside_backstop,
             c.worst_backstop, c.inside_body, c.deepest, c.worst_strain, o.max_strain);
     }
+    std::printf(
+        "  the cape and the skirt closer than %.3g m in %d frames (closest %.3g m; contact thickness %.3g "
+        "m)\n",
+        garment_gap, garments_touching, closest_garments, o.garment_contact);
     std::printf(
         "  max speed %.2f m/s (limit %.3g); cloth calls that failed: %d; frames failing a check: %d\n",
         worst_speed, o.max_speed, failed_calls, bad_frames);

@@ -97,7 +97,7 @@ bool make_cape(cloth_world_id world, cloth_body_id root, Garment* cape, std::str
     cloth_grid_desc grid = cloth_default_grid_desc();
     grid.columns = kCapeColumns;
     grid.rows = kCapeRows;
-    const float origin[3] = {-0.12f, 1.47f, -0.21f}, u[3] = {0.24f, 0.0f, 0.0f}, v[3] = {0.0f, -1.0f, -0.08f};
+    const float origin[3] = {-0.12f, 1.47f, -0.21f}, u[3] = {0.24f, 0.0f, 0.0f}, v[3] = {0.0f, -1.0f, -0.28f};
     std::copy(origin, origin + 3, grid.origin);
     std::copy(u, u + 3, grid.u);
     std::copy(v, v + 3, grid.v);

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <vector>
 
+#include "collide/contact_response.h"
+
 namespace cloth {
 
 namespace {
@@ -207,13 +209,7 @@ void SelfCollision::respond_velocities(const Vec3Soa& x, const Vec3Soa& v, uint3
                 const float approach = relative.dot(normal);
                 if (!(approach < 0)) continue;
                 const float share = wi / (wi + inverse_mass_[j]);
-                Vec3 dv = normal * (-share * approach);
-                if (friction > 0) {
-                    const Vec3 tangential = relative - normal * approach;
-                    const float speed = tangential.norm();
-                    if (speed > 0) dv -= tangential * (share * std::min(1.0f, -friction * approach / speed));
-                }
-                change += dv;
+                change += contact_velocity_change(relative, normal, approach, share, friction);
                 ++changes;
             }
         }

@@ -185,20 +185,21 @@ CLOTH_HOT_LOOP void gather_air(const Fabric& fabric, const Vec3Soa& corner_force
     });
 }
 
+Vec3 vertex_normal(const Fabric& fabric, const Vec3Soa& x, uint32_t p) {
+    Vec3 sum = Vec3::Zero();
+    for (uint32_t e = fabric.triangle_incidence_offset[p]; e < fabric.triangle_incidence_offset[p + 1]; ++e) {
+        const uint32_t t = fabric.triangle_incidence[e];
+        const uint32_t a = fabric.triangles[3 * t], b = fabric.triangles[3 * t + 1],
+                       c = fabric.triangles[3 * t + 2];
+        sum += (x.get(b) - x.get(a)).cross(x.get(c) - x.get(a));
+    }
+    const float length = sum.norm();
+    return length > 0.0f ? Vec3(sum / length) : Vec3(0.0f, 0.0f, 1.0f);
+}
+
 void compute_vertex_normals(const Fabric& fabric, const Vec3Soa& x, uint32_t begin, uint32_t end,
                             Vec3Soa& normal) {
-    for (uint32_t p = begin; p < end; ++p) {
-        Vec3 sum = Vec3::Zero();
-        for (uint32_t e = fabric.triangle_incidence_offset[p]; e < fabric.triangle_incidence_offset[p + 1];
-             ++e) {
-            const uint32_t t = fabric.triangle_incidence[e];
-            const uint32_t a = fabric.triangles[3 * t], b = fabric.triangles[3 * t + 1],
-                           c = fabric.triangles[3 * t + 2];
-            sum += (x.get(b) - x.get(a)).cross(x.get(c) - x.get(a));
-        }
-        const float length = sum.norm();
-        normal.set(p, length > 0.0f ? Vec3(sum / length) : Vec3(0.0f, 0.0f, 1.0f));
-    }
+    for (uint32_t p = begin; p < end; ++p) normal.set(p, vertex_normal(fabric, x, p));
 }
 
 }  // namespace cloth

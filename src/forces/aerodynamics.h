@@ -41,6 +41,8 @@ void evaluate_air(const Fabric& fabric, const AeroParams& air, const Vec3Soa& x,
 void gather_air(const Fabric& fabric, const Vec3Soa& corner_force, uint32_t begin, uint32_t end,
                 Vec3Soa& particle_force);
 
+// The unit area-weighted vertex normal of particle p.
+Vec3 vertex_normal(const Fabric& fabric, const Vec3Soa& x, uint32_t p);
 // Unit area-weighted vertex normals for particles [begin, end).
 void compute_vertex_normals(const Fabric& fabric, const Vec3Soa& x, uint32_t begin, uint32_t end,
                             Vec3Soa& normal);

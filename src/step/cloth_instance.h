@@ -163,6 +163,16 @@ class ClothInstance {
     void set_position(uint32_t particle, const Vec3& x);
 
     const Vec3Soa& positions() const { return x_; }
+    // Contact with another cloth (collide/cloth_pair_contact.h) moves a
+    // particle after the frame: its new position and velocity.
+    void set_particle_state(uint32_t particle, const Vec3& x, const Vec3& v) {
+        x_.set(particle, x);
+        v_.set(particle, v);
+    }
+    // After contact moved some particles: the strain limiter's passes and
+    // the skin's constraints once more, serially, as at the end of the
+    // frame's last substep (so the skin still wins).
+    void settle_after_contact();
     const Vec3Soa& velocities() const { return v_; }
     const HostVector<float>& masses() const { return mass_; }
     // Unit area-weighted vertex normals of the current positions.

@@ -187,6 +187,25 @@ void ClothInstance::hold_to_skin(const GroupTask& task, bool prepared) {
     skin_.constrain(task.begin, task.end, substep_end_fraction(), frame_.h, pinned_.data(), x_, v_, prepared);
 }
 
+void ClothInstance::settle_after_contact() {
+    if (limits_strain()) {
+        const StrainLimitPass pass{fabric_.get(),
+                                   mass_.data(),
+                                   pinned_.data(),
+                                   frame_.solver.strain_limit.max_strain,
+                                   strain_maybe_over_.data(),
+                                   strain_pull_.data(),
+                                   holds_compression()};
+        // As many passes as a substep's limiter may run: a push of the
+        // thickness is several times a fine fabric's edge.
+        StrainLimit limit = frame_.solver.strain_limit;
+        limit.iterations *= kStrainLimitMorePasses;
+        cloth::limit_strain(pass, limit, frame_.h, x_, v_, solver_work_.r, solver_work_.z);
+    }
+    if (skin_.active() && skin_.constrains())
+        skin_.constrain(0, particle_count(), 1.0f, frame_.h, pinned_.data(), x_, v_);
+}
+
 float ClothInstance::substep_end_fraction() const {
     return static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.solver.substeps);
 }

@@ -27,6 +27,7 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       cloth_cost_ns_(HostAllocator<int64_t>(&memory_)),
       cloth_solve_ns_(HostAllocator<int64_t>(&memory_)),
       profile_(&memory_),
+      cloth_pairs_(HostAllocator<ClothPair>(&memory_)),
       budget_cloths_(HostAllocator<BudgetCloth>(&memory_)) {
     fabrics_.make_all_slots();
     cloths_.make_all_slots();
@@ -97,6 +98,7 @@ Status World::destroy_cloth(cloth_id id) {
         return Status::error(CLOTH_ERROR_INVALID_HANDLE,
                              "cloth handle names no live cloth in its world (destroyed, or never created)");
     }
+    drop_cloth_pairs(slot);
     cloths_.release(slot);
     return {};
 }
@@ -275,6 +277,7 @@ Status World::step(float dt) {
             first_failure = Status::error(status.code, "cloth slot %u: %.360s", s + 1, status.message);
         }
     }
+    resolve_cloth_pairs();
     contact_.end_step();  // bodies start the next step where they are now
     profile_.end_ns = now_ns();
     if (budget_ms_ > 0) {

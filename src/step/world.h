@@ -13,6 +13,7 @@
 #include "base/host_allocator.h"
 #include "base/id_pool.h"
 #include "base/status.h"
+#include "collide/cloth_pair_contact.h"
 #include "collide/contact_world.h"
 #include "fabric/fabric.h"
 #include "jobs/host_tasks.h"
@@ -82,6 +83,14 @@ class World {
         return cloth_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1), generation,
                         generation_};
     }
+    // Contact between two of the world's cloths (cloth_pair_contact.h;
+    // world_cloth_pairs.cpp), resolved after every cloth's frame in the
+    // order the pairs were turned on. settings null: off. Turning a pair
+    // on allocates; an allocation failure changes nothing.
+    Status set_cloth_contact(cloth_id a, cloth_id b, const ClothPairSettings* settings);
+    // The pair's contact, or null while it is off.
+    const ClothPairContact* cloth_contact(cloth_id a, cloth_id b) const;
+
     // Bodies and colliders (contact_world.h). Destroying a body detaches
     // every particle attached to it and removes it as a carrier first.
     ContactWorld& contact() { return contact_; }
@@ -114,6 +123,15 @@ class World {
         uint32_t substep;
     };
     void reserve_round_tasks(size_t extra_groups);
+
+    struct ClothPair {
+        uint32_t slot_a, slot_b;  // slot_a < slot_b
+        std::shared_ptr<ClothPairContact> contact;
+    };
+    // The pair of a and b's slots in cloth_pairs_, or its size.
+    size_t find_cloth_pair(uint32_t slot_a, uint32_t slot_b) const;
+    void resolve_cloth_pairs();
+    void drop_cloth_pairs(uint32_t slot);
     TaskSystem* tasks_ = nullptr;  // never null after construction: one of the three below
     SerialTasks serial_tasks_;
     HostTasks host_tasks_;
@@ -130,6 +148,7 @@ class World {
     double budget_ms_ = 0;
     uint64_t overrun_frames_ = 0;
     BudgetPolicy budget_policy_;
+    HostVector<ClothPair> cloth_pairs_;
     HostVector<BudgetCloth> budget_cloths_;  // reserved for every cloth slot
     cloth_zone_begin_fn* zone_begin_ = nullptr;
     cloth_zone_end_fn* zone_end_ = nullptr;

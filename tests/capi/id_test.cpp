@@ -298,13 +298,14 @@ TEST(StructSize, MatchesSizeofForEveryKind) {
         {CLOTH_STRUCT_SELF_COLLISION_DESC, sizeof(cloth_self_collision_desc)},
         {CLOTH_STRUCT_SELF_COLLISION_STATS, sizeof(cloth_self_collision_stats)},
         {CLOTH_STRUCT_SKIN_DESC, sizeof(cloth_skin_desc)},
+        {CLOTH_STRUCT_CLOTH_CONTACT_DESC, sizeof(cloth_cloth_contact_desc)},
     };
     for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i) {
         EXPECT_EQ(static_cast<int>(kinds[i].kind), static_cast<int>(i + 1)) << "kinds are numbered in order";
         EXPECT_EQ(cloth_struct_size(kinds[i].kind), kinds[i].size) << "kind " << kinds[i].kind;
     }
     // Unknown kinds, as a C caller may pass them (formed in C: enum_from_int.c).
-    for (int32_t bits : {0, 28, 1000, -1, 0x7FFFFFFF}) {
+    for (int32_t bits : {0, 29, 1000, -1, 0x7FFFFFFF}) {
         EXPECT_EQ(cloth_test_struct_size_of_int(bits), 0u) << bits;
     }
 }

@@ -221,6 +221,7 @@ class Harness {
     void allocator_schedule();
     void null_arguments();
     void self_collision();
+    void cloth_contact();
     void profiling();
     void body();
     void character();
@@ -894,6 +895,46 @@ void Harness::self_collision() {
     }
 }
 
+// Contact between two cloths: any pair (a cloth and itself, cloths of two
+// worlds, stale or garbage handles), any values, read back and counted.
+void Harness::cloth_contact() {
+    const cloth_id a = pick_cloth(), b = pick_cloth();
+    const uint8_t what = in_.u8();
+    cloth_test::Watch watch = watch_of(a);
+    switch (what % 3) {
+        case 0: {
+            cloth_cloth_contact_desc d = cloth_default_cloth_contact_desc();
+            const uint8_t flags = in_.u8();
+            d.enabled = flags & 1;
+            // Within the small grids' two rest edges unless any float is asked for.
+            d.thickness = (flags & 2) ? in_.any_float() : 0.01f * static_cast<float>(1 + in_.u8() % 8);
+            if (flags & 4) d.friction = in_.any_float();
+            if (flags & 8) d.passes = in_.count(16, 16);
+            if (flags & 16) d.struct_size = in_.u8();
+            if (flags & 32) d.internal_cookie = in_.u32();
+            guarded(watch, "cloth_set_cloth_contact",
+                    [&] { return cloth_set_cloth_contact(a, b, (what & 0x80) ? nullptr : &d); });
+            break;
+        }
+        case 1: {
+            cloth_cloth_contact_desc d{};
+            watch.outputs = {{&d, sizeof d, "the contact settings"}};
+            guarded(watch, "cloth_get_cloth_contact",
+                    [&] { return cloth_get_cloth_contact(a, b, (what & 0x80) ? nullptr : &d); });
+            break;
+        }
+        default: {
+            uint32_t contacts = 0, passes = 0;
+            watch.outputs = {{&contacts, sizeof contacts, "the contact count"},
+                             {&passes, sizeof passes, "the passes"}};
+            guarded(watch, "cloth_get_cloth_contact_count", [&] {
+                return cloth_get_cloth_contact_count(a, b, (what & 0x80) ? nullptr : &contacts,
+                                                     (what & 0x40) ? nullptr : &passes);
+            });
+        }
+    }
+}
+
 // ---------------------------------------------------------------- contact
 
 cloth_body_id Harness::pick_body() {
@@ -1507,6 +1548,9 @@ RunStats Harness::run() {
                 break;
             case kCharacter:
                 character();
+                break;
+            case kClothContact:
+                cloth_contact();
                 break;
             case kOpCount:
                 break;

@@ -43,6 +43,7 @@ enum Op : uint8_t {
     kWorldShiftOrigin,   // origin rebasing
     kSnapshot,   // size, save (short capacity too), restore intact, damaged, cut, or into another cloth
     kCharacter,  // skin, joint matrices, skinned positions (set, read), max distances, backstops, body poses
+    kClothContact,  // contact between two cloths: set (any pair, any values), get, count
     kOpCount
 };
 

@@ -196,6 +196,16 @@ std::vector<std::vector<uint8_t>> seed_inputs() {
     character.op(kCharacter).slot(0).u8(5).step(0, 2);              // read the skin
     seeds.push_back(character.bytes);
 
+    // Contact between two 8x8 cloths of one fabric, one on the other (every
+    // particle coincident), turned on, stepped, read back and counted.
+    Encoder pair;
+    pair.world(0, 2).grid(0, 8, 8).cloth(0, 0).cloth(0, 0);
+    pair.op(kClothContact).slot(0).slot(1).u8(0).u8(1).u8(2);  // on, thickness 0.03 m
+    pair.step(0, 3);
+    pair.op(kClothContact).slot(1).slot(0).u8(1);  // read back
+    pair.op(kClothContact).slot(0).slot(1).u8(2);  // count
+    seeds.push_back(pair.bytes);
+
     return seeds;
 }
 
