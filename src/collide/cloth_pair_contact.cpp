@@ -17,6 +17,9 @@ namespace {
 // thickness is the last (as self-collision's).
 constexpr float kConvergence = 0.01f;
 
+// No hashed particle to skip: the query point is of the other cloth.
+constexpr uint32_t kNoParticle = std::numeric_limits<uint32_t>::max();
+
 struct Bounds {
     Vec3 low = Vec3::Constant(std::numeric_limits<float>::infinity());
     Vec3 high = Vec3::Constant(-std::numeric_limits<float>::infinity());
@@ -40,7 +43,8 @@ ClothPairContact::ClothPairContact(const HostMemory* memory, const Fabric& a, co
       count_a_(a.particle_count()),
       count_b_(b.particle_count()),
       radius_(settings.thickness + std::max(mean_rest_edge(a), mean_rest_edge(b))),
-      hash_(memory),
+      hash_a_(memory),
+      hash_b_(memory),
       x_(memory),
       v_(memory),
       normal_(memory),
@@ -55,7 +59,8 @@ ClothPairContact::ClothPairContact(const HostMemory* memory, const Fabric& a, co
       touching_(HostAllocator<uint8_t>(memory)),
       overlapping_(HostAllocator<uint8_t>(memory)) {
     const uint32_t n = count();
-    hash_.reserve(n);
+    hash_a_.reserve(count_a_);
+    hash_b_.reserve(count_b_);
     for (Vec3Soa* v : {&x_, &v_, &normal_, &next_x_, &next_v_, &start_}) v->resize(n);
     inverse_mass_.resize(n);
     contact_other_.resize(size_t{n} * kMaxContacts);
@@ -82,7 +87,9 @@ void ClothPairContact::gather(const ClothInstance& a, const ClothInstance& b, ui
         normal_.set(i, vertex_normal(cloth.fabric(), cloth.positions(), p));
         inverse_mass_[i] = cloth.is_pinned(p) ? 0.0f : 1.0f / cloth.masses()[p];
     }
-    hash_.compute_keys(x_, radius_, begin, end);
+    if (begin < count_a_) hash_a_.compute_keys(x_, radius_, begin, std::min(end, count_a_));
+    if (end > count_a_)
+        hash_b_.compute_keys(x_, radius_, std::max(begin, count_a_) - count_a_, end - count_a_, count_a_);
 }
 
 void ClothPairContact::find_contacts(uint32_t begin, uint32_t end) {
@@ -96,33 +103,40 @@ void ClothPairContact::find_contacts(uint32_t begin, uint32_t end) {
         bool touching = false;
         const bool b = side_b(i);
         const Vec3 xi = x_.get(i), start_i = start_.get(i);
-        hash_.for_each_near(i, [&](uint32_t j, float xj, float yj, float zj) {
-            if (side_b(j) == b) return;  // only the other cloth
-            const Vec3 d = xi - Vec3(xj, yj, zj);
-            const float d2 = d.squaredNorm();
-            if (!(d2 < radius2)) return;
-            // j's plane, turned towards the side i started the frame on.
-            const Vec3 nj = normal_.get(j);
-            const float side = (start_i - start_.get(j)).dot(nj);
-            const Vec3 n = (side > 0.0f || (side == 0.0f && !b)) ? nj : Vec3(-nj);
-            const float along = d.dot(n);
-            // Over j's part of the surface, and not so far behind it that
-            // it is another part of the cloth.
-            if (!((d - n * along).squaredNorm() < tangential2) || !(along > -radius_)) return;
-            touching = touching || along < theta;
-            uint32_t slot = count;
-            if (count < kMaxContacts) {
-                ++count;
-            } else {
-                // Full: the farthest contact (first of equals) makes room for a nearer one.
-                slot = 0;
-                for (uint32_t k = 1; k < kMaxContacts; ++k) slot = distance2[k] > distance2[slot] ? k : slot;
-                if (!(d2 < distance2[slot])) return;
-            }
-            other[slot] = j;
-            distance2[slot] = d2;
-            contact_normal_.set(first + slot, n);
-        });
+        // Only the other cloth's hash: its particles are entries from `first` on.
+        const SpatialHash& other_hash = b ? hash_a_ : hash_b_;
+        const uint32_t first_other = b ? 0 : count_a_;
+        int32_t bx, by, bz;
+        SpatialHash::query_block(xi, radius_, bx, by, bz);
+        other_hash.for_each_in_block(
+            bx, by, bz, kNoParticle, [&](uint32_t local, float xj, float yj, float zj) {
+                const uint32_t j = first_other + local;
+                const Vec3 d = xi - Vec3(xj, yj, zj);
+                const float d2 = d.squaredNorm();
+                if (!(d2 < radius2)) return;
+                // j's plane, turned towards the side i started the frame on.
+                const Vec3 nj = normal_.get(j);
+                const float side = (start_i - start_.get(j)).dot(nj);
+                const Vec3 n = (side > 0.0f || (side == 0.0f && !b)) ? nj : Vec3(-nj);
+                const float along = d.dot(n);
+                // Over j's part of the surface, and not so far behind it that
+                // it is another part of the cloth.
+                if (!((d - n * along).squaredNorm() < tangential2) || !(along > -radius_)) return;
+                touching = touching || along < theta;
+                uint32_t slot = count;
+                if (count < kMaxContacts) {
+                    ++count;
+                } else {
+                    // Full: the farthest contact (first of equals) makes room for a nearer one.
+                    slot = 0;
+                    for (uint32_t k = 1; k < kMaxContacts; ++k)
+                        slot = distance2[k] > distance2[slot] ? k : slot;
+                    if (!(d2 < distance2[slot])) return;
+                }
+                other[slot] = j;
+                distance2[slot] = d2;
+                contact_normal_.set(first + slot, n);
+            });
         contact_count_[i] = count;
         touching_[i] = touching ? 1 : 0;
     }

@@ -10,23 +10,24 @@
 // the one i was on at the end of the last frame (where this contact left
 // both cloths), so a particle that crossed within the frame is pushed
 // back; in the first frame the cloths are near, the side is the current
-// one. Planes, not
-// spheres: a particle over the middle of a cell of the other cloth sees
-// its four corners' planes push it straight out, where spheres around the
-// corners push sideways and cancel, and let it through.
+// one. Planes, not spheres: a particle over the middle of a cell of the
+// other cloth sees its four corners' planes push it straight out, where
+// spheres around the corners push sideways and cancel, and let it through.
 //
 // It runs once per frame, after both cloths' steps (the world's step), so
-// what both cloths did in the frame is final when it looks. Two cloths
-// whose bounds, grown by the search radius, do not overlap cost two bound
-// computations and nothing else.
+// what both cloths did in the frame is final when it looks; the world then
+// has each touched cloth settle (ClothInstance::settle_after_contact).
+// Two cloths whose bounds, grown by the search radius, do not overlap cost
+// two bound computations and nothing else.
 //
 // A staged loop like self-collision's, every round a range loop the
 // world's task system may split any way, with a serial step between:
 //   1. gather(range)           copy both cloths' positions, velocities,
 //                              vertex normals and inverse masses into the
-//                              combined arrays (a's particles first); hash
-//                              key per particle
-//   2. sort()                  serial counting sort of the hash
+//                              combined arrays (a's particles first); key
+//                              per particle in its own cloth's hash
+//   2. sort()                  serial counting sort of both hashes (a
+//                              particle looks only in the other's)
 //   3. find_contacts(range)    per particle: nearest particles of the
 //                              other cloth and their planes, written only
 //                              by its owner
@@ -34,7 +35,8 @@
 //      apply_positions()       serial swap; up to `passes` times while
 //                              any particle is inside
 //   5. respond(range)          velocities, then apply_velocities()
-//   6. scatter(range)          write back the particles with contacts
+//   6. scatter(range)          write back the particles with contacts,
+//                              keep every position as the next start
 // Every particle reads the contacts in its own list and writes only
 // itself, so the result is bit-identical for any split and thread count.
 #pragma once
@@ -51,7 +53,7 @@ namespace cloth {
 class ClothInstance;
 
 struct ClothPairSettings {
-    float thickness = 0.01f;  // m: particles of the two cloths closer than this are pushed apart
+    float thickness = 0.01f;  // m: how far in front of the other cloth's surface a particle is kept
     float friction = 0.0f;    // Coulomb coefficient on the sliding relative velocity
     uint32_t passes = 4;      // Jacobi projection passes per frame (at most; stops when resolved)
 };
@@ -73,16 +75,15 @@ class ClothPairContact {
     bool near(const ClothInstance& a, const ClothInstance& b) const;
 
     void gather(const ClothInstance& a, const ClothInstance& b, uint32_t begin, uint32_t end);
-    // dt: the frame's, to estimate where the particles started it.
     void sort() {
-        hash_.sort_into_buckets(x_);
+        hash_a_.sort_into_buckets(x_);
+        hash_b_.sort_into_buckets(x_, count_a_);
         found_ = true;
         passes_ = 0;
     }
     // After scatter: the next frame starts where this one ended.
     void finish_frame() { started_ = true; }
     void find_contacts(uint32_t begin, uint32_t end);
-
     void project(uint32_t begin, uint32_t end);
     // Swaps the projected positions in; whether another pass should run.
     bool apply_positions();
@@ -108,8 +109,8 @@ class ClothPairContact {
     float radius_;  // contacts are gathered within it: the thickness plus the larger mean rest edge
     uint32_t passes_ = 0;
     bool found_ = false;
-    bool started_ = false;  // start_ holds the last frame's end
-    SpatialHash hash_;
+    bool started_ = false;         // start_ holds the last frame's end
+    SpatialHash hash_a_, hash_b_;  // each cloth's particles (b's from entry count_a_ of the arrays)
     Vec3Soa x_, v_, normal_, next_x_, next_v_, start_;
     HostVector<float> inverse_mass_;
     HostVector<uint32_t> contact_other_;  // kMaxContacts per particle

@@ -55,11 +55,19 @@ void SpatialHash::reserve(uint32_t particle_count) {
     bucket_fill_.assign(buckets, 0);
 }
 
-void SpatialHash::compute_keys(const Vec3Soa& x, float radius, uint32_t begin, uint32_t end) {
+void SpatialHash::query_block(const Vec3& p, float radius, int32_t& bx, int32_t& by, int32_t& bz) {
+    const float inverse = 1.0f / (2.0f * radius);
+    bx = cell_of(p.x() * inverse - 0.5f);
+    by = cell_of(p.y() * inverse - 0.5f);
+    bz = cell_of(p.z() * inverse - 0.5f);
+}
+
+void SpatialHash::compute_keys(const Vec3Soa& x, float radius, uint32_t begin, uint32_t end, uint32_t first) {
     // Tasks of one build run this concurrently: it writes only entries of its own range.
     const float inverse = 1.0f / (2.0f * radius);
     for (uint32_t i = begin; i < end; ++i) {
-        const float sx = x.x[i] * inverse, sy = x.y[i] * inverse, sz = x.z[i] * inverse;
+        const float sx = x.x[first + i] * inverse, sy = x.y[first + i] * inverse,
+                    sz = x.z[first + i] * inverse;
         cell_x_[i] = cell_of(sx);
         cell_y_[i] = cell_of(sy);
         cell_z_[i] = cell_of(sz);
@@ -72,7 +80,7 @@ void SpatialHash::compute_keys(const Vec3Soa& x, float radius, uint32_t begin, u
     }
 }
 
-void SpatialHash::sort_into_buckets(const Vec3Soa& x) {
+void SpatialHash::sort_into_buckets(const Vec3Soa& x, uint32_t first) {
     const uint32_t n = particle_count();
     std::fill(bucket_fill_.begin(), bucket_fill_.end(), 0u);
     for (uint32_t i = 0; i < n; ++i) ++bucket_fill_[bucket_of_[i]];
@@ -90,9 +98,9 @@ void SpatialHash::sort_into_buckets(const Vec3Soa& x) {
         sorted_cell_x_[e] = cell_x_[i];
         sorted_cell_y_[e] = cell_y_[i];
         sorted_cell_z_[e] = cell_z_[i];
-        sorted_x_[e] = x.x[i];
-        sorted_y_[e] = x.y[i];
-        sorted_z_[e] = x.z[i];
+        sorted_x_[e] = x.x[first + i];
+        sorted_y_[e] = x.y[first + i];
+        sorted_z_[e] = x.z[first + i];
     }
 }
 

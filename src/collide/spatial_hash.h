@@ -55,18 +55,28 @@ class SpatialHash {
     // Pass 1 for particles [begin, end): cell of x_i (cells of 2 * radius,
     // radius > 0), its bucket, and the first cell of its 2x2x2 query block.
     // Every call of one build must use the same radius. Non-finite or huge
-    // coordinates are clamped, never UB.
-    void compute_keys(const Vec3Soa& x, float radius, uint32_t begin, uint32_t end);
+    // coordinates are clamped, never UB. Particle i's position is entry
+    // first + i of x (a hash of part of a larger array).
+    void compute_keys(const Vec3Soa& x, float radius, uint32_t begin, uint32_t end, uint32_t first = 0);
 
-    // Pass 2: counting sort of all particles into buckets (serial). `x` is
-    // the same as in pass 1.
-    void sort_into_buckets(const Vec3Soa& x);
+    // Pass 2: counting sort of all particles into buckets (serial). `x` and
+    // `first` are the same as in pass 1.
+    void sort_into_buckets(const Vec3Soa& x, uint32_t first = 0);
 
     // Pass 3: calls visit(j, xj, yj, zj) for every particle j != i in the
     // 2x2x2 cells nearest particle i (a superset of those within the
     // radius), each j once, in a fixed order.
     template <class Visit>
-    void for_each_near(uint32_t i, Visit visit) const;
+    void for_each_near(uint32_t i, Visit visit) const {
+        for_each_in_block(block_x_[i], block_y_[i], block_z_[i], i, visit);
+    }
+
+    // The same for a point that is not one of the hashed particles (of
+    // another set): its query block for the build's radius, then every
+    // particle of that block.
+    static void query_block(const Vec3& p, float radius, int32_t& bx, int32_t& by, int32_t& bz);
+    template <class Visit>
+    void for_each_in_block(int32_t bx, int32_t by, int32_t bz, uint32_t skip, Visit visit) const;
 
     // The bucket of cell (cx, cy, cz).
     uint32_t bucket_of_cell(int32_t cx, int32_t cy, int32_t cz) const {
@@ -89,21 +99,20 @@ class SpatialHash {
 };
 
 template <class Visit>
-void SpatialHash::for_each_near(uint32_t i, Visit visit) const {
+void SpatialHash::for_each_in_block(int32_t bx, int32_t by, int32_t bz, uint32_t skip, Visit visit) const {
     // Plain pointers: the visitor's stores cannot alias them, so the loop
     // keeps them in registers.
     const uint32_t* start = bucket_start_.data();
     const uint32_t* sorted = sorted_.data();
     const int32_t *sx = sorted_cell_x_.data(), *sy = sorted_cell_y_.data(), *sz = sorted_cell_z_.data();
     const float *px = sorted_x_.data(), *py = sorted_y_.data(), *pz = sorted_z_.data();
-    const int32_t bx = block_x_[i], by = block_y_[i], bz = block_z_[i];
     for (int32_t cz = bz; cz <= bz + 1; ++cz) {
         for (int32_t cy = by; cy <= by + 1; ++cy) {
             for (int32_t cx = bx; cx <= bx + 1; ++cx) {
                 const uint32_t bucket = bucket_of_cell(cx, cy, cz);
                 const uint32_t last = start[bucket + 1];
                 for (uint32_t e = start[bucket]; e < last; ++e) {
-                    if (sx[e] != cx || sy[e] != cy || sz[e] != cz || sorted[e] == i) continue;
+                    if (sx[e] != cx || sy[e] != cy || sz[e] != cz || sorted[e] == skip) continue;
                     visit(sorted[e], px[e], py[e], pz[e]);
                 }
             }

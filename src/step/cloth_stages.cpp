@@ -188,6 +188,8 @@ void ClothInstance::hold_to_skin(const GroupTask& task, bool prepared) {
 }
 
 void ClothInstance::settle_after_contact() {
+    // What they move becomes velocity over the frame, the time the contact's push stands for.
+    const float frame = frame_.h * static_cast<float>(frame_.solver.substeps);
     if (limits_strain()) {
         const StrainLimitPass pass{fabric_.get(),
                                    mass_.data(),
@@ -200,10 +202,10 @@ void ClothInstance::settle_after_contact() {
         // thickness is several times a fine fabric's edge.
         StrainLimit limit = frame_.solver.strain_limit;
         limit.iterations *= kStrainLimitMorePasses;
-        cloth::limit_strain(pass, limit, frame_.h, x_, v_, solver_work_.r, solver_work_.z);
+        cloth::limit_strain(pass, limit, frame, x_, v_, solver_work_.r, solver_work_.z);
     }
     if (skin_.active() && skin_.constrains())
-        skin_.constrain(0, particle_count(), 1.0f, frame_.h, pinned_.data(), x_, v_);
+        skin_.constrain(0, particle_count(), 1.0f, frame, pinned_.data(), x_, v_);
 }
 
 float ClothInstance::substep_end_fraction() const {

@@ -169,6 +169,46 @@ TEST(ClothContactApi, OffByDefaultAndApartTheSheetsStepAsWithoutItAndPinnedParti
     EXPECT_EQ(paired.host.live_bytes(), after_off) << "on and off again leaves nothing behind";
 }
 
+// The skin still wins: the lower sheet skinned to one joint at rest with a
+// max distance of 1 cm everywhere (0 on its border), the upper one dropped
+// on it; after every frame each lower particle is within its max distance
+// of its skinned position, and the upper sheet rests on the lower.
+TEST(ClothContactApi, AContactThatPushesASkinnedClothLeavesItWithinItsMaxDistances) {
+    TwoSheets s;
+    std::vector<uint32_t> joints(kParticles, 0u);
+    cloth_skin_desc skin = cloth_default_skin_desc();
+    skin.particle_count = kParticles;
+    skin.joint_count = 1;
+    skin.joints = joints.data();
+    ASSERT_EQ(cloth_set_skin(s.lower, &skin), CLOTH_OK) << cloth_get_last_error();
+    std::vector<float> reach(kParticles, 0.01f);
+    for (uint32_t i = 0; i < kParticles; ++i) {
+        const uint32_t r = i / kSide, c = i % kSide;
+        if (r == 0 || c == 0 || r == kSide - 1 || c == kSide - 1) reach[i] = 0.0f;
+    }
+    ASSERT_EQ(cloth_set_max_distances(s.lower, reach.data(), kParticles), CLOTH_OK);
+    ASSERT_TRUE(s.set_contact(true));
+    uint32_t contacts_seen = 0;
+    float worst = 0.0f;
+    for (int frame = 0; frame < 60; ++frame) {
+        ASSERT_EQ(cloth_step(s.world, kFrame), CLOTH_OK) << cloth_get_last_error();
+        uint32_t contacts = 0, passes = 0;
+        ASSERT_EQ(cloth_get_cloth_contact_count(s.lower, s.upper, &contacts, &passes), CLOTH_OK);
+        contacts_seen += contacts;
+        std::vector<float> skinned(3 * kParticles);
+        ASSERT_EQ(cloth_read_skinned_positions(s.lower, skinned.data(), nullptr, 3 * kParticles), CLOTH_OK);
+        const std::vector<float> x = TwoSheets::positions(s.lower);
+        for (uint32_t i = 0; i < kParticles; ++i) {
+            const float dx = x[3 * i] - skinned[3 * i], dy = x[3 * i + 1] - skinned[3 * i + 1],
+                        dz = x[3 * i + 2] - skinned[3 * i + 2];
+            worst = std::max(worst, std::sqrt(dx * dx + dy * dy + dz * dz) - reach[i]);
+        }
+    }
+    EXPECT_GT(contacts_seen, 0u) << "the sheets must meet for the test to mean anything";
+    EXPECT_LE(worst, 1e-5f) << "a particle of the skinned sheet ended a frame past its max distance";
+    EXPECT_GT(s.height_above(), 0.5f * kThickness) << "the upper sheet rests on the lower";
+}
+
 uint64_t fnv1a(uint64_t hash, const void* data, size_t size) {
     const auto* bytes = static_cast<const unsigned char*>(data);
     for (size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
