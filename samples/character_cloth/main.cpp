@@ -49,11 +49,12 @@ struct Options {
     std::string trace_frames;  // "FIRST:LAST"; empty: the second around the jump
     float max_strain = 0.12f;
     float max_speed = 40.0f;
-    float max_energy_factor = 10.0f;  // relative kinetic energy after the walk, of the steady walk's peak
-    float hem_trailing = 0.9f;        // fraction of running frames with the cape's hem behind
-    float tolerance = 1e-3f;          // m: a particle this far inside the body or past a constraint
-    float body_clearance = 5e-3f;     // m: the colliders' thickness less what the check forgives
-    float garment_contact = 0.02f;    // m: the cape and the skirt's contact thickness (0: off)
+    float max_energy_factor = 10.0f;    // relative kinetic energy after the walk, of the steady walk's peak
+    float hem_trailing = 0.9f;          // fraction of running frames with the cape's hem behind
+    float tolerance = 1e-3f;            // m: a particle this far inside the body or past a constraint
+    float body_clearance = 5e-3f;       // m: the colliders' thickness less what the check forgives
+    float garment_contact = 0.02f;      // m: the cape and the skirt's contact thickness (0: off)
+    float cape_self_collision = 0.01f;  // m: the cape's self-collision thickness (0: off)
 };
 
 // What the checks found in one garment over the run.
@@ -206,6 +207,9 @@ int main(int argc, char** argv) {
                    "contact thickness between the cape and the skirt, m (0: off; the check asks for half "
                    "of it between any two of their particles)")
         ->check(CLI::NonNegativeNumber);
+    app.add_option("--cape-self-collision", o.cape_self_collision,
+                   "self-collision thickness of the cape, which the spin folds onto itself, m (0: off)")
+        ->check(CLI::NonNegativeNumber);
     app.add_option("--tolerance", o.tolerance,
                    "check: how far past a max distance, into a backstop or into the body, m");
     CLI11_PARSE(app, argc, argv);
@@ -237,6 +241,15 @@ int main(int argc, char** argv) {
         contact.thickness = o.garment_contact;
         if (cloth_set_cloth_contact(cape.cloth, skirt.cloth, &contact) != CLOTH_OK) {
             std::fprintf(stderr, "cloth_set_cloth_contact: %s\n", cloth_get_last_error());
+            return 1;
+        }
+    }
+    if (o.cape_self_collision > 0.0f) {
+        cloth_self_collision_desc self = cloth_default_self_collision_desc();
+        self.enabled = 1;
+        self.thickness = o.cape_self_collision;
+        if (cloth_set_self_collision(cape.cloth, &self) != CLOTH_OK) {
+            std::fprintf(stderr, "cloth_set_self_collision: %s\n", cloth_get_last_error());
             return 1;
         }
     }

@@ -62,11 +62,12 @@ void ClothInstance::plan_substep() {
     // After integration, where contact plugs in.
     if (frame_.collides) plan(Stage::kCollisions, &C::collide_stage, &C::note_contacts);
     if (limits_strain()) plan(Stage::kStrainLimit, &C::limit_strain, &C::note_strain, begin_strain_limit());
-    if (skin_.active() && skin_.constrains()) plan(Stage::kSkinConstraints, &C::constrain_to_skin);
     if (self_collision_) {
         self_collision_->begin(x_, v_, mass_.data(), pinned_.data());
         plan(Stage::kSelfCollision, &C::resolve_self_contacts, nullptr, self_collision_.get());
     }
+    // Last: max distance and backstop are promises after every substep.
+    if (skin_.active() && skin_.constrains()) plan(Stage::kSkinConstraints, &C::constrain_to_skin);
 }
 
 StagedAlgorithm* ClothInstance::begin_iterative_solve() {
