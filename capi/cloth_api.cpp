@@ -114,7 +114,7 @@ CLOTH_API cloth_result cloth_get_particle_count(cloth_id id, uint32_t* out_count
 
 CLOTH_API cloth_result cloth_read_positions(cloth_id id, float* out_xyz, uint32_t capacity) {
     return read_vectors(__func__, id, out_xyz, capacity,
-                        [](const ClothInstance& c) -> const Vec3Soa& { return c.positions(); });
+                        [](const ClothInstance& c) -> const Vec3Soa& { return c.reported_positions(); });
 }
 
 CLOTH_API cloth_result cloth_read_velocities(cloth_id id, float* out_xyz, uint32_t capacity) {

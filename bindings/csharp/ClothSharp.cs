@@ -369,6 +369,9 @@ namespace ClothSharp
         public void ShiftOrigin(Float3 shift) { ClothException.Check(Native.cloth_world_shift_origin(id, ref shift)); }
         public void SetWorkerSpin(uint microseconds) { ClothException.Check(Native.cloth_world_set_worker_spin(id, microseconds)); }
         public void SetFrameBudget(float milliseconds) { ClothException.Check(Native.cloth_world_set_frame_budget(id, milliseconds)); }
+        /// <summary>The viewer whose distance scales each cloth's importance under a frame budget.</summary>
+        public void SetViewer(Float3 position) { ClothException.Check(Native.cloth_world_set_viewer(id, ref position)); }
+        public unsafe void ClearViewer() { ClothException.Check(Native.cloth_world_set_viewer(id, (Float3*)null)); }
         public void SetProfiling(uint maxTasksPerFrame) { ClothException.Check(Native.cloth_world_set_profiling(id, maxTasksPerFrame)); }
 
         /// <summary>
@@ -899,6 +902,22 @@ namespace ClothSharp
         public void SetWind(Float3 wind) { ClothException.Check(Native.cloth_set_wind(Id, ref wind)); }
         public void SetSleep(ClothSleepParams p) { ClothException.Check(Native.cloth_set_sleep(Id, ref p)); }
         public void SetQualityPolicy(ClothQualityPolicy p) { ClothException.Check(Native.cloth_set_quality_policy(Id, ref p)); }
+        /// <summary>How much the cloth matters under a frame budget (>= 0, default 1).</summary>
+        public float Importance
+        {
+            get { float v; ClothException.Check(Native.cloth_get_importance(Id, out v)); return v; }
+            set { ClothException.Check(Native.cloth_set_importance(Id, value)); }
+        }
+        /// <summary>Steps every UpdateRate-th world step (1, 2, 4 or 8), reads interpolated between.</summary>
+        public uint UpdateRate
+        {
+            get { uint rate, phase; ClothException.Check(Native.cloth_get_update_rate(Id, out rate, out phase)); return rate; }
+            set { ClothException.Check(Native.cloth_set_update_rate(Id, value)); }
+        }
+        public uint UpdatePhase
+        {
+            get { uint rate, phase; ClothException.Check(Native.cloth_get_update_rate(Id, out rate, out phase)); return phase; }
+        }
         /// <summary>Make body the carrier (null removes it; desc is then ignored).</summary>
         public void SetCarrier(Body body, ClothCarrierDesc desc)
         {

@@ -179,7 +179,7 @@ extern "C" {
 #define CLOTH_VERSION_MAJOR 1
 /// Minor version of this header: a library of the same major and at least
 /// this minor version has every function and struct of this header.
-#define CLOTH_VERSION_MINOR 10
+#define CLOTH_VERSION_MINOR 11
 /// Patch version of this header (fixes that change no interface).
 #define CLOTH_VERSION_PATCH 0
 
@@ -1243,6 +1243,52 @@ CLOTH_API cloth_quality_policy CLOTH_CALL cloth_default_quality_policy(void);
 /// with cloth_get_stats: see "Frame budget").
 CLOTH_API cloth_result CLOTH_CALL cloth_set_quality_policy(cloth_id cloth,
                                                            const cloth_quality_policy* policy);
+
+/* Importance and update rate (since 1.11). Under a frame budget the world
+ * lowers the least relevant cloths first and raises the most relevant
+ * first: a cloth's relevance is its importance (default 1) or, once the
+ * world has a viewer, its importance times its bounding sphere's radius
+ * over the sphere's distance from the viewer (at most 1, inside it). Of
+ * equal relevance the most expensive cloth is lowered first, as before
+ * 1.11. Without a budget, importance changes nothing.
+ *
+ * A cloth at update rate N (1, 2, 4 or 8; default 1) steps in every Nth
+ * cloth_step of its world, over N times that call's dt at once, so it
+ * costs about 1/N of its cost at rate 1. The world staggers cloths of one
+ * rate over the calls (each takes the phase with the fewest particles of
+ * its rate), so a world of rate-2 cloths steps half of them in each call.
+ * A cloth's step then ends N - 1 calls ahead of the world, and between its
+ * steps cloth_read_positions and cloth_read_normals give the positions
+ * interpolated between its last two states at the world's current call:
+ * the motion a reader sees is smooth, and a change of rate makes no jump.
+ * What the cloth follows (pin targets, attachments, skin, colliders) it
+ * reaches N - 1 calls late, so a rate above 1 suits a cloth far from the
+ * viewer or with slow attachments. cloth_set_positions and restoring a
+ * snapshot show at once (the interpolation ends there). Velocities, stats
+ * and snapshots are the cloth's state, not the interpolation. Two cloths
+ * in contact (cloth_set_cloth_contact) touch only after calls in which
+ * both step to the same state: give them the same rate, and the world
+ * gives them the same phase. */
+
+/// Set how much the cloth matters under a frame budget: finite and >= 0
+/// (else CLOTH_ERROR_NOT_FINITE or CLOTH_ERROR_INVALID_VALUE); default 1.
+/// 0: lowered before any cloth that matters. Since 1.11.
+CLOTH_API cloth_result CLOTH_CALL cloth_set_importance(cloth_id cloth, float importance);
+/// Read the cloth's importance. Since 1.11.
+CLOTH_API cloth_result CLOTH_CALL cloth_get_importance(cloth_id cloth, float* out_importance);
+/// Set the world's viewer, a point (see "Coordinates"), whose distance
+/// scales each cloth's relevance; NULL removes it (the default). Since 1.11.
+CLOTH_API cloth_result CLOTH_CALL cloth_world_set_viewer(cloth_world_id world, const float position[3]);
+/// Set the cloth's update rate: 1, 2, 4 or 8 (else CLOTH_ERROR_INVALID_VALUE).
+/// A rate above 1 allocates two copies of the positions, freed when the
+/// cloth is back at rate 1 and has caught up with the world.
+/// Since 1.11.
+CLOTH_API cloth_result CLOTH_CALL cloth_set_update_rate(cloth_id cloth, uint32_t rate);
+/// Read the cloth's update rate and its phase (the calls, counted from the
+/// world's creation, in which its steps end are those with count % rate
+/// == phase); either pointer may be NULL, not both. Since 1.11.
+CLOTH_API cloth_result CLOTH_CALL cloth_get_update_rate(cloth_id cloth, uint32_t* out_rate,
+                                                        uint32_t* out_phase);
 
 /* Sleep. A cloth whose particles all move slower than max_speed for
  * `frames` consecutive frames goes to sleep: its velocities become zero and

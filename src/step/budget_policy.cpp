@@ -96,9 +96,12 @@ void BudgetPolicy::decide(double budget_ms, double step_ms, uint64_t frame, int6
     // Wall time per task nanosecond: a cloth's change of task time changes
     // the step by its share.
     const double ms_per_ns = step_ms / static_cast<double>(total_ns);
-    // The most expensive first (ties by position: deterministic).
-    std::stable_sort(cloths, cloths + count,
-                     [](const BudgetCloth& a, const BudgetCloth& b) { return a.cost_ns > b.cost_ns; });
+    // The order of lowering: the least relevant first, of equals the most
+    // expensive (ties by position: deterministic). Raising runs it backwards.
+    std::stable_sort(cloths, cloths + count, [](const BudgetCloth& a, const BudgetCloth& b) {
+        if (a.relevance != b.relevance) return a.relevance < b.relevance;
+        return a.cost_ns > b.cost_ns;
+    });
     double predicted = step_ms;
     recent_overruns_ = (recent_overruns_ << 1) | (step_ms > budget_ms ? 1u : 0u);
     if (step_ms > budget_ms) {
@@ -118,7 +121,7 @@ void BudgetPolicy::decide(double budget_ms, double step_ms, uint64_t frame, int6
     }
     if (++calm_frames_ < kCalmFrames) return;
     calm_frames_ = 0;
-    for (uint32_t c = count; c-- > 0;) {  // the cheapest first
+    for (uint32_t c = count; c-- > 0;) {  // the most relevant first
         ClothInstance& cloth = *cloths[c].cloth;
         if (!cloth.quality().policy().enabled || !cloth.quality().can_rise()) continue;
         const QualityLadder ladder = cloth.quality().ladder();

@@ -16,8 +16,8 @@
 // its task time split into the solve stages (a cost per iteration and
 // substep) and the rest (a cost per substep).
 //
-//   over budget          each cloth, the most expensive first, goes down
-//                        the ladder until the predicted step is at
+//   over budget          each cloth, the least relevant first (of equals
+//                        the most expensive), goes down the ladder until the predicted step is at
 //                        kLowerTo of the budget, predicted from its rung's
 //                        usual cost (a spike moves it less than its own
 //                        cost says); below the floor only after
@@ -25,7 +25,8 @@
 //                        over budget (a load, not a spike),
 //                        and one rung a frame
 //   below kCalmBelow     for kCalmFrames frames in a row: each cloth, the
-//                        cheapest first, goes one rung up if the predicted
+//                        most relevant first (of equals the cheapest),
+//                        goes one rung up if the predicted
 //                        step stays at or below kRaiseTo of the budget (a
 //                        rung that ran over is remembered, and not tried
 //                        again until forgotten)
@@ -49,6 +50,7 @@ struct BudgetCloth {
     ClothInstance* cloth;
     int64_t cost_ns;   // task time of the last frame
     int64_t solve_ns;  // the part of it in solve stages
+    float relevance;   // World::relevance: the least relevant is lowered first
 };
 
 class BudgetPolicy {

@@ -33,6 +33,7 @@
 #include "step/cloth_quality.h"
 #include "step/frame_context.h"
 #include "step/step_stage.h"
+#include "step/update_rate.h"
 
 namespace cloth {
 
@@ -97,6 +98,26 @@ class ClothInstance {
     // can_shift_origin: whether every result stays finite.
     bool can_shift_origin(const Vec3& shift) const;
     void shift_origin(const Vec3& shift);
+
+    // Update rate (update_rate.h): World::step steps the cloth only when
+    // it is due, over begin_rate_step's frames. A rate above 1 allocates
+    // the previous state and the reported positions (an allocation failure
+    // changes nothing); back at rate 1 they go once the reports caught up
+    // (here, or at the next step).
+    void set_update_rate(uint32_t rate, uint32_t phase);
+    const UpdateRate& update_rate() const { return update_rate_; }
+    // Starts the step of world frame `frame`; returns the frames it covers.
+    uint32_t begin_rate_step(uint64_t frame);
+    // The world's current frame, which the reported positions are at.
+    void set_world_frame(uint64_t frame) { world_frame_ = frame; }
+    // The positions a reader sees: the state, or between steps the
+    // interpolation between the last two states at the world's frame.
+    const Vec3Soa& reported_positions() const;
+
+    // How much the cloth matters to the host (>= 0, default 1): under a
+    // frame budget the least important cloths are lowered first.
+    float importance() const { return importance_; }
+    void set_importance(float importance) { importance_ = importance; }
 
     // The cloth under a world's frame budget (cloth_quality.h). A new
     // quality policy wakes the cloth.
@@ -175,7 +196,7 @@ class ClothInstance {
     void settle_after_contact();
     const Vec3Soa& velocities() const { return v_; }
     const HostVector<float>& masses() const { return mass_; }
-    // Unit area-weighted vertex normals of the current positions.
+    // Unit area-weighted vertex normals of the reported positions.
     const Vec3Soa& normals() const;
 
     // Self-collision (self_collision.h): off (null, nothing allocated) until
@@ -335,6 +356,13 @@ class ClothInstance {
     ClothQuality quality_{solver_, frame_};
     bool sleeping_ = false;
     uint32_t rest_frames_ = 0;  // consecutive frames below sleep_.max_speed
+
+    void free_interpolation();
+    UpdateRate update_rate_;
+    uint64_t world_frame_ = 0;
+    Vec3Soa previous_x_;          // the state before the last step, while the rate is above 1
+    mutable Vec3Soa reported_x_;  // filled by reported_positions() between steps
+    float importance_ = 1.0f;
 
     ClothContact contact_;  // colliders, attachments, carrier
     Skin skin_;             // sized only once the host gives the cloth a skin

@@ -192,6 +192,7 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
     sleeping_ = h.sleeping != 0;
     rest_frames_ = h.rest_frames;
     strained_ = (h.flags & kStrainedFlag) != 0;
+    update_rate_.settle();  // reports show the restored state at once
     return {};
 }
 

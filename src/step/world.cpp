@@ -235,12 +235,14 @@ Status World::step(float dt) {
         ClothInstance* cloth = cloths_[s].object.get();
         if (!cloth) continue;
         cloth_cost_ns_[s] = cloth_solve_ns_[s] = 0;
+        cloth->set_world_frame(frame_);
         if (cloth->sleeping() && cloth->contact().follows_bodies()) cloth->wake();  // bodies move freely
         if (cloth->sleeping()) {
             ++profile_.sleeping_cloths;
             continue;
         }
-        cloth->begin_frame(dt, gravity);
+        if (!cloth->update_rate().due(frame_)) continue;  // between its steps (update_rate.h)
+        cloth->begin_frame(dt * static_cast<float>(cloth->begin_rate_step(frame_)), gravity);
         stepping_.push_back(s);
         stepping_cloths_.push_back(cloth);
     }
@@ -294,14 +296,62 @@ Status World::step(float dt) {
             }
         }
         budget_cloths_.clear();
-        for (uint32_t s : stepping_)
+        for (uint32_t s : stepping_) {
+            ClothInstance* cloth = cloths_[s].object.get();
             budget_cloths_.push_back(
-                BudgetCloth{cloths_[s].object.get(), cloth_cost_ns_[s], cloth_solve_ns_[s]});
+                BudgetCloth{cloth, cloth_cost_ns_[s], cloth_solve_ns_[s], relevance(*cloth)});
+        }
         budget_policy_.after_frame(budget_ms_, profile_.step_ms(), frame_, budget_cloths_.data(),
                                    static_cast<uint32_t>(budget_cloths_.size()));
     }
     if (zone_end_) zone_end_("cloth_step", 0, zone_user_);
     return first_failure;
+}
+
+void World::set_update_rate(ClothInstance& cloth, uint32_t rate) {
+    uint32_t phase = 0;
+    if (rate > 1) {
+        // Cloths in contact step together: a partner's phase at the same rate.
+        const ClothInstance* partner = nullptr;
+        for (const ClothPair& pair : cloth_pairs_) {
+            const ClothInstance* a = cloths_[pair.slot_a].object.get();
+            const ClothInstance* b = cloths_[pair.slot_b].object.get();
+            const ClothInstance* other = a == &cloth ? b : b == &cloth ? a : nullptr;
+            if (other && other->update_rate().rate() == rate) partner = other;
+            if (partner) break;
+        }
+        if (partner) {
+            phase = partner->update_rate().phase();
+        } else {
+            // The phase with the fewest particles of this rate (the first of equals).
+            uint64_t load[UpdateRate::kSlowest] = {};
+            for (const auto& slot : cloths_) {
+                const ClothInstance* other = slot.object.get();
+                if (other && other != &cloth && other->update_rate().rate() == rate)
+                    load[other->update_rate().phase()] += other->particle_count();
+            }
+            phase = static_cast<uint32_t>(std::min_element(load, load + rate) - load);
+        }
+    }
+    cloth.set_update_rate(rate, phase);
+}
+
+void World::set_viewer(const Vec3* position) {
+    has_viewer_ = position != nullptr;
+    viewer_ = position ? *position : Vec3::Zero();
+}
+
+float World::relevance(const ClothInstance& cloth) const {
+    if (!has_viewer_) return cloth.importance();
+    const Vec3Soa& x = cloth.positions();
+    Vec3 low = x.get(0), high = low;
+    for (uint32_t i = 1; i < cloth.particle_count(); ++i) {
+        low = low.cwiseMin(x.get(i));
+        high = high.cwiseMax(x.get(i));
+    }
+    const float radius = 0.5f * (high - low).norm();
+    const float distance = (0.5f * (low + high) - viewer_).norm();
+    return cloth.importance() * (distance > radius ? radius / distance : 1.0f);
 }
 
 }  // namespace cloth

@@ -83,6 +83,19 @@ class World {
         return cloth_id{static_cast<uint16_t>(slot + 1), static_cast<uint16_t>(index_ + 1), generation,
                         generation_};
     }
+    // A cloth's update rate (update_rate.h), with the phase that staggers
+    // it: a cloth in contact with another of the same rate takes its
+    // phase (contact runs where both step to one frame), any other the
+    // phase with the fewest particles of that rate. Allocates for a rate
+    // above 1 (a failure changes nothing).
+    void set_update_rate(ClothInstance& cloth, uint32_t rate);
+    // The viewer whose distance scales each cloth's importance under a
+    // frame budget (null: none, every cloth counts by its importance).
+    void set_viewer(const Vec3* position);
+    // What a cloth counts for under a budget: its importance times, with a
+    // viewer, its bounding sphere's radius over its distance (at most 1).
+    float relevance(const ClothInstance& cloth) const;
+
     // Contact between two of the world's cloths (cloth_pair_contact.h;
     // world_cloth_pairs.cpp), resolved after every cloth's frame in the
     // order the pairs were turned on. settings null: off. Turning a pair
@@ -145,6 +158,8 @@ class World {
 
     FrameProfile profile_;
     uint64_t frame_ = 0;
+    bool has_viewer_ = false;
+    Vec3 viewer_ = Vec3::Zero();
     double budget_ms_ = 0;
     uint64_t overrun_frames_ = 0;
     BudgetPolicy budget_policy_;

@@ -66,12 +66,25 @@ void World::drop_cloth_pairs(uint32_t slot) {
         cloth_pairs_.end());
 }
 
+namespace {
+
+// Whether contact between two cloths runs after this frame: each stepped
+// in it or sleeps, and the awake ones' states end at the same frame
+// (update_rate.h: cloths of one rate in contact share a phase).
+bool in_step(const ClothInstance& a, const ClothInstance& b, uint64_t frame) {
+    auto stepped = [frame](const ClothInstance& c) { return c.update_rate().stepped_in(frame); };
+    if (a.sleeping() || b.sleeping()) return a.sleeping() ? stepped(b) : stepped(a);
+    return stepped(a) && stepped(b) && a.update_rate().state_frame() == b.update_rate().state_frame();
+}
+
+}  // namespace
+
 void World::resolve_cloth_pairs() {
     for (ClothPair& pair : cloth_pairs_) {
         ClothInstance& a = *cloths_[pair.slot_a].object;
         ClothInstance& b = *cloths_[pair.slot_b].object;
         ClothPairContact& contact = *pair.contact;
-        if ((a.sleeping() && b.sleeping()) || !contact.near(a, b)) {
+        if ((a.sleeping() && b.sleeping()) || !in_step(a, b, frame_) || !contact.near(a, b)) {
             contact.clear();
             continue;
         }

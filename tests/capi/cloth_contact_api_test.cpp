@@ -12,6 +12,7 @@
 #include <limits>
 #include <vector>
 
+#include "support/bits_hash.h"
 #include "support/contract.h"
 #include "support/contract_gtest.h"
 #include "support/counting_allocator.h"
@@ -209,23 +210,17 @@ TEST(ClothContactApi, AContactThatPushesASkinnedClothLeavesItWithinItsMaxDistanc
     EXPECT_GT(s.height_above(), 0.5f * kThickness) << "the upper sheet rests on the lower";
 }
 
-uint64_t fnv1a(uint64_t hash, const void* data, size_t size) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
-    return hash;
-}
-
 uint64_t dropped_sheets_hash(uint32_t workers) {
     TwoSheets s(workers);
     EXPECT_TRUE(s.set_contact(true));
     for (int frame = 0; frame < 40; ++frame) EXPECT_EQ(cloth_step(s.world, kFrame), CLOTH_OK);
-    uint64_t hash = 14695981039346656037ull;
+    uint64_t hash = cloth_test::kBitsHashStart;
     std::vector<float> values(3 * kParticles);
     for (cloth_id c : {s.lower, s.upper}) {
         EXPECT_EQ(cloth_read_positions(c, values.data(), 3 * kParticles), CLOTH_OK);
-        hash = fnv1a(hash, values.data(), values.size() * sizeof(float));
+        hash = cloth_test::hash_bits(hash, values.data(), values.size() * sizeof(float));
         EXPECT_EQ(cloth_read_velocities(c, values.data(), 3 * kParticles), CLOTH_OK);
-        hash = fnv1a(hash, values.data(), values.size() * sizeof(float));
+        hash = cloth_test::hash_bits(hash, values.data(), values.size() * sizeof(float));
     }
     return hash;
 }

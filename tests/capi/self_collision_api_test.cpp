@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "support/bits_hash.h"
 #include "support/contract.h"
 #include "support/contract_gtest.h"
 #include "support/counting_allocator.h"
@@ -154,12 +155,6 @@ TEST(SelfCollisionApi, BadInputIsRejectedWithItsCodeAndChangesNothing) {
 
 namespace {
 
-uint64_t fnv1a(uint64_t hash, const void* data, size_t size) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 1099511628211ull;
-    return hash;
-}
-
 // A 24x24 curtain (three particle groups) lowered onto itself by its top
 // row with self-collision on; hash of positions and velocities after 40
 // steps, and the number of contacts seen.
@@ -211,12 +206,12 @@ uint64_t curtain_hash(uint32_t workers, uint32_t& contacts_seen) {
         EXPECT_EQ(cloth_get_self_collision_stats(cloth, &stats), CLOTH_OK);
         contacts_seen += stats.contacts;
     }
-    uint64_t hash = 14695981039346656037ull;
+    uint64_t hash = cloth_test::kBitsHashStart;
     std::vector<float> values(3 * 576);
     EXPECT_EQ(cloth_read_positions(cloth, values.data(), 3 * 576), CLOTH_OK);
-    hash = fnv1a(hash, values.data(), values.size() * sizeof(float));
+    hash = cloth_test::hash_bits(hash, values.data(), values.size() * sizeof(float));
     EXPECT_EQ(cloth_read_velocities(cloth, values.data(), 3 * 576), CLOTH_OK);
-    hash = fnv1a(hash, values.data(), values.size() * sizeof(float));
+    hash = cloth_test::hash_bits(hash, values.data(), values.size() * sizeof(float));
     cloth_world_destroy(world);
     return hash;
 }

@@ -222,6 +222,7 @@ class Harness {
     void null_arguments();
     void self_collision();
     void cloth_contact();
+    void level_of_detail();
     void profiling();
     void body();
     void character();
@@ -935,6 +936,49 @@ void Harness::cloth_contact() {
     }
 }
 
+void Harness::level_of_detail() {
+    const uint8_t what = in_.u8();
+    if (what % 5 == 2) {
+        const cloth_world_id world = pick_world();
+        cloth_test::Watch watch = watch_of(world.index1, world.generation);
+        const float viewer[3] = {in_.any_float(), in_.any_float(), in_.any_float()};
+        guarded(watch, "cloth_world_set_viewer",
+                [&] { return cloth_world_set_viewer(world, (what & 0x80) ? nullptr : viewer); });
+        return;
+    }
+    const cloth_id cloth = pick_cloth();
+    cloth_test::Watch watch = watch_of(cloth);
+    switch (what % 5) {
+        case 0: {
+            const float importance =
+                (what & 0x40) ? in_.any_float() : 0.25f * static_cast<float>(in_.u8() % 8);
+            guarded(watch, "cloth_set_importance", [&] { return cloth_set_importance(cloth, importance); });
+            break;
+        }
+        case 1: {
+            float importance = 0;
+            watch.outputs = {{&importance, sizeof importance, "the importance"}};
+            guarded(watch, "cloth_get_importance",
+                    [&] { return cloth_get_importance(cloth, (what & 0x80) ? nullptr : &importance); });
+            break;
+        }
+        case 3: {
+            // Mostly a valid rate; any value otherwise.
+            const uint32_t rate = (what & 0x40) ? in_.u32() : 1u << (in_.u8() % 4);
+            guarded(watch, "cloth_set_update_rate", [&] { return cloth_set_update_rate(cloth, rate); });
+            break;
+        }
+        default: {
+            uint32_t rate = 0, phase = 0;
+            watch.outputs = {{&rate, sizeof rate, "the rate"}, {&phase, sizeof phase, "the phase"}};
+            guarded(watch, "cloth_get_update_rate", [&] {
+                return cloth_get_update_rate(cloth, (what & 0x80) ? nullptr : &rate,
+                                             (what & 0x40) ? nullptr : &phase);
+            });
+        }
+    }
+}
+
 // ---------------------------------------------------------------- contact
 
 cloth_body_id Harness::pick_body() {
@@ -1551,6 +1595,9 @@ RunStats Harness::run() {
                 break;
             case kClothContact:
                 cloth_contact();
+                break;
+            case kLevelOfDetail:
+                level_of_detail();
                 break;
             case kOpCount:
                 break;

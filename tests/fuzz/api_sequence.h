@@ -43,7 +43,8 @@ enum Op : uint8_t {
     kWorldShiftOrigin,   // origin rebasing
     kSnapshot,   // size, save (short capacity too), restore intact, damaged, cut, or into another cloth
     kCharacter,  // skin, joint matrices, skinned positions (set, read), max distances, backstops, body poses
-    kClothContact,  // contact between two cloths: set (any pair, any values), get, count
+    kClothContact,   // contact between two cloths: set (any pair, any values), get, count
+    kLevelOfDetail,  // importance, the world's viewer, update rate: set (any values) and get
     kOpCount
 };
 

@@ -206,6 +206,21 @@ std::vector<std::vector<uint8_t>> seed_inputs() {
     pair.op(kClothContact).slot(0).slot(1).u8(2);  // count
     seeds.push_back(pair.bytes);
 
+    // Three cloths at rates 2, 4 and 8 (the last with importance 0.5 and a
+    // viewer), stepped between reads of their rates.
+    Encoder rates;
+    rates.world(0, 2).grid(0, 8, 8).cloth(0, 0).cloth(0, 0).cloth(0, 0);
+    rates.op(kLevelOfDetail).u8(3).slot(0).u8(1);            // rate 2
+    rates.op(kLevelOfDetail).u8(3).slot(1).u8(2);            // rate 4
+    rates.op(kLevelOfDetail).u8(3).slot(2).u8(3);            // rate 8
+    rates.op(kLevelOfDetail).u8(0).slot(2).u8(2);            // importance 0.5
+    rates.op(kLevelOfDetail).u8(2).u8(0).u8(0).u8(0).u8(0);  // a viewer
+    rates.step(0, 5);
+    rates.op(kLevelOfDetail).u8(4).slot(1);        // read the rate and phase
+    rates.op(kLevelOfDetail).u8(3).slot(2).u8(0);  // back to rate 1
+    rates.step(0, 9);
+    seeds.push_back(rates.bytes);
+
     return seeds;
 }
 

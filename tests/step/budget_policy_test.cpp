@@ -14,7 +14,9 @@
 //   - the default solver's iterations stay at half its own choice or more
 //     while more than one substep runs, and its caps come off under a
 //     loose budget, never past its own choice;
-//   - a cloth without an enabled policy is never changed.
+//   - a cloth without an enabled policy is never changed;
+//   - the least important cloth is lowered first and the most important
+//     raised first.
 //
 // And the ladder and the cost memory the policy reads, alone.
 #include "step/budget_policy.h"
@@ -74,7 +76,8 @@ class ModelWorld {
             EXPECT_TRUE(cloth->step(kDt, kGravity).ok());
             const QualityRung ran = cloth->quality().ran_rung();
             const int64_t cost = static_cast<int64_t>(spike * static_cast<double>(model.cost_ns(ran)));
-            costs.push_back({cloth.get(), cost, static_cast<int64_t>(spike * model.solve_ns(ran))});
+            costs.push_back(
+                {cloth.get(), cost, static_cast<int64_t>(spike * model.solve_ns(ran)), cloth->importance()});
             total_ns += cost;
         }
         const double step_ms = static_cast<double>(total_ns) * 1e-6;
@@ -186,6 +189,35 @@ TEST(BudgetPolicyModel, ASpikeMovesAClothOnlyAsFarAsItsRungsUsualCostSays) {
     // the budget (0.75 * 1.2 * 740 = 666 us): 14 sweeps (660 us) meet it.
     // Judged by the spike, nothing above the floor (8 sweeps) would.
     EXPECT_EQ(cloth.solver().iterations, 14u);
+}
+
+TEST(BudgetPolicyModel, TheLeastImportantClothsAreLoweredFirstAndTheMostImportantRaisedFirst) {
+    ModelWorld world;
+    ClothInstance& near = world.add(jacobi(16), 300.0f);
+    ClothInstance& mid = world.add(jacobi(16), 300.0f);
+    ClothInstance& far = world.add(jacobi(16), 300.0f);
+    near.set_importance(4.0f);
+    far.set_importance(0.25f);
+    for (ClothInstance* c : {&near, &mid, &far}) c->set_quality_policy(sweeps_policy());
+    world.frame(1e9);
+    const double full_ms = world.step_ms();
+    // Each costs 740 us at 16 sweeps and 420 us at its floor (8): with the
+    // two others at their floor the step (1580 us) is within kLowerTo of
+    // this budget, so the most important cloth stays at its top.
+    const double budget = 0.96 * full_ms;
+    for (int i = 0; i < 60; ++i) world.frame(budget);
+    EXPECT_EQ(near.solver().iterations, 16u) << "the most important keeps its top";
+    EXPECT_EQ(far.solver().iterations, 8u) << "the least important pays first";
+    EXPECT_EQ(mid.solver().iterations, 8u);
+    EXPECT_EQ(world.overruns(budget, 30), 0);
+
+    // A budget whose calm leaves room for five more sweeps (200 us below
+    // kRaiseTo of it): the rungs go to the more important first.
+    const double looser = (1580e3 + 200e3) * 1e-6 / BudgetPolicy::kRaiseTo;
+    for (int i = 0; i < 300; ++i) world.frame(looser);
+    EXPECT_EQ(near.solver().iterations, 16u);
+    EXPECT_GT(mid.solver().iterations, far.solver().iterations) << "the more important rises first";
+    EXPECT_GT(far.solver().iterations, 8u);
 }
 
 // A stiff cloth at 60 Hz: the default solver chooses several iterations

@@ -32,6 +32,7 @@ static class ClothTests
             Attachment();
             Skin();
             ClothContact();
+            LevelOfDetail();
             ProfileAndZones();
             Allocator();
             Errors();
@@ -237,6 +238,37 @@ static class ClothTests
             catch (ClothException e)
             {
                 Check(e.Result == ClothResult.ErrorInvalidValue, "a cloth and itself is refused (INVALID_VALUE)");
+            }
+        }
+    }
+
+    static void LevelOfDetail()
+    {
+        using (var world = new World())
+        {
+            ClothGridDesc grid = ClothGridDesc.Default();
+            grid.Columns = 8;
+            grid.Rows = 8;
+            Fabric fabric = world.CreateGridFabric(grid);
+            Cloth a = world.CreateCloth(fabric), b = world.CreateCloth(fabric);
+            Check(a.Importance == 1.0f && a.UpdateRate == 1, "importance 1 and rate 1 by default");
+            a.Importance = 0.25f;
+            a.UpdateRate = 2;
+            b.UpdateRate = 2;
+            Check(a.Importance == 0.25f && a.UpdateRate == 2, "importance and rate read back");
+            Check(a.UpdatePhase != b.UpdatePhase, "two cloths of one rate are staggered");
+            world.SetViewer(new Float3(0.0f, 1.0f, 5.0f));
+            for (int frame = 0; frame < 5; ++frame) world.Step(1.0f / 60.0f);
+            world.ClearViewer();
+            try
+            {
+                a.UpdateRate = 3;
+                Check(false, "rate 3 is refused");
+            }
+            catch (ClothException e)
+            {
+                Check(e.Result == ClothResult.ErrorInvalidValue && a.UpdateRate == 2,
+                      "rate 3 is refused (INVALID_VALUE) and the rate stays");
             }
         }
     }

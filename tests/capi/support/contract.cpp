@@ -100,6 +100,10 @@ std::string read_cloth_state(cloth_id cloth, ClothState* out) {
         return read_failed("cloth_get_teleported", r);
     if ((r = read_flag(cloth_is_sleeping, cloth, &s.sleeping)) != CLOTH_OK)
         return read_failed("cloth_is_sleeping", r);
+    if ((r = cloth_get_importance(cloth, &s.importance)) != CLOTH_OK)
+        return read_failed("cloth_get_importance", r);
+    if ((r = cloth_get_update_rate(cloth, &s.update_rate, &s.update_phase)) != CLOTH_OK)
+        return read_failed("cloth_get_update_rate", r);
     size_t bytes = 0;
     if ((r = cloth_get_snapshot_size(cloth, &bytes)) != CLOTH_OK)
         return read_failed("cloth_get_snapshot_size", r);
@@ -185,7 +189,10 @@ std::string first_difference(const ClothState& a, const ClothState& b, Compare c
           field_difference("self-collision use_regions", int(p.use_regions), int(q.use_regions)),
           field_difference("self-collision passes", p.passes, q.passes),
           field_difference("teleported flag", int(a.teleported), int(b.teleported)),
-          field_difference("sleeping flag", int(a.sleeping), int(b.sleeping))}) {
+          field_difference("sleeping flag", int(a.sleeping), int(b.sleeping)),
+          field_difference("importance", a.importance, b.importance),
+          field_difference("update rate", a.update_rate, b.update_rate),
+          field_difference("update phase", a.update_phase, b.update_phase)}) {
         if (!d.empty()) return d;
     }
     if (a.snapshot != b.snapshot) {

@@ -34,6 +34,8 @@ struct ClothState {
     cloth_self_collision_desc self_collision{};
     uint8_t teleported = 0;
     uint8_t sleeping = 0;
+    float importance = 0;
+    uint32_t update_rate = 0, update_phase = 0;
     // Pin targets, air and wind have no getter: the snapshot holds them.
     std::vector<unsigned char> snapshot;
 };

@@ -1,0 +1,63 @@
+// C API: what a cloth costs in a scene: its importance under a frame
+// budget, the world's viewer, and the cloth's update rate.
+#include <cloth/cloth.h>
+
+#include "api_call.h"
+#include "api_validation.h"
+#include "step/update_rate.h"
+
+using namespace cloth;
+using namespace cloth::api;
+
+extern "C" {
+
+CLOTH_API cloth_result cloth_set_importance(cloth_id id, float importance) {
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+        Status s = check_non_negative(importance, "importance");
+        if (!s.ok()) return s;
+        cloth.set_importance(importance);
+        return {};
+    });
+}
+
+CLOTH_API cloth_result cloth_get_importance(cloth_id id, float* out_importance) {
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+        if (!out_importance) return null_error("out_importance");
+        *out_importance = cloth.importance();
+        return {};
+    });
+}
+
+CLOTH_API cloth_result cloth_world_set_viewer(cloth_world_id id, const float position[3]) {
+    return with_world(__func__, id, [&](World& world) -> Status {
+        if (!position) {
+            world.set_viewer(nullptr);
+            return {};
+        }
+        Vec3 viewer;
+        Status s = check_position(position, "position", &viewer);
+        if (!s.ok()) return s;
+        world.set_viewer(&viewer);
+        return {};
+    });
+}
+
+CLOTH_API cloth_result cloth_set_update_rate(cloth_id id, uint32_t rate) {
+    return with_cloth(__func__, id, [&](ClothInstance& cloth, World& world) -> Status {
+        if (!UpdateRate::valid(rate))
+            return Status::error(CLOTH_ERROR_INVALID_VALUE, "rate %u is not 1, 2, 4 or 8", rate);
+        world.set_update_rate(cloth, rate);
+        return {};
+    });
+}
+
+CLOTH_API cloth_result cloth_get_update_rate(cloth_id id, uint32_t* out_rate, uint32_t* out_phase) {
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+        if (!out_rate && !out_phase) return null_error("out_rate and out_phase");
+        if (out_rate) *out_rate = cloth.update_rate().rate();
+        if (out_phase) *out_phase = cloth.update_rate().phase();
+        return {};
+    });
+}
+
+}  // extern "C"
