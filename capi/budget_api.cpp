@@ -1,12 +1,19 @@
 // C API: a world's frame budget and the quality policy by which it trades
-// a cloth's iterations and substeps for time.
+// a cloth's iterations, substeps and update rate for time.
 #include <cloth/cloth.h>
+
+#include <cstddef>
 
 #include "api_call.h"
 #include "api_validation.h"
+#include "step/update_rate.h"
 
 using namespace cloth;
 using namespace cloth::api;
+
+namespace {
+constexpr size_t kPolicySize110 = offsetof(cloth_quality_policy, max_update_rate);
+}  // namespace
 
 extern "C" {
 
@@ -28,16 +35,24 @@ CLOTH_API cloth_quality_policy cloth_default_quality_policy(void) {
     p.max_iterations = core.max_iterations;
     p.min_substeps = core.min_substeps;
     p.max_substeps = core.max_substeps;
+    p.max_update_rate = core.max_update_rate;
     return p;
 }
 
 CLOTH_API cloth_result cloth_set_quality_policy(cloth_id id, const cloth_quality_policy* policy) {
     return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
         if (!policy) return null_error("policy");
-        if (policy->struct_size != sizeof(cloth_quality_policy)) {
+        // 1.10's struct ends before max_update_rate.
+        const bool before_rates = policy->struct_size == kPolicySize110;
+        if (policy->struct_size != sizeof(cloth_quality_policy) && !before_rates) {
             return Status::error(CLOTH_ERROR_INVALID_DESC,
-                                 "cloth_quality_policy.struct_size is %u, expected %zu", policy->struct_size,
-                                 sizeof(cloth_quality_policy));
+                                 "cloth_quality_policy.struct_size is %u, expected %zu (or %zu, 1.10's)",
+                                 policy->struct_size, sizeof(cloth_quality_policy), kPolicySize110);
+        }
+        const uint32_t max_rate = before_rates ? 1 : policy->max_update_rate;
+        if (!UpdateRate::valid(max_rate)) {
+            return Status::error(CLOTH_ERROR_INVALID_VALUE, "max_update_rate %u is not 1, 2, 4 or 8",
+                                 max_rate);
         }
         if (policy->min_iterations < 1 || policy->min_iterations > policy->max_iterations ||
             policy->max_iterations > CLOTH_MAX_ITERATIONS) {
@@ -55,6 +70,7 @@ CLOTH_API cloth_result cloth_set_quality_policy(cloth_id id, const cloth_quality
         core.max_iterations = policy->max_iterations;
         core.min_substeps = policy->min_substeps;
         core.max_substeps = policy->max_substeps;
+        core.max_update_rate = max_rate;
         cloth.set_quality_policy(core);
         return {};
     });

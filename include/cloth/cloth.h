@@ -1207,11 +1207,16 @@ CLOTH_API cloth_result CLOTH_CALL cloth_world_set_zone_callbacks(cloth_world_id 
  * even with no budget set, so max_substeps 1 runs it in one substep): the
  * iterations to half the top's, then one substep fewer with the iterations
  * back at the top's, and so on; raising retraces it, never past the top.
- * At the policy's fewest substeps the iterations go below half only once
- * most of the last frames ran over budget (a load, not a spike), and there
- * the strain limit runs only the passes asked for (cloth_strain_limit.iterations),
- * not the extra passes it otherwise adds while a spring stays past the
- * limit: the frame keeps to the budget and the strain gives.
+ * At the policy's fewest substeps and half the iterations, a policy with
+ * a max_update_rate above 1 next doubles the cloth's update rate (see
+ * "Importance and update rate") up to that rate: each step keeps its
+ * quality and the cloth steps less often. Past that the iterations go below
+ * half only once most of the last frames ran over budget (a load, not a
+ * spike), and there the strain limit runs only the passes asked for
+ * (cloth_strain_limit.iterations), not the extra passes it otherwise adds
+ * while a spring stays past the limit: the frame keeps to the budget and
+ * the strain gives. Raising retraces the ladder: the rate comes back to 1
+ * before the iterations rise past half.
  * cloth_stats.last_solver_iterations shows what a step ran, and setting the
  * policy again (or the solver) lifts the policy's cuts. */
 
@@ -1233,6 +1238,9 @@ typedef struct cloth_quality_policy {
     uint32_t min_substeps;
     /// ..CLOTH_MAX_SUBSTEPS; default 4
     uint32_t max_substeps;
+    /// the slowest update rate the budget may give the cloth: 1, 2, 4 or 8;
+    /// default 1 (since 1.11; the 1.10 struct_size reads as 1)
+    uint32_t max_update_rate;
 } cloth_quality_policy;
 
 /// A quality policy with every default set (off).

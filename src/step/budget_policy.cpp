@@ -9,13 +9,14 @@ namespace {
 // Where a cloth stands on its ladder: its current settings' rung.
 QualityRung current_rung(const QualityLadder& ladder, const ClothInstance& cloth) {
     const SolverSettings settings = cloth.quality().settings();
-    return ladder.rung_of(settings.iterations, settings.substeps);
+    return ladder.rung_of(settings.iterations, settings.substeps, cloth.quality().rate());
 }
 
-// A cloth's task time at a rung: the average it cost there lately
-// (QualityCosts) or, at a rung it has not run, a model of the frame just
-// run scaled to its rung's average: a cost per substep (every stage but
-// the solve) and per iteration and substep.
+// A cloth's task time a frame at a rung: the average a step cost there
+// lately (QualityCosts) or, at a rung it has not run, a model of the step
+// just run scaled to its rung's average: a cost per substep (every stage
+// but the solve) and per iteration and substep; over the rung's rate
+// (its steps are staggered with its peers', update_rate.h).
 class RungCost {
   public:
     RungCost(const BudgetCloth& c, uint64_t frame) : costs_(c.cloth->quality().costs()), frame_(frame) {
@@ -30,7 +31,9 @@ class RungCost {
     }
     double operator()(QualityRung rung) const {
         const double known = costs_.cost_ns(rung, frame_);
-        return known >= 0 ? known : rung.substeps * (per_substep_ + rung.iterations * per_iteration_);
+        const double step =
+            known >= 0 ? known : rung.substeps * (per_substep_ + rung.iterations * per_iteration_);
+        return step / rung.rate;
     }
 
   private:
@@ -44,6 +47,7 @@ void set_rung(ClothInstance& cloth, QualityRung rung) {
     next.iterations = rung.iterations;
     next.substeps = rung.substeps;
     cloth.quality().set_settings(next);
+    cloth.quality().set_rate(rung.rate);
 }
 
 // Moves one cloth down its ladder until the predicted step (`predicted`,
@@ -62,8 +66,9 @@ double lower(const BudgetCloth& c, uint64_t frame, double predicted, double targ
     bool moved = false;
     while (predicted > target) {
         // Past the floor's last rung each rung gives up much of the hold:
-        // only under a load, and one a decision.
-        if (ladder.at_or_below_floor(rung) && (!below_floor || moved)) break;
+        // only under a load, and one a decision. A slower rate keeps each
+        // step's quality: it needs no load.
+        if (ladder.at_or_below_floor(rung) && !ladder.rate_is_next(rung) && (!below_floor || moved)) break;
         if (!ladder.down(rung)) break;
         predicted = others + cost(rung) * ms_per_ns;
         moved = true;
@@ -128,7 +133,9 @@ void BudgetPolicy::decide(double budget_ms, double step_ms, uint64_t frame, int6
         const RungCost cost(cloths[c], frame);
         QualityRung rung = current_rung(ladder, cloth);
         if (!ladder.up(rung)) continue;
-        const double change = (cost(rung) - static_cast<double>(cloths[c].cost_ns)) * ms_per_ns;
+        // What it adds a frame now: its step over its rate.
+        const double now = static_cast<double>(cloths[c].cost_ns) / cloth.quality().rate();
+        const double change = (cost(rung) - now) * ms_per_ns;
         if (predicted + change > kRaiseTo * budget_ms) continue;
         predicted += change;
         set_rung(cloth, rung);

@@ -135,19 +135,25 @@ const Vec3Soa& ClothInstance::normals() const {
 // ---------------------------------------------------------------- update rate
 
 void ClothInstance::set_update_rate(uint32_t rate, uint32_t phase) {
-    const uint32_t n = particle_count();
-    if (rate > 1 && previous_x_.size() != n) {
-        // Sized aside and swapped in last: an allocation failure changes nothing.
-        const HostMemory* memory = x_.x.get_allocator().memory();
-        Vec3Soa previous(memory), reported(memory);
-        previous.resize(n);
-        reported.resize(n);
-        previous = x_;
-        previous_x_.swap_buffers(previous);
-        reported_x_.swap_buffers(reported);
-    }
+    if (rate > 1) size_interpolation();
     update_rate_.set(rate, phase);
-    if (rate == 1 && update_rate_.fraction(world_frame_) == 1.0f) free_interpolation();
+    if (rate == 1 && update_rate_.fraction(world_frame_) == 1.0f && !rates_by_budget()) free_interpolation();
+}
+
+bool ClothInstance::rates_by_budget() const {
+    return quality_.policy().enabled && quality_.policy().max_update_rate > 1;
+}
+
+void ClothInstance::size_interpolation() {
+    const uint32_t n = particle_count();
+    if (previous_x_.size() == n) return;
+    const HostMemory* memory = x_.x.get_allocator().memory();
+    Vec3Soa previous(memory), reported(memory);
+    previous.resize(n);
+    reported.resize(n);
+    previous = x_;
+    previous_x_.swap_buffers(previous);
+    reported_x_.swap_buffers(reported);
 }
 
 void ClothInstance::free_interpolation() {
@@ -163,7 +169,7 @@ uint32_t ClothInstance::begin_rate_step(uint64_t frame) {
     // and back at rate 1 the copies are not needed again.
     if (frames > 1) {
         previous_x_ = x_;
-    } else if (update_rate_.rate() == 1 && previous_x_.size() > 0) {
+    } else if (update_rate_.rate() == 1 && previous_x_.size() > 0 && !rates_by_budget()) {
         free_interpolation();
     }
     return frames;
@@ -182,7 +188,10 @@ const Vec3Soa& ClothInstance::reported_positions() const {
 }
 
 void ClothInstance::set_quality_policy(const QualityPolicy& policy) {
+    const bool rate_was_cut = quality_.rate_cut();
+    if (policy.enabled && policy.max_update_rate > 1) size_interpolation();
     quality_.set_policy(policy);
+    if (rate_was_cut) set_update_rate(1, 0);
     wake();
 }
 

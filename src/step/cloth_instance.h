@@ -106,6 +106,8 @@ class ClothInstance {
     // (here, or at the next step).
     void set_update_rate(uint32_t rate, uint32_t phase);
     const UpdateRate& update_rate() const { return update_rate_; }
+    // Whether the quality policy may change the rate (its copies stay).
+    bool rates_by_budget() const;
     // Starts the step of world frame `frame`; returns the frames it covers.
     uint32_t begin_rate_step(uint64_t frame);
     // The world's current frame, which the reported positions are at.
@@ -120,7 +122,10 @@ class ClothInstance {
     void set_importance(float importance) { importance_ = importance; }
 
     // The cloth under a world's frame budget (cloth_quality.h). A new
-    // quality policy wakes the cloth.
+    // quality policy wakes the cloth; one that may slow the update rate
+    // allocates what a rate above 1 needs (a failure changes nothing), so
+    // the budget's changes of rate allocate nothing; a rate the last
+    // policy slowed goes back to 1.
     void set_quality_policy(const QualityPolicy& policy);
     ClothQuality& quality() { return quality_; }
     const ClothQuality& quality() const { return quality_; }
@@ -353,12 +358,15 @@ class ClothInstance {
 
     void update_sleep();  // end of a successful frame
     SleepSettings sleep_;
-    ClothQuality quality_{solver_, frame_};
+    UpdateRate update_rate_;
+    ClothQuality quality_{solver_, frame_, update_rate_};
     bool sleeping_ = false;
     uint32_t rest_frames_ = 0;  // consecutive frames below sleep_.max_speed
 
+    // The previous state and the reported positions, sized aside (an
+    // allocation failure changes nothing), or freed.
+    void size_interpolation();
     void free_interpolation();
-    UpdateRate update_rate_;
     uint64_t world_frame_ = 0;
     Vec3Soa previous_x_;          // the state before the last step, while the rate is above 1
     mutable Vec3Soa reported_x_;  // filled by reported_positions() between steps

@@ -8,6 +8,8 @@ namespace cloth {
 void ClothQuality::set_policy(const QualityPolicy& policy) {
     policy_ = policy;
     costs_.clear();
+    wanted_rate_ = 0;
+    rate_cut_ = false;
     // A default solver the policy had capped goes back to its own choice.
     solver_.default_iteration_cap = solver_.default_substep_cap = 0;
     if (!policy.enabled) return;
@@ -40,12 +42,12 @@ QualityLadder ClothQuality::ladder() const {
     const QualityRung top = solver_.kind == CLOTH_SOLVER_DEFAULT
                                 ? QualityRung{frame_.own_iterations, frame_.own_substeps}
                                 : QualityRung{policy_.max_iterations, policy_.max_substeps};
-    return {top, policy_.min_iterations, policy_.min_substeps};
+    return {top, policy_.min_iterations, policy_.min_substeps, policy_.max_update_rate};
 }
 
 bool ClothQuality::can_rise() const {
     return solver_.kind != CLOTH_SOLVER_DEFAULT || solver_.default_iteration_cap > 0 ||
-           solver_.default_substep_cap > 0;
+           solver_.default_substep_cap > 0 || (policy_.max_update_rate > 1 && rate() > 1);
 }
 
 bool ClothQuality::below_floor() const {

@@ -6,10 +6,12 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 
 #include "solve/solver_settings.h"
 #include "step/frame_context.h"
 #include "step/quality_ladder.h"
+#include "step/update_rate.h"
 
 namespace cloth {
 
@@ -19,12 +21,14 @@ struct QualityPolicy {
     bool enabled = false;
     uint32_t min_iterations = 1, max_iterations = 8;
     uint32_t min_substeps = 1, max_substeps = 4;
+    uint32_t max_update_rate = 1;  // update_rate.h; 1: the budget never changes the rate
 };
 
 class ClothQuality {
   public:
-    // `solver` and `frame` are the cloth's, which outlives this.
-    ClothQuality(SolverSettings& solver, const FrameContext& frame) : solver_(solver), frame_(frame) {}
+    // `solver`, `frame` and `rate` are the cloth's, which outlives this.
+    ClothQuality(SolverSettings& solver, const FrameContext& frame, const UpdateRate& rate)
+        : solver_(solver), frame_(frame), rate_(rate) {}
     ClothQuality(const ClothQuality&) = delete;
     ClothQuality& operator=(const ClothQuality&) = delete;
 
@@ -46,7 +50,20 @@ class ClothQuality {
     // or the default's own choice of the last frame, down to the policy's
     // minimum. And the rung the last frame ran.
     QualityLadder ladder() const;
-    QualityRung ran_rung() const { return {frame_.solver.iterations, frame_.solver.substeps}; }
+    QualityRung ran_rung() const { return {frame_.solver.iterations, frame_.solver.substeps, rate_.rate()}; }
+    // The update rate the policy wants (set_rate), or the cloth's own.
+    // The world applies a wanted rate after the policy's decision
+    // (take_wanted_rate: 0 when there is none), since a rate's phase is
+    // the world's choice.
+    uint32_t rate() const { return wanted_rate_ > 0 ? wanted_rate_ : rate_.rate(); }
+    void set_rate(uint32_t rate) {
+        wanted_rate_ = rate == rate_.rate() ? 0 : rate;
+        if (rate > 1) rate_cut_ = true;
+    }
+    uint32_t take_wanted_rate() { return std::exchange(wanted_rate_, 0u); }
+    // Whether the policy has slowed the cloth's rate since it was set:
+    // setting a policy again puts the rate back to 1.
+    bool rate_cut() const { return rate_cut_; }
     // Whether the policy may raise it: not a default running its own choice.
     bool can_rise() const;
     // Whether the policy has taken this frame below its ladder's floor
@@ -57,6 +74,9 @@ class ClothQuality {
   private:
     SolverSettings& solver_;
     const FrameContext& frame_;
+    const UpdateRate& rate_;
+    uint32_t wanted_rate_ = 0;
+    bool rate_cut_ = false;
     QualityPolicy policy_;
     QualityCosts costs_;
 };

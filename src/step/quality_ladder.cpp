@@ -16,11 +16,16 @@ bool QualityLadder::at_or_below_floor(QualityRung rung) const {
     return rung.substeps == fewest_substeps() && rung.iterations <= floor();
 }
 
-QualityRung QualityLadder::rung_of(uint32_t iterations, uint32_t substeps) const {
+bool QualityLadder::rate_is_next(QualityRung rung) const {
+    return rung.substeps == fewest_substeps() && rung.iterations <= floor() && rung.rate < max_rate;
+}
+
+QualityRung QualityLadder::rung_of(uint32_t iterations, uint32_t substeps, uint32_t rate) const {
     QualityRung rung;
     rung.substeps = std::clamp(substeps, fewest_substeps(), top.substeps);
     const uint32_t fewest = rung.substeps > fewest_substeps() ? floor() : fewest_iterations();
     rung.iterations = std::clamp(iterations, fewest, top.iterations);
+    rung.rate = rate;  // a rate the host set stays where the ladder does not move it
     return rung;
 }
 
@@ -34,6 +39,14 @@ bool QualityLadder::down(QualityRung& rung) const {
         }
         return true;
     }
+    if (rung.iterations > floor()) {
+        --rung.iterations;
+        return true;
+    }
+    if (rate_is_next(rung)) {
+        rung.rate *= 2;
+        return true;
+    }
     if (rung.iterations > fewest_iterations()) {
         --rung.iterations;
         return true;
@@ -42,6 +55,15 @@ bool QualityLadder::down(QualityRung& rung) const {
 }
 
 bool QualityLadder::up(QualityRung& rung) const {
+    // Below the floor the iterations come back first, then the rate.
+    if (rung.substeps == fewest_substeps() && rung.iterations < floor()) {
+        ++rung.iterations;
+        return true;
+    }
+    if (max_rate > 1 && rung.rate > 1) {
+        rung.rate /= 2;
+        return true;
+    }
     if (rung.iterations < top.iterations) {
         ++rung.iterations;
         return true;

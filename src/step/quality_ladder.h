@@ -1,8 +1,9 @@
-// A cloth's quality ladder under a frame budget: (iterations, substeps)
-// rungs from the top down. The iterations fall to half the top's (rounded
-// up), then a substep goes and the iterations come back to the top's, and
-// so on; at the fewest substeps the iterations fall to the minimum.
-// budget_policy.h says why in that order.
+// A cloth's quality ladder under a frame budget: (iterations, substeps,
+// update rate) rungs from the top down. The iterations fall to half the
+// top's (rounded up), then a substep goes and the iterations come back to
+// the top's, and so on; at the fewest substeps and half the iterations
+// the update rate doubles up to the policy's slowest, and then the
+// iterations fall to the minimum. budget_policy.h says why in that order.
 #pragma once
 
 #include <cstdint>
@@ -11,11 +12,13 @@ namespace cloth {
 
 struct QualityRung {
     uint32_t iterations, substeps;
+    uint32_t rate = 1;  // update_rate.h: a step every `rate` frames
 };
 
 struct QualityLadder {
     QualityRung top;
     uint32_t min_iterations, min_substeps;
+    uint32_t max_rate = 1;  // 1: the ladder leaves the rate alone
 
     // The ends (bounds above the top count as the top).
     uint32_t fewest_substeps() const;
@@ -25,16 +28,19 @@ struct QualityLadder {
     // Whether `rung` is the floor's last rung (the fewest substeps at the
     // floor's iterations) or below it.
     bool at_or_below_floor(QualityRung rung) const;
+    // Whether the rung below `rung` is a slower update rate at the same
+    // iterations and substeps (each step keeps its quality).
+    bool rate_is_next(QualityRung rung) const;
     // The rung nearest to these settings (settings made outside the ladder
     // may lie between rungs or past its ends).
-    QualityRung rung_of(uint32_t iterations, uint32_t substeps) const;
+    QualityRung rung_of(uint32_t iterations, uint32_t substeps, uint32_t rate = 1) const;
     // The rung below or above `rung`, in place; false at the ends.
     bool down(QualityRung& rung) const;
     bool up(QualityRung& rung) const;
 };
 
 inline bool operator==(QualityRung a, QualityRung b) {
-    return a.iterations == b.iterations && a.substeps == b.substeps;
+    return a.iterations == b.iterations && a.substeps == b.substeps && a.rate == b.rate;
 }
 
 // What a cloth's frames cost at the rungs it ran lately: a moving average

@@ -303,6 +303,10 @@ Status World::step(float dt) {
         }
         budget_policy_.after_frame(budget_ms_, profile_.step_ms(), frame_, budget_cloths_.data(),
                                    static_cast<uint32_t>(budget_cloths_.size()));
+        // The rates it chose (their copies were sized with the policy: no allocation).
+        for (const BudgetCloth& c : budget_cloths_) {
+            if (const uint32_t rate = c.cloth->quality().take_wanted_rate()) set_update_rate(*c.cloth, rate);
+        }
     }
     if (zone_end_) zone_end_("cloth_step", 0, zone_user_);
     return first_failure;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 #include <vector>
@@ -222,6 +223,38 @@ TEST(UpdateRate, MixedRatesGiveTheSameBitsForEveryWorkerCount) {
     for (uint32_t workers : {1u, 2u, 3u}) EXPECT_EQ(mixed_rates_hash(workers), reference) << workers;
 }
 
+TEST(UpdateRate, AFrameBudgetSlowsTheRatesOfPoliciesThatAllowItAndAStepAllocatesNothing) {
+    Flags w(8);
+    cloth_quality_policy policy = cloth_default_quality_policy();
+    EXPECT_EQ(policy.max_update_rate, 1u) << "the budget leaves rates alone by default";
+    policy.enabled = 1;
+    policy.max_update_rate = 8;
+    for (cloth_id c : w.flags) ASSERT_EQ(cloth_set_quality_policy(c, &policy), CLOTH_OK);
+    ASSERT_EQ(cloth_set_importance(w.flags[0], 10.0f), CLOTH_OK);
+    // A budget no frame can meet: every flag comes down its ladder.
+    cloth_world_set_frame_budget(w.world, 1e-4f);
+    const size_t bytes = w.host.live_bytes();
+    uint32_t slowest = 1;
+    for (int call = 0; call < 120; ++call) {
+        const cloth_result r = cloth_step(w.world, kFrame);
+        ASSERT_TRUE(r == CLOTH_OK || r == CLOTH_ERROR_OVER_BUDGET) << cloth_result_name(r);
+        EXPECT_EQ(w.host.live_bytes(), bytes) << "a step allocates nothing, rates included";
+        for (cloth_id c : w.flags) {
+            uint32_t rate = 0;
+            ASSERT_EQ(cloth_get_update_rate(c, &rate, nullptr), CLOTH_OK);
+            slowest = std::max(slowest, rate);
+        }
+    }
+    EXPECT_EQ(slowest, 8u) << "the ladder continues with rates down to the policy's slowest";
+    // Setting the policy again lifts its cuts: the rates go back to 1.
+    for (cloth_id c : w.flags) {
+        ASSERT_EQ(cloth_set_quality_policy(c, &policy), CLOTH_OK);
+        uint32_t rate = 0;
+        ASSERT_EQ(cloth_get_update_rate(c, &rate, nullptr), CLOTH_OK);
+        EXPECT_EQ(rate, 1u);
+    }
+}
+
 TEST(LevelOfDetailApi, BadInputIsRejectedWithItsCodeAndChangesNothing) {
     Flags w(2), twin(2);
     for (Flags* f : {&w, &twin}) {
@@ -244,6 +277,16 @@ TEST(LevelOfDetailApi, BadInputIsRejectedWithItsCodeAndChangesNothing) {
         rejected(CLOTH_ERROR_INVALID_VALUE, "a rate not 1, 2, 4 or 8",
                  [&] { return cloth_set_update_rate(flag, rate); });
     }
+    cloth_quality_policy policy = cloth_default_quality_policy();
+    policy.enabled = 1;
+    for (uint32_t rate : {0u, 3u, 16u}) {
+        policy.max_update_rate = rate;
+        rejected(CLOTH_ERROR_INVALID_VALUE, "a max_update_rate not 1, 2, 4 or 8",
+                 [&] { return cloth_set_quality_policy(flag, &policy); });
+    }
+    policy.struct_size = sizeof policy - 1;
+    rejected(CLOTH_ERROR_INVALID_DESC, "a policy's struct_size neither 1.11's nor 1.10's",
+             [&] { return cloth_set_quality_policy(flag, &policy); });
     rejected(CLOTH_ERROR_NULL_POINTER, "cloth_get_importance(NULL)",
              [&] { return cloth_get_importance(flag, nullptr); });
     rejected(CLOTH_ERROR_NULL_POINTER, "cloth_get_update_rate(NULL, NULL)",
@@ -256,6 +299,12 @@ TEST(LevelOfDetailApi, BadInputIsRejectedWithItsCodeAndChangesNothing) {
     cloth_test::ExpectRejected(
         watch, w.host, CLOTH_ERROR_INVALID_HANDLE, "a null cloth",
         [&] { return cloth_set_update_rate(cloth_id{}, 2); }, cloth_test::Logged::kMaybe);
+
+    // 1.10's policy, without max_update_rate, is accepted and reads as 1.
+    cloth_quality_policy old_policy = cloth_default_quality_policy();
+    old_policy.struct_size = offsetof(cloth_quality_policy, max_update_rate);
+    old_policy.max_update_rate = 3;  // past 1.10's struct: never read
+    for (Flags* f : {&w, &twin}) EXPECT_EQ(cloth_set_quality_policy(f->flags[0], &old_policy), CLOTH_OK);
 
     // A rate whose allocation fails changes nothing, at every count.
     bool done = false;

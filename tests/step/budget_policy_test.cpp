@@ -23,6 +23,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -68,12 +69,17 @@ class ModelWorld {
         return *cloths_.back();
     }
     // One frame; returns whether it ran over `budget_ms`. `spike` multiplies
-    // this frame's cost.
+    // this frame's cost. As in World::step, a cloth at update rate N steps
+    // only in the frames it is due, over N frames, and a rate the policy
+    // chose takes the phase with the fewest cloths of that rate.
     bool frame(double budget_ms, double spike = 1.0) {
         std::vector<BudgetCloth> costs;
         int64_t total_ns = 0;
+        ++frame_;
         for (auto& cloth : cloths_) {
-            EXPECT_TRUE(cloth->step(kDt, kGravity).ok());
+            if (!cloth->update_rate().due(frame_)) continue;
+            const uint32_t frames = cloth->begin_rate_step(frame_);
+            EXPECT_TRUE(cloth->step(kDt * static_cast<float>(frames), kGravity).ok());
             const QualityRung ran = cloth->quality().ran_rung();
             const int64_t cost = static_cast<int64_t>(spike * static_cast<double>(model.cost_ns(ran)));
             costs.push_back(
@@ -81,7 +87,17 @@ class ModelWorld {
             total_ns += cost;
         }
         const double step_ms = static_cast<double>(total_ns) * 1e-6;
-        policy_.after_frame(budget_ms, step_ms, ++frame_, costs.data(), static_cast<uint32_t>(costs.size()));
+        policy_.after_frame(budget_ms, step_ms, frame_, costs.data(), static_cast<uint32_t>(costs.size()));
+        for (auto& cloth : cloths_) {
+            const uint32_t rate = cloth->quality().take_wanted_rate();
+            if (rate == 0) continue;
+            uint32_t load[UpdateRate::kSlowest] = {};
+            for (const auto& other : cloths_) {
+                if (other != cloth && other->update_rate().rate() == rate)
+                    ++load[other->update_rate().phase()];
+            }
+            cloth->set_update_rate(rate, static_cast<uint32_t>(std::min_element(load, load + rate) - load));
+        }
         return step_ms > budget_ms;
     }
     int overruns(double budget_ms, int frames) {
@@ -92,8 +108,10 @@ class ModelWorld {
     // The step's cost at every cloth's current rung (the last frame's).
     double step_ms() const {
         double ns = 0;
-        for (const auto& cloth : cloths_)
-            ns += static_cast<double>(model.cost_ns(cloth->quality().ran_rung()));
+        for (const auto& cloth : cloths_) {
+            const QualityRung ran = cloth->quality().ran_rung();
+            ns += static_cast<double>(model.cost_ns(ran)) / ran.rate;
+        }
         return ns * 1e-6;
     }
     CostModel model;
@@ -220,6 +238,54 @@ TEST(BudgetPolicyModel, TheLeastImportantClothsAreLoweredFirstAndTheMostImportan
     EXPECT_GT(far.solver().iterations, 8u);
 }
 
+TEST(BudgetPolicyModel, AtTheFloorASlowerRateComesBeforeFewerIterationsAndGoesFirstOnTheWayUp) {
+    ModelWorld world;
+    QualityPolicy policy = sweeps_policy();
+    policy.max_update_rate = 4;
+    std::vector<ClothInstance*> cloths;
+    for (int c = 0; c < 4; ++c) {
+        cloths.push_back(&world.add(jacobi(16), 300.0f));
+        cloths.back()->set_quality_policy(policy);
+    }
+    world.frame(1e9);
+    const double full_ms = world.step_ms();
+    // At the floor (8 sweeps) a step costs 0.57 of the top's: within
+    // kLowerTo of this budget the cloths must step at rates 2 and 4.
+    const double budget = 0.3 * full_ms;
+    for (int i = 0; i < 30; ++i) world.frame(budget);
+    for (ClothInstance* cloth : cloths) {
+        EXPECT_GE(cloth->update_rate().rate(), 2u) << "no load needed: each step keeps its quality";
+        EXPECT_EQ(cloth->solver().iterations, 8u) << "at the floor, not below it";
+    }
+    EXPECT_LE(world.step_ms(), BudgetPolicy::kLowerTo * budget);
+    EXPECT_EQ(world.overruns(budget, 40), 0) << "staggered: the frames share the steps";
+    // Raising: a cloth's rate comes back to 1 before its sweeps return.
+    bool sweeps_before_rate = false;
+    for (int i = 0; i < 400; ++i) {
+        world.frame(100 * full_ms);
+        for (ClothInstance* cloth : cloths)
+            sweeps_before_rate |= cloth->update_rate().rate() > 1 && cloth->solver().iterations > 8;
+    }
+    EXPECT_FALSE(sweeps_before_rate);
+    for (ClothInstance* cloth : cloths) {
+        EXPECT_EQ(cloth->update_rate().rate(), 1u);
+        EXPECT_EQ(cloth->solver().iterations, 16u) << "back to the top";
+    }
+    // Without max_update_rate the same budget takes them below the floor
+    // instead, under a load.
+    ModelWorld fixed_rate;
+    std::vector<ClothInstance*> others;
+    for (int c = 0; c < 4; ++c) {
+        others.push_back(&fixed_rate.add(jacobi(16), 300.0f));
+        others.back()->set_quality_policy(sweeps_policy());
+    }
+    for (int i = 0; i < 60; ++i) fixed_rate.frame(budget);
+    for (ClothInstance* cloth : others) {
+        EXPECT_EQ(cloth->update_rate().rate(), 1u);
+        EXPECT_LT(cloth->solver().iterations, 8u);
+    }
+}
+
 // A stiff cloth at 60 Hz: the default solver chooses several iterations
 // and substeps by itself.
 TEST(BudgetPolicyModel, TheDefaultKeepsHalfItsIterationsWhileSubstepsCanGoAndGetsItsOwnChoiceBack) {
@@ -290,6 +356,22 @@ TEST(QualityLadder, GivesUpIterationsToHalfBeforeEachSubstepAndRetracesItsStepsU
     EXPECT_TRUE(ladder.at_or_below_floor({1, 1}));
     EXPECT_FALSE(ladder.at_or_below_floor({4, 1}));
     EXPECT_FALSE(ladder.at_or_below_floor({3, 2}));
+    // With rates, they come at the floor's last rung, before the rungs below it.
+    const QualityLadder rates{{5, 2}, 1, 1, 4};
+    std::vector<std::vector<uint32_t>> walk;
+    QualityRung r = rates.top;
+    walk.push_back({r.iterations, r.substeps, r.rate});
+    while (rates.down(r)) walk.push_back({r.iterations, r.substeps, r.rate});
+    const std::vector<std::vector<uint32_t>> expected_walk = {{5, 2, 1}, {4, 2, 1}, {3, 2, 1}, {5, 1, 1},
+                                                              {4, 1, 1}, {3, 1, 1}, {3, 1, 2}, {3, 1, 4},
+                                                              {2, 1, 4}, {1, 1, 4}};
+    EXPECT_EQ(walk, expected_walk);
+    std::vector<std::vector<uint32_t>> back = {{r.iterations, r.substeps, r.rate}};
+    while (rates.up(r)) back.push_back({r.iterations, r.substeps, r.rate});
+    EXPECT_EQ(back, std::vector<std::vector<uint32_t>>(expected_walk.rbegin(), expected_walk.rend()));
+    EXPECT_TRUE(rates.rate_is_next({3, 1, 1}));
+    EXPECT_FALSE(rates.rate_is_next({3, 1, 4}));
+    EXPECT_FALSE(ladder.rate_is_next({3, 1})) << "a ladder without rates";
     // Bounds above the top (a policy minimum over the default's own choice)
     // leave one rung.
     const QualityLadder tight{{2, 1}, 4, 2};
