@@ -46,6 +46,11 @@ CLOTH_API cloth_result cloth_set_update_rate(cloth_id id, uint32_t rate) {
     return with_cloth(__func__, id, [&](ClothInstance& cloth, World& world) -> Status {
         if (!UpdateRate::valid(rate))
             return Status::error(CLOTH_ERROR_INVALID_VALUE, "rate %u is not 1, 2, 4 or 8", rate);
+        if (rate > 1 && cloth.contact().rides_bodies()) {
+            return Status::error(
+                CLOTH_ERROR_INVALID_VALUE,
+                "rate %u: the cloth is attached to or carried by a body, and steps every frame", rate);
+        }
         world.set_update_rate(cloth, rate);
         return {};
     });

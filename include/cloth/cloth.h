@@ -1210,13 +1210,16 @@ CLOTH_API cloth_result CLOTH_CALL cloth_world_set_zone_callbacks(cloth_world_id 
  * At the policy's fewest substeps and half the iterations, a policy with
  * a max_update_rate above 1 next doubles the cloth's update rate (see
  * "Importance and update rate") up to that rate: each step keeps its
- * quality and the cloth steps less often. Past that the iterations go below
+ * iterations, substeps and strain-limit passes over a longer dt, and the
+ * cloth steps less often (a cloth a body carries keeps rate 1). Past that the iterations go below
  * half only once most of the last frames ran over budget (a load, not a
  * spike), and there the strain limit runs only the passes asked for
  * (cloth_strain_limit.iterations), not the extra passes it otherwise adds
  * while a spring stays past the limit: the frame keeps to the budget and
  * the strain gives. Raising retraces the ladder: the rate comes back to 1
- * before the iterations rise past half.
+ * before the iterations rise past half. And in a frame within budget, the
+ * most relevant cloth below its top goes one rung up if lowering less
+ * relevant cloths (to their floors, with their rates) pays for it.
  * cloth_stats.last_solver_iterations shows what a step ran, and setting the
  * policy again (or the solver) lifts the policy's cuts. */
 
@@ -1269,9 +1272,11 @@ CLOTH_API cloth_result CLOTH_CALL cloth_set_quality_policy(cloth_id cloth,
  * steps cloth_read_positions and cloth_read_normals give the positions
  * interpolated between its last two states at the world's current call:
  * the motion a reader sees is smooth, and a change of rate makes no jump.
- * What the cloth follows (pin targets, attachments, skin, colliders) it
- * reaches N - 1 calls late, so a rate above 1 suits a cloth far from the
- * viewer or with slow attachments. cloth_set_positions and restoring a
+ * What the cloth follows (pin targets, skin, moving colliders) it reaches
+ * N - 1 calls late, so a rate above 1 suits a cloth far from the viewer. A
+ * cloth attached to a body or carried by one (cloth_attach,
+ * cloth_set_carrier) steps in every call: a rate above 1 is refused for
+ * it, and one it had goes back to 1 at the next call. cloth_set_positions and restoring a
  * snapshot show at once (the interpolation ends there). Velocities, stats
  * and snapshots are the cloth's state, not the interpolation. Two cloths
  * in contact (cloth_set_cloth_contact) touch only after calls in which
@@ -1287,7 +1292,8 @@ CLOTH_API cloth_result CLOTH_CALL cloth_get_importance(cloth_id cloth, float* ou
 /// Set the world's viewer, a point (see "Coordinates"), whose distance
 /// scales each cloth's relevance; NULL removes it (the default). Since 1.11.
 CLOTH_API cloth_result CLOTH_CALL cloth_world_set_viewer(cloth_world_id world, const float position[3]);
-/// Set the cloth's update rate: 1, 2, 4 or 8 (else CLOTH_ERROR_INVALID_VALUE).
+/// Set the cloth's update rate: 1, 2, 4 or 8, and 1 for a cloth a body
+/// carries (else CLOTH_ERROR_INVALID_VALUE).
 /// A rate above 1 allocates two copies of the positions, freed when the
 /// cloth is back at rate 1 and has caught up with the world.
 /// Since 1.11.

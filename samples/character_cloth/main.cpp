@@ -10,7 +10,6 @@
 // and the checks and writes a picture of four moments. Exit status 0 only
 // when every check held.
 #include <cloth/cloth.h>
-#include <stb_image_write.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -144,24 +143,12 @@ bool render_moment(const Moment& m, const Garment& cape, const Garment& skirt, i
 bool write_moments(const std::string& path, const std::vector<Moment>& moments, const Garment& cape,
                    const Garment& skirt, std::string* error) {
     constexpr int kPanelWidth = 480, kPanelHeight = 400;
-    const int columns = 2, rows = static_cast<int>((moments.size() + 1) / 2);
-    const int width = columns * kPanelWidth, height = rows * kPanelHeight;
-    std::vector<uint8_t> image(static_cast<size_t>(width) * height * 3, 255);
+    std::vector<std::vector<uint8_t>> panels(moments.size());
     for (size_t i = 0; i < moments.size(); ++i) {
-        std::vector<uint8_t> panel;
-        if (!render_moment(moments[i], cape, skirt, kPanelWidth, kPanelHeight, &panel, error)) return false;
-        const int px = static_cast<int>(i % columns) * kPanelWidth,
-                  py = static_cast<int>(i / columns) * kPanelHeight;
-        for (int y = 0; y < kPanelHeight; ++y)
-            std::copy(panel.begin() + static_cast<size_t>(y) * kPanelWidth * 3,
-                      panel.begin() + static_cast<size_t>(y + 1) * kPanelWidth * 3,
-                      image.begin() + (static_cast<size_t>(py + y) * width + px) * 3);
+        if (!render_moment(moments[i], cape, skirt, kPanelWidth, kPanelHeight, &panels[i], error))
+            return false;
     }
-    if (!stbi_write_png(path.c_str(), width, height, 3, image.data(), width * 3)) {
-        *error = "cannot write " + path;
-        return false;
-    }
-    return true;
+    return cloth_samples::write_panels_png(path, panels, kPanelWidth, kPanelHeight, error);
 }
 
 std::vector<float> positions(const Garment& g) {

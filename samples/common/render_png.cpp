@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace cloth_samples {
@@ -325,6 +326,31 @@ bool render_rgb(const Camera& camera, const RenderMesh* meshes, size_t mesh_coun
     }
 
     rgb->swap(image);
+    return true;
+}
+
+bool write_panels_png(const std::string& path, const std::vector<std::vector<uint8_t>>& panels,
+                      int panel_width, int panel_height, std::string* error) {
+    const size_t panel_bytes = static_cast<size_t>(panel_width) * panel_height * 3;
+    const int rows = static_cast<int>((panels.size() + 1) / 2), width = 2 * panel_width;
+    std::vector<uint8_t> image(static_cast<size_t>(width) * rows * panel_height * 3, 255);
+    for (size_t i = 0; i < panels.size(); ++i) {
+        if (panels[i].size() != panel_bytes) {
+            if (error)
+                *error = "a panel is not " + std::to_string(panel_width) + "x" + std::to_string(panel_height);
+            return false;
+        }
+        const int px = static_cast<int>(i % 2) * panel_width, py = static_cast<int>(i / 2) * panel_height;
+        for (int y = 0; y < panel_height; ++y)
+            std::copy(panels[i].begin() + static_cast<size_t>(y) * panel_width * 3,
+                      panels[i].begin() + static_cast<size_t>(y + 1) * panel_width * 3,
+                      image.begin() + (static_cast<size_t>(py + y) * width + px) * 3);
+    }
+    if (panels.empty() ||
+        !stbi_write_png(path.c_str(), width, rows * panel_height, 3, image.data(), width * 3)) {
+        if (error) *error = "cannot write " + path;
+        return false;
+    }
     return true;
 }
 

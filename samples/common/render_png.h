@@ -54,6 +54,12 @@ bool render_png(const std::string& path, const Camera& camera, const RenderMesh*
 bool render_rgb(const Camera& camera, const RenderMesh* meshes, size_t mesh_count,
                 const RenderOptions& options, std::vector<uint8_t>* rgb, std::string* error);
 
+// Tiles panels of panel_width x panel_height RGB pixels (each as
+// render_rgb leaves it), two to a row, into one PNG; false with a message
+// in *error if a panel has the wrong size or the file cannot be written.
+bool write_panels_png(const std::string& path, const std::vector<std::vector<uint8_t>>& panels,
+                      int panel_width, int panel_height, std::string* error);
+
 // Prints "wrote PATH: [label, t=T s] ..." for moments with a `label`
 // string and a `time` in seconds.
 template <class Moments>

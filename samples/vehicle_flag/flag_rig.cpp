@@ -131,6 +131,8 @@ bool FlagRig::create_cloth(const FlagSettings& s, const btTransform& chassis_pos
     return true;
 }
 
+const double* FlagRig::origin() const { return mirror_->origin(); }
+
 bool FlagRig::follow_chassis() {
     constexpr double kStep = 32.0;
     const btVector3 p = vehicle_.chassis_pose().getOrigin();

@@ -69,6 +69,8 @@ class FlagRig {
     bool teleported() const;
 
     cloth_world_id world() const { return world_; }
+    // Where the cloth world's origin lies in Bullet's frame (it follows the chassis).
+    const double* origin() const;
     cloth_id cloth() const { return cloth_; }
     cloth_body_id chassis_body() const { return chassis_body_; }
     size_t collider_count() const { return collider_count_; }

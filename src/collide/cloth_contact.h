@@ -57,7 +57,11 @@ class ClothContact {
     // Whether the cloth follows bodies that the host moves (attachments, a
     // carrier or colliders): such a cloth never goes to sleep, since a body
     // can move without any call on the cloth.
-    bool follows_bodies() const { return !attached_body_.empty() || carrier_.active() || collides(); }
+    bool follows_bodies() const { return rides_bodies() || collides(); }
+    // Whether bodies carry the cloth (attachments or a carrier): a body's
+    // motion and teleports are seen frame by frame, so such a cloth steps
+    // at update rate 1 (update_rate.h).
+    bool rides_bodies() const { return !attached_body_.empty() || carrier_.active(); }
     // The collision stage over particles [begin, end) of a substep from
     // fraction `from` to `to` of the frame, of length h. Returns the number
     // of particle-collider contacts.

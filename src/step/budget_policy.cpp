@@ -6,6 +6,13 @@ namespace cloth {
 
 namespace {
 
+// A cloth's ladder; one that bodies carry keeps rate 1 (ClothContact::rides_bodies).
+QualityLadder ladder_of(const ClothInstance& cloth) {
+    QualityLadder ladder = cloth.quality().ladder();
+    if (cloth.contact().rides_bodies()) ladder.max_rate = 1;
+    return ladder;
+}
+
 // Where a cloth stands on its ladder: its current settings' rung.
 QualityRung current_rung(const QualityLadder& ladder, const ClothInstance& cloth) {
     const SolverSettings settings = cloth.quality().settings();
@@ -56,7 +63,7 @@ void set_rung(ClothInstance& cloth, QualityRung rung) {
 double lower(const BudgetCloth& c, uint64_t frame, double predicted, double target, double ms_per_ns,
              bool below_floor) {
     ClothInstance& cloth = *c.cloth;
-    const QualityLadder ladder = cloth.quality().ladder();
+    const QualityLadder ladder = ladder_of(cloth);
     const RungCost cost(c, frame);
     const double others = predicted - static_cast<double>(c.cost_ns) * ms_per_ns;
     QualityRung rung = current_rung(ladder, cloth);
@@ -122,6 +129,7 @@ void BudgetPolicy::decide(double budget_ms, double step_ms, uint64_t frame, int6
     }
     if (step_ms >= kCalmBelow * budget_ms) {
         calm_frames_ = 0;
+        rebalance(budget_ms, predicted, frame, ms_per_ns, cloths, count);
         return;
     }
     if (++calm_frames_ < kCalmFrames) return;
@@ -129,7 +137,7 @@ void BudgetPolicy::decide(double budget_ms, double step_ms, uint64_t frame, int6
     for (uint32_t c = count; c-- > 0;) {  // the most relevant first
         ClothInstance& cloth = *cloths[c].cloth;
         if (!cloth.quality().policy().enabled || !cloth.quality().can_rise()) continue;
-        const QualityLadder ladder = cloth.quality().ladder();
+        const QualityLadder ladder = ladder_of(cloth);
         const RungCost cost(cloths[c], frame);
         QualityRung rung = current_rung(ladder, cloth);
         if (!ladder.up(rung)) continue;
@@ -140,6 +148,54 @@ void BudgetPolicy::decide(double budget_ms, double step_ms, uint64_t frame, int6
         predicted += change;
         set_rung(cloth, rung);
     }
+}
+
+void BudgetPolicy::rebalance(double budget_ms, double predicted, uint64_t frame, double ms_per_ns,
+                             BudgetCloth* cloths, uint32_t count) {
+    // The most relevant cloth that can rise, and what its next rung adds.
+    uint32_t top = count;
+    QualityRung raised{};
+    double change = 0;
+    for (uint32_t c = count; c-- > 0 && top == count;) {
+        ClothInstance& cloth = *cloths[c].cloth;
+        if (!cloth.quality().policy().enabled || !cloth.quality().can_rise()) continue;
+        const QualityLadder ladder = ladder_of(cloth);
+        raised = current_rung(ladder, cloth);
+        if (!ladder.up(raised)) continue;
+        top = c;
+        const double now = static_cast<double>(cloths[c].cost_ns) / cloth.quality().rate();
+        change = (RungCost(cloths[c], frame)(raised) - now) * ms_per_ns;
+    }
+    if (top == count) return;
+    // Paid for by cloths strictly less relevant, the least first, each
+    // down to its floor's last rung (with its rates: no load here).
+    const double target = kRaiseTo * budget_ms;
+    double after = predicted + change;
+    QualityRung lowered[kMostRebalanced];
+    uint32_t payers = 0;
+    for (uint32_t c = 0; c < top && after > target && payers < kMostRebalanced; ++c) {
+        ClothInstance& cloth = *cloths[c].cloth;
+        if (!cloth.quality().policy().enabled || cloths[c].relevance >= cloths[top].relevance) continue;
+        const QualityLadder ladder = ladder_of(cloth);
+        const RungCost cost(cloths[c], frame);
+        QualityRung rung = current_rung(ladder, cloth);
+        const double before = cost(rung) * ms_per_ns;
+        double now = before;
+        while (after - before + now > target) {
+            if (ladder.at_or_below_floor(rung) && !ladder.rate_is_next(rung)) break;
+            if (!ladder.down(rung)) break;
+            now = cost(rung) * ms_per_ns;
+        }
+        after += now - before;
+        lowered[payers++] = rung;
+    }
+    if (after > target) return;  // the others cannot pay for it
+    for (uint32_t p = 0, c = 0; p < payers; ++c) {
+        if (!cloths[c].cloth->quality().policy().enabled || cloths[c].relevance >= cloths[top].relevance)
+            continue;
+        set_rung(*cloths[c].cloth, lowered[p++]);
+    }
+    set_rung(*cloths[top].cloth, raised);
 }
 
 }  // namespace cloth

@@ -24,6 +24,11 @@
 //                        kLoadOverruns of the last kLoadWindow frames
 //                        over budget (a load, not a spike),
 //                        and one rung a frame
+//   within budget        the most relevant cloth below its top rises a
+//   (not calm)           rung if lowering less relevant cloths (to their
+//                        floors, with their rates) pays for it within
+//                        kRaiseTo of the budget: the most relevant cloth
+//                        keeps its top as long as the others can pay
 //   below kCalmBelow     for kCalmFrames frames in a row: each cloth, the
 //                        most relevant first (of equals the cheapest),
 //                        goes one rung up if the predicted
@@ -70,8 +75,16 @@ class BudgetPolicy {
     void after_frame(double budget_ms, double step_ms, uint64_t frame, BudgetCloth* cloths, uint32_t count);
 
   private:
+    // Cloths that may pay for one raise of the most relevant.
+    static constexpr uint32_t kMostRebalanced = 64;
+
     void decide(double budget_ms, double step_ms, uint64_t frame, int64_t total_ns, BudgetCloth* cloths,
                 uint32_t count);
+    // Within budget but not calm: the most relevant cloth below its top
+    // rises one rung if lowering less relevant ones (to their floors, with
+    // their rates) keeps the predicted step at kRaiseTo of the budget.
+    void rebalance(double budget_ms, double predicted, uint64_t frame, double ms_per_ns, BudgetCloth* cloths,
+                   uint32_t count);
     uint32_t calm_frames_ = 0;
     uint32_t recent_overruns_ = 0;  // bit k: the frame k frames ago overran
 };

@@ -241,6 +241,8 @@ Status World::step(float dt) {
             ++profile_.sleeping_cloths;
             continue;
         }
+        // A body that carries the cloth moves frame by frame: back to rate 1.
+        if (cloth->update_rate().rate() > 1 && cloth->contact().rides_bodies()) cloth->set_update_rate(1, 0);
         if (!cloth->update_rate().due(frame_)) continue;  // between its steps (update_rate.h)
         cloth->begin_frame(dt * static_cast<float>(cloth->begin_rate_step(frame_)), gravity);
         stepping_.push_back(s);

@@ -223,6 +223,29 @@ TEST(UpdateRate, MixedRatesGiveTheSameBitsForEveryWorkerCount) {
     for (uint32_t workers : {1u, 2u, 3u}) EXPECT_EQ(mixed_rates_hash(workers), reference) << workers;
 }
 
+TEST(UpdateRate, AClothABodyCarriesStepsEveryCall) {
+    Flags w(1);
+    cloth_body_desc bd = cloth_default_body_desc();
+    cloth_body_id body{};
+    ASSERT_EQ(cloth_body_create(w.world, &bd, &body), CLOTH_OK);
+    ASSERT_EQ(cloth_set_update_rate(w.flags[0], 4), CLOTH_OK);
+    w.step();
+    // Attached at rate 4: the next calls bring it back to rate 1.
+    const uint32_t corner = 0;
+    ASSERT_EQ(cloth_attach(w.flags[0], body, &corner, nullptr, 1), CLOTH_OK);
+    for (int call = 0; call < 4; ++call) w.step();
+    uint32_t rate = 0;
+    ASSERT_EQ(cloth_get_update_rate(w.flags[0], &rate, nullptr), CLOTH_OK);
+    EXPECT_EQ(rate, 1u);
+    for (int call = 0; call < 3; ++call) {
+        w.step();
+        EXPECT_EQ(w.stepped_last_call(), 1u) << "it steps every call";
+    }
+    EXPECT_EQ(cloth_set_update_rate(w.flags[0], 2), CLOTH_ERROR_INVALID_VALUE);
+    ASSERT_EQ(cloth_get_update_rate(w.flags[0], &rate, nullptr), CLOTH_OK);
+    EXPECT_EQ(rate, 1u) << "refused, and nothing changed";
+}
+
 TEST(UpdateRate, AFrameBudgetSlowsTheRatesOfPoliciesThatAllowItAndAStepAllocatesNothing) {
     Flags w(8);
     cloth_quality_policy policy = cloth_default_quality_policy();

@@ -230,12 +230,16 @@ TEST(BudgetPolicyModel, TheLeastImportantClothsAreLoweredFirstAndTheMostImportan
     EXPECT_EQ(world.overruns(budget, 30), 0);
 
     // A budget whose calm leaves room for five more sweeps (200 us below
-    // kRaiseTo of it): the rungs go to the more important first.
+    // kRaiseTo of it): the calm raises both, and then the more important
+    // takes the least important's sweeps (it goes back to its floor): all
+    // five go to it, the step within kRaiseTo of the budget.
     const double looser = (1580e3 + 200e3) * 1e-6 / BudgetPolicy::kRaiseTo;
     for (int i = 0; i < 300; ++i) world.frame(looser);
     EXPECT_EQ(near.solver().iterations, 16u);
-    EXPECT_GT(mid.solver().iterations, far.solver().iterations) << "the more important rises first";
-    EXPECT_GT(far.solver().iterations, 8u);
+    EXPECT_EQ(mid.solver().iterations, 13u) << "the more important rises first, paid for by the less";
+    EXPECT_EQ(far.solver().iterations, 8u);
+    EXPECT_LE(world.step_ms(), BudgetPolicy::kRaiseTo * looser * (1 + 1e-9));
+    EXPECT_EQ(world.overruns(looser, 30), 0);
 }
 
 TEST(BudgetPolicyModel, AtTheFloorASlowerRateComesBeforeFewerIterationsAndGoesFirstOnTheWayUp) {
