@@ -35,6 +35,13 @@ CLOTH_API cloth_result cloth_set_sleep(cloth_id id, const cloth_sleep_params* pa
     });
 }
 
+CLOTH_API cloth_result cloth_sleep(cloth_id id) {
+    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+        cloth.hold_asleep();
+        return {};
+    });
+}
+
 CLOTH_API cloth_result cloth_wake(cloth_id id) {
     return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
         cloth.wake();

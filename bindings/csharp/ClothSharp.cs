@@ -827,6 +827,8 @@ namespace ClothSharp
         {
             get { byte b; ClothException.Check(Native.cloth_get_teleported(Id, out b)); return b != 0; }
         }
+        /// <summary>Put the cloth to sleep now (out of view): it costs nothing and keeps its motion for Wake.</summary>
+        public void Sleep() { ClothException.Check(Native.cloth_sleep(Id)); }
         public void Wake() { ClothException.Check(Native.cloth_wake(Id)); }
 
         public ClothStats GetStats()

@@ -179,7 +179,7 @@ extern "C" {
 #define CLOTH_VERSION_MAJOR 1
 /// Minor version of this header: a library of the same major and at least
 /// this minor version has every function and struct of this header.
-#define CLOTH_VERSION_MINOR 11
+#define CLOTH_VERSION_MINOR 12
 /// Patch version of this header (fixes that change no interface).
 #define CLOTH_VERSION_PATCH 0
 
@@ -1327,6 +1327,17 @@ typedef struct cloth_sleep_params {
 CLOTH_API cloth_sleep_params CLOTH_CALL cloth_default_sleep_params(void);
 /// Change when the cloth sleeps (wakes it).
 CLOTH_API cloth_result CLOTH_CALL cloth_set_sleep(cloth_id cloth, const cloth_sleep_params* params);
+/// Put the cloth to sleep now, whatever its motion (a cloth out of view):
+/// cloth_step skips it and it costs nothing. Unlike a cloth that fell
+/// asleep at rest it keeps its velocities, so waking it continues its
+/// motion where it stopped, and moving bodies do not wake it: it wakes on
+/// cloth_wake or on anything else listed above. A cloth with a carrier
+/// stays where it was while the carrier moves on; its first step after
+/// waking moves it with the carrier as a teleport of the carrier would
+/// (unless cloth_set_positions placed it first). Particles attached to a
+/// body without a carrier are pulled to where their body is now in that
+/// step. Snapshots keep whether the host put the cloth to sleep. Since 1.12.
+CLOTH_API cloth_result CLOTH_CALL cloth_sleep(cloth_id cloth);
 /// Wake the cloth: it steps again from the next cloth_step.
 CLOTH_API cloth_result CLOTH_CALL cloth_wake(cloth_id cloth);
 /// Whether the cloth sleeps. *out_sleeping is one byte (C99 bool), 1 or 0.

@@ -36,10 +36,31 @@ Vec3 ClothContact::attached_position(uint32_t particle, float fraction) const {
     return body_pose(attached_body_[particle], fraction).apply(attached_offset_.get(particle));
 }
 
+void ClothContact::fall_asleep() {
+    catch_up_on_ = UINT32_MAX;
+    slept_on_ = carrier_.active() ? carrier_.body() : UINT32_MAX;
+    if (slept_on_ == UINT32_MAX) return;
+    slept_generation_ = world_->body_generation(slept_on_);
+    const BodyState& carrier = world_->body(slept_on_);
+    slept_at_ =
+        carrier.jumped ? carrier.before_jump : carrier.body.start;  // where the cloth last followed it
+}
+
+void ClothContact::wake_up() {
+    catch_up_on_ = slept_on_;
+    slept_on_ = UINT32_MAX;
+}
+
 void ClothContact::begin_step(float dt, const float* pinned, Vec3Soa& x, Vec3Soa& v) {
+    const uint32_t catch_up_on = catch_up_on_;
+    catch_up_on_ = UINT32_MAX;
     if (!carrier_.active()) return;
     const BodyState& carrier = world_->body(carrier_.body());
-    carrier_.begin_step(carrier.body, carrier.jumped ? &carrier.before_jump : nullptr, dt, pinned,
+    // A carrier changed while the cloth slept has nothing to catch up with.
+    const bool same =
+        carrier_.body() == catch_up_on && world_->body_generation(catch_up_on) == slept_generation_;
+    const Pose* jumped_from = same ? &slept_at_ : carrier.jumped ? &carrier.before_jump : nullptr;
+    carrier_.begin_step(carrier.body, jumped_from, dt, pinned,
                         attached_body_.empty() ? nullptr : &attached_body_, x, v);
 }
 

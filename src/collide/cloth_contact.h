@@ -47,6 +47,13 @@ class ClothContact {
 
     Carrier& carrier() { return carrier_; }
     const Carrier& carrier() const { return carrier_; }
+    // A cloth the host put to sleep does not travel with its carrier while
+    // asleep; the first step after it wakes moves it with the carrier from
+    // where the carrier was when it fell asleep, as a teleport does.
+    void fall_asleep();
+    void wake_up();
+    // The host placed the cloth (positions, a snapshot): nothing to catch up with.
+    void forget_sleep() { slept_on_ = catch_up_on_ = UINT32_MAX; }
 
     // Once per frame, before the substeps (carrier).
     void begin_step(float dt, const float* pinned, Vec3Soa& x, Vec3Soa& v);
@@ -76,6 +83,10 @@ class ClothContact {
     HostVector<uint32_t> attached_body_;  // per particle body slot, UINT32_MAX: none; empty until used
     Vec3Soa attached_offset_;             // per particle, body frame
     Carrier carrier_;
+    uint32_t slept_on_ = UINT32_MAX;     // the carrier's slot when the cloth fell asleep, or none
+    uint16_t slept_generation_ = 0;      // its generation (the slot may be reused)
+    Pose slept_at_;                      // and the carrier's pose then
+    uint32_t catch_up_on_ = UINT32_MAX;  // woken: the next begin_step jumps from slept_at_ on this carrier
 };
 
 }  // namespace cloth

@@ -109,6 +109,7 @@ void ClothInstance::set_pinned(const uint32_t* indices, uint32_t count, bool pin
 
 void ClothInstance::set_position(uint32_t particle, const Vec3& x) {
     wake();
+    contact_.forget_sleep();
     update_rate_.settle();  // a teleport shows at once
     x_.set(particle, x);
     v_.set(particle, Vec3::Zero());
@@ -209,8 +210,15 @@ void ClothInstance::set_sleep(const SleepSettings& settings) {
 }
 
 void ClothInstance::wake() {
+    if (held_asleep_) contact_.wake_up();
+    held_asleep_ = false;
     sleeping_ = false;
     rest_frames_ = 0;
+}
+
+void ClothInstance::hold_asleep() {
+    sleeping_ = held_asleep_ = true;
+    contact_.fall_asleep();
 }
 
 bool ClothInstance::can_shift_origin(const Vec3& shift) const {

@@ -93,6 +93,14 @@ class ClothInstance {
     const SleepSettings& sleep() const { return sleep_; }
     bool sleeping() const { return sleeping_; }
     void wake();
+    // The host puts the cloth to sleep now (an unseen cloth): it keeps its
+    // velocities, so waking continues its motion, and moving bodies do not
+    // wake it (a cloth on a carrier catches up with it when it wakes).
+    void hold_asleep();
+    bool held_asleep() const { return held_asleep_; }
+    // Whether the step wakes the sleeping cloth: bodies it follows move
+    // without a call on the cloth, unless the host holds it asleep.
+    bool woken_by_bodies() const { return sleeping_ && !held_asleep_ && contact_.follows_bodies(); }
     // Origin rebasing: subtract `shift` from the positions and pin targets
     // (between frames; everything else is relative or per frame);
     // can_shift_origin: whether every result stays finite.
@@ -361,6 +369,7 @@ class ClothInstance {
     UpdateRate update_rate_;
     ClothQuality quality_{solver_, frame_, update_rate_};
     bool sleeping_ = false;
+    bool held_asleep_ = false;  // put to sleep by the host (hold_asleep)
     uint32_t rest_frames_ = 0;  // consecutive frames below sleep_.max_speed
 
     // The previous state and the reported positions, sized aside (an

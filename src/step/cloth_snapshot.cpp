@@ -10,7 +10,7 @@
 //   targets (n floats each), then the pinned flags (n floats, 0 or 1).
 //   The header's flags say whether the strain limiter of the last frame's
 //   last substep ended past its promise (the default's next substep
-//   depends on it).
+//   depends on it), and whether the host holds the cloth asleep.
 // The header's checksum is XXH3 of every byte before it and every byte
 // after it, so a restore checks it before it reads anything else: a
 // snapshot is either exactly what was saved or refused as corrupt.
@@ -55,6 +55,8 @@ struct SnapshotHeader {
 // The last frame's last substep ended with its strain limiter past its
 // promise (the default's next substep runs backward Euler: solver_default.h).
 constexpr uint32_t kStrainedFlag = 1;
+// The host holds the sleeping cloth asleep (ClothInstance::hold_asleep).
+constexpr uint32_t kHeldAsleepFlag = 2;
 
 constexpr size_t kChecksumAt = offsetof(SnapshotHeader, checksum);
 constexpr size_t kAfterChecksum = kChecksumAt + sizeof(uint64_t);
@@ -94,7 +96,7 @@ void ClothInstance::save_snapshot(void* out) const {
     h.substeps = solver_.substeps;
     h.sleeping = sleeping_ ? 1 : 0;
     h.rest_frames = rest_frames_;
-    h.flags = strained_ ? kStrainedFlag : 0;
+    h.flags = (strained_ ? kStrainedFlag : 0) | (held_asleep_ ? kHeldAsleepFlag : 0);
     for (int c = 0; c < 3; ++c) h.wind[c] = aero_.wind[c];
     h.air_density = aero_.air_density;
     h.drag_coefficient = aero_.drag_coefficient;
@@ -154,7 +156,9 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
         h.substeps < 1 || h.substeps > CLOTH_MAX_SUBSTEPS) {
         return corrupt("its solver settings are out of range");
     }
-    if ((h.flags & ~kStrainedFlag) != 0) return corrupt("it has flags no library of this format writes");
+    if ((h.flags & ~(kStrainedFlag | kHeldAsleepFlag)) != 0 || ((h.flags & kHeldAsleepFlag) && !h.sleeping)) {
+        return corrupt("it has flags no library of this format writes");
+    }
     const float air[7] = {h.wind[0],          h.wind[1],          h.wind[2],    h.air_density,
                           h.drag_coefficient, h.lift_coefficient, h.linear_drag};
     for (float a : air) {
@@ -190,6 +194,9 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
         if (pinned_[i] != 0.0f) pinned_list_.push_back(i);
     }
     sleeping_ = h.sleeping != 0;
+    held_asleep_ = (h.flags & kHeldAsleepFlag) != 0;
+    contact_.forget_sleep();
+    if (held_asleep_) contact_.fall_asleep();  // a carrier is caught up with from where it is now
     rest_frames_ = h.rest_frames;
     strained_ = (h.flags & kStrainedFlag) != 0;
     update_rate_.settle();  // reports show the restored state at once

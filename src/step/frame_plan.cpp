@@ -111,7 +111,7 @@ void ClothInstance::plan(Stage stage, void (C::*run)(const GroupTask&), void (C:
 Status ClothInstance::step(float dt, const Vec3& gravity, TaskSystem* tasks) {
     SerialTasks serial;
     TaskSystem& runner = tasks ? *tasks : serial;
-    if (sleeping_ && contact_.follows_bodies()) wake();  // bodies move without a call on the cloth
+    if (woken_by_bodies()) wake();
     if (sleeping_) return {};
     begin_frame(dt, gravity);
     ClothInstance* self = this;

@@ -236,7 +236,7 @@ Status World::step(float dt) {
         if (!cloth) continue;
         cloth_cost_ns_[s] = cloth_solve_ns_[s] = 0;
         cloth->set_world_frame(frame_);
-        if (cloth->sleeping() && cloth->contact().follows_bodies()) cloth->wake();  // bodies move freely
+        if (cloth->woken_by_bodies()) cloth->wake();
         if (cloth->sleeping()) {
             ++profile_.sleeping_cloths;
             continue;

@@ -938,7 +938,7 @@ void Harness::cloth_contact() {
 
 void Harness::level_of_detail() {
     const uint8_t what = in_.u8();
-    if (what % 5 == 2) {
+    if (what % 6 == 2) {
         const cloth_world_id world = pick_world();
         cloth_test::Watch watch = watch_of(world.index1, world.generation);
         const float viewer[3] = {in_.any_float(), in_.any_float(), in_.any_float()};
@@ -948,7 +948,7 @@ void Harness::level_of_detail() {
     }
     const cloth_id cloth = pick_cloth();
     cloth_test::Watch watch = watch_of(cloth);
-    switch (what % 5) {
+    switch (what % 6) {
         case 0: {
             const float importance =
                 (what & 0x40) ? in_.any_float() : 0.25f * static_cast<float>(in_.u8() % 8);
@@ -968,6 +968,13 @@ void Harness::level_of_detail() {
             guarded(watch, "cloth_set_update_rate", [&] { return cloth_set_update_rate(cloth, rate); });
             break;
         }
+        case 5:
+            if (what & 0x80) {
+                guarded(watch, "cloth_sleep", [&] { return cloth_sleep(cloth); });
+            } else {
+                guarded(watch, "cloth_wake", [&] { return cloth_wake(cloth); });
+            }
+            break;
         default: {
             uint32_t rate = 0, phase = 0;
             watch.outputs = {{&rate, sizeof rate, "the rate"}, {&phase, sizeof phase, "the phase"}};

@@ -260,6 +260,11 @@ static class ClothTests
             world.SetViewer(new Float3(0.0f, 1.0f, 5.0f));
             for (int frame = 0; frame < 5; ++frame) world.Step(1.0f / 60.0f);
             world.ClearViewer();
+            b.Sleep();
+            world.Step(1.0f / 60.0f);
+            Check(b.IsSleeping, "a cloth the host put to sleep stays asleep");
+            b.Wake();
+            Check(!b.IsSleeping, "and wakes on the host's word");
             try
             {
                 a.UpdateRate = 3;
