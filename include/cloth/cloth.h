@@ -1305,7 +1305,10 @@ CLOTH_API cloth_result CLOTH_CALL cloth_get_update_rate(cloth_id cloth, uint32_t
                                                         uint32_t* out_phase);
 
 /* Sleep. A cloth whose particles all move slower than max_speed for
- * `frames` consecutive frames goes to sleep: its velocities become zero and
+ * `frames` consecutive frames goes to sleep (a particle's speed is its
+ * velocity, or, while no velocity passes ten times max_speed, its move over
+ * the frame: a cloth held at its strain limit keeps velocities that move
+ * nothing): its velocities become zero and
  * cloth_step skips it (it costs nothing) until something that changes its
  * motion wakes it: pinning, unpinning, pin targets, cloth_set_positions,
  * solver, spring, air or wind settings, gravity, self-collision settings,

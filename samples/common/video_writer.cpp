@@ -12,7 +12,7 @@ bool VideoWriter::open(const std::string& path, int width, int height, int fps, 
         *error = "video path must not contain a single quote: " + path;
         return false;
     }
-    const std::string command = "ffmpeg -loglevel error -y -f rawvideo -pix_fmt rgb24 -s " +
+    const std::string command = "chrt --idle 0 ffmpeg -loglevel error -y -f rawvideo -pix_fmt rgb24 -s " +
                                 std::to_string(width) + "x" + std::to_string(height) + " -r " +
                                 std::to_string(fps) + " -i - -c:v libx264 -preset veryfast -crf 23 " +
                                 "-pix_fmt yuv420p -movflags +faststart '" + path + "'";

@@ -2,7 +2,10 @@
 // them as H.264 in an MP4 (a flag's motion cannot be judged from stills).
 // Written through ffmpeg's command line rather than its libraries: the
 // sample only needs "frames in, file out", and a pipe keeps the encoder's
-// cost and its dependencies out of the process being timed.
+// cost and its dependencies out of the process being timed. The encoder
+// runs at idle priority (SCHED_IDLE), so it takes only the time the cloth
+// step leaves: at normal priority it shared the cores with the step's
+// workers and its time showed in the step's p99.
 #pragma once
 
 #include <cstdint>

@@ -7,11 +7,12 @@
 namespace cloth {
 
 void IterativeSolve::begin(cloth_solver_kind kind, uint32_t max_iterations, double tolerance,
-                           const Problem& problem) {
+                           const Problem& problem, double absolute_rz) {
     problem_ = problem;
     kind_ = kind;
     budget_ = max_iterations;
     tolerance_ = tolerance;
+    absolute_rz_ = absolute_rz;
     round_ = kind == CLOTH_SOLVER_JACOBI ? Round::kJacobiSweep
              : kind == CLOTH_SOLVER_PCG  ? Round::kPcgStart
                                          : Round::kChebyshevBound;
@@ -109,7 +110,7 @@ void IterativeSolve::finish_round() {
                 break;
             }
             rz0_ = rz_ = sum_partials(work);
-            go_on = budget_ > 0 && rz_ > 0 && rz_ > tolerance_ * tolerance_ * rz0_;
+            go_on = budget_ > 0 && rz_ > 0 && wants_more(rz_);
             round_ = Round::kPcgProduct;
             break;
         case Round::kPcgProduct: {
@@ -128,7 +129,7 @@ void IterativeSolve::finish_round() {
             }
             const double rz_next = sum_partials(work);
             ++iteration_;
-            go_on = iteration_ < budget_ && rz_next > tolerance_ * tolerance_ * rz0_;
+            go_on = iteration_ < budget_ && wants_more(rz_next);
             beta_ = rz_next / rz_;
             rz_ = rz_next;
             round_ = Round::kPcgDirection;
@@ -153,11 +154,11 @@ void IterativeSolve::finish_round() {
             if (starting_) {
                 starting_ = false;
                 rz0_ = rz_ = rz_next;
-                go_on = rz_ > 0;
+                go_on = rz_ > 0 && rz_ > absolute_rz_;
                 round_ = Round::kPcgProduct;
                 break;
             }
-            go_on = rz_next > tolerance_ * tolerance_ * rz0_;
+            go_on = wants_more(rz_next);
             beta_ = rz_next / rz_;
             rz_ = rz_next;
             round_ = Round::kPcgDirection;

@@ -22,6 +22,8 @@
 // solve_chebyshev run this same sequence on the calling thread.
 #pragma once
 
+#include <algorithm>
+
 #include "base/staged.h"
 #include "solve/multigrid.h"
 #include "solve/solvers.h"
@@ -44,8 +46,10 @@ class IterativeSolve final : public StagedAlgorithm {
 
     // `kind` is CLOTH_SOLVER_JACOBI, CLOTH_SOLVER_PCG or
     // CLOTH_SOLVER_CHEBYSHEV; at most `max_iterations` iterations (PCG
-    // stops earlier below `tolerance`).
-    void begin(cloth_solver_kind kind, uint32_t max_iterations, double tolerance, const Problem& problem);
+    // stops earlier below `tolerance`, or once r.z is at most
+    // `absolute_rz`, in r.z's own units: kg m^2/s^2).
+    void begin(cloth_solver_kind kind, uint32_t max_iterations, double tolerance, const Problem& problem,
+               double absolute_rz = 0);
     // Where the solution is once done: problem.dv, or for JACOBI whichever
     // of dv and scratch the last sweep wrote.
     Vec3Soa& solution() const { return *current_; }
@@ -80,6 +84,9 @@ class IterativeSolve final : public StagedAlgorithm {
     cloth_solver_kind kind_ = CLOTH_SOLVER_PCG;
     uint32_t budget_ = 0;
     double tolerance_ = 0;
+    double absolute_rz_ = 0;
+    // PCG: whether r.z (= rz) still asks for another iteration.
+    bool wants_more(double rz) const { return rz > std::max(tolerance_ * tolerance_ * rz0_, absolute_rz_); }
     Round round_ = Round::kPcgStart;
     bool done_ = true;
     uint32_t iteration_ = 0;

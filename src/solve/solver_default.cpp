@@ -5,15 +5,19 @@
 
 namespace cloth {
 
-float stiffness_over_mass(const Material& material, const float* mass, const float* pinned, uint32_t count) {
-    float k = 0;
-    for (const SpringParams& s : material.springs) k = std::max(k, s.stiffness);
+float lightest_free_mass(const float* mass, const float* pinned, uint32_t count) {
     float m = 0;
     for (uint32_t i = 0; i < count; ++i) {
         if (pinned[i] != 0.0f) continue;
         m = m == 0 ? mass[i] : std::min(m, mass[i]);
     }
-    return m > 0 ? k / m : 0.0f;
+    return m;
+}
+
+float stiffness_over_mass(const Material& material, float lightest_free_mass) {
+    float k = 0;
+    for (const SpringParams& s : material.springs) k = std::max(k, s.stiffness);
+    return lightest_free_mass > 0 ? k / lightest_free_mass : 0.0f;
 }
 
 SolverSettings resolve_solver(const SolverSettings& requested, float dt, float stiffness_per_mass,
@@ -24,6 +28,7 @@ SolverSettings resolve_solver(const SolverSettings& requested, float dt, float s
     out.multigrid = multigrid;
     out.iterations = multigrid ? kDefaultMultigridIterations : kDefaultPcgIterations;
     out.cg_tolerance = kDefaultPcgTolerance;
+    out.velocity_tolerance = kDefaultVelocityTolerance;
     const double gamma_limit = multigrid ? kDefaultMultigridSubstepGamma : kDefaultSubstepGamma;
     // Substeps: the fewest that bring the substep's gamma to the limit
     // (gamma falls with the square of the substep count). The gamma is the

@@ -13,7 +13,9 @@ namespace cloth {
 
 // max over spring kinds of k, over the lightest free particle's mass (0 if
 // every particle is pinned or no spring is stiff).
-float stiffness_over_mass(const Material& material, const float* mass, const float* pinned, uint32_t count);
+float stiffness_over_mass(const Material& material, float lightest_free_mass);
+// The lightest free particle's mass (0 if every particle is pinned).
+float lightest_free_mass(const float* mass, const float* pinned, uint32_t count);
 
 // The default: PCG preconditioned by multigrid (multigrid.h), at most
 // kDefaultMultigridIterations iterations (fewer once kDefaultPcgTolerance is
@@ -33,6 +35,14 @@ constexpr double kDefaultMultigridSubstepGamma = 20000.0;
 // energy gain.
 constexpr uint32_t kDefaultPcgIterations = 16;
 constexpr float kDefaultPcgTolerance = 1e-4f;
+// The default's stop in physical units (SolverSettings::velocity_tolerance):
+// a solve stops once no particle's velocity change can be off by more than
+// this, whatever the relative residual. A cloth near rest has a small
+// right-hand side, which the relative stop must still cut 1e4-fold; this
+// lets it run the fewer iterations its motion needs. r.z is about the
+// error's W-norm, which over-counts stiff error modes, so the bound on the
+// lightest particle is a loose one: a still 64x64 cloth runs one iteration.
+constexpr float kDefaultVelocityTolerance = 1e-2f;
 constexpr double kDefaultSubstepGamma = 700.0;
 constexpr uint32_t kDefaultMaxSubsteps = 16;
 // Two substeps at 60 Hz, which the flag in wind needs (one converged

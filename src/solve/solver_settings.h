@@ -29,6 +29,11 @@ struct SolverSettings {
     uint32_t iterations = 1;
     uint32_t substeps = 1;
     float cg_tolerance = 1e-6f;
+    // PCG also stops once sqrt(r.z / lightest free mass) is below this
+    // (m/s): no particle's velocity change is off by more than it (r.z is
+    // about the error's W-norm, which bounds sum m_i |e_i|^2). 0: off.
+    // CLOTH_SOLVER_DEFAULT sets kDefaultVelocityTolerance.
+    float velocity_tolerance = 0;
     uint32_t cg_max_iterations = 1000;
     bool compression_safe_jacobian = true;
     // How implicit a substep is (the theta step, integrate.h): 1 is the

@@ -280,10 +280,37 @@ void ClothInstance::set_backstops(const float* distances, const float* radii) {
     wake();
 }
 
+float ClothInstance::moved_speed_squared() const {
+    if (frame_.backup == FrameBackup::kFirstIntegration) return -1.0f;
+    const float frame = frame_.h * static_cast<float>(frame_.solver.substeps);
+    if (!(frame > 0)) return -1.0f;
+    float most = 0;
+    for (uint32_t i = 0; i < particle_count(); ++i) {
+        const float dx = x_.x[i] - frame_.backup_x.x[i], dy = x_.y[i] - frame_.backup_x.y[i],
+                    dz = x_.z[i] - frame_.backup_x.z[i];
+        most = std::max(most, dx * dx + dy * dy + dz * dz);
+    }
+    return most / (frame * frame);
+}
+
 void ClothInstance::update_sleep() {
     float speed_squared = 0;
     for (float s : frame_.group_speed_squared) speed_squared = std::max(speed_squared, s);
-    const bool at_rest = speed_squared <= sleep_.max_speed * sleep_.max_speed && !contact_.follows_bodies();
+    const float max_squared = sleep_.max_speed * sleep_.max_speed;
+    // A cloth held at its strain limit keeps velocities that do not move
+    // it: each substep the limiter's projection turns its correction into
+    // velocity (Provot), and against the theta step's x' = x + h (v + theta
+    // dv), v' = v + dv, the particles it holds still end with
+    // (1 - theta) dv. Such a cloth is at rest when no particle moved
+    // farther than max_speed allows over the frame and no velocity is far
+    // above it (kPhantomSpeed).
+    constexpr float kPhantomSpeed = 10.0f;
+    if (sleep_.enabled && speed_squared > max_squared &&
+        speed_squared <= kPhantomSpeed * kPhantomSpeed * max_squared) {
+        const float moved = moved_speed_squared();
+        if (moved >= 0) speed_squared = moved;
+    }
+    const bool at_rest = speed_squared <= max_squared && !contact_.follows_bodies();
     rest_frames_ = at_rest ? rest_frames_ + 1 : 0;
     if (sleep_.enabled && rest_frames_ >= sleep_.frames) {
         // At rest: stop, and cost nothing until something changes.

@@ -365,6 +365,10 @@ class ClothInstance {
     FrameContext frame_;  // the frame in progress, or the last one
 
     void update_sleep();  // end of a successful frame
+    // The largest squared speed of a particle's move over the frame, from
+    // the frame's start positions (in frame_.backup_x); -1 when they are
+    // not kept.
+    float moved_speed_squared() const;
     SleepSettings sleep_;
     UpdateRate update_rate_;
     ClothQuality quality_{solver_, frame_, update_rate_};

@@ -72,6 +72,9 @@ struct FrameContext {
     uint32_t own_iterations = 0, own_substeps = 0;
 
     float h = 0;  // substep length, s
+    // The lightest free particle's mass, kg, when the solve stops in
+    // physical units (SolverSettings::velocity_tolerance); else 0.
+    float lightest_free_mass = 0;
     Vec3 gravity = Vec3::Zero();
     float theta = 1.0f;  // this substep's (integrate.h)
     // The strain the pins ask of this substep (Tethers::strain_pins_demand):

@@ -71,9 +71,12 @@ void ClothInstance::plan_substep() {
 }
 
 StagedAlgorithm* ClothInstance::begin_iterative_solve() {
+    // The physical stop (SolverSettings::velocity_tolerance) in r.z's units.
+    const double v_tol = frame_.solver.velocity_tolerance;
     frame_.iterative.begin(frame_.solver.kind, frame_.solver.iterations, frame_.solver.cg_tolerance,
                            {system(), assembly(), &dv_, &solver_work_, &dv_scratch_,
-                            frame_.solver.multigrid ? &multigrid_ : nullptr});
+                            frame_.solver.multigrid ? &multigrid_ : nullptr},
+                           frame_.lightest_free_mass * v_tol * v_tol);
     return &frame_.iterative;
 }
 
@@ -124,11 +127,12 @@ Status ClothInstance::step(float dt, const Vec3& gravity, TaskSystem* tasks) {
 
 void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     // Only the default solver's choice depends on k / m (a pass over every particle).
-    const float stiffness_per_mass =
-        solver_.kind == CLOTH_SOLVER_DEFAULT
-            ? stiffness_over_mass(material_, mass_.data(), pinned_.data(), particle_count())
-            : 0.0f;
+    const float lightest = solver_.kind == CLOTH_SOLVER_DEFAULT
+                               ? lightest_free_mass(mass_.data(), pinned_.data(), particle_count())
+                               : 0.0f;
+    const float stiffness_per_mass = stiffness_over_mass(material_, lightest);
     frame_.solver = resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty());
+    frame_.lightest_free_mass = frame_.solver.velocity_tolerance > 0 ? lightest : 0.0f;
     frame_.strained = strained_;
     // The default's own choice within a quality policy's maxima (the
     // host's bounds), then the policy's caps on it (ClothQuality::settings): the

@@ -10,6 +10,7 @@
 
 #include <cmath>
 
+#include "pinned_cloth.h"
 #include "scenes.h"
 #include "solve/strain_limit.h"
 
@@ -104,6 +105,43 @@ TEST(DefaultSolver, ThePaperStepFailsWhereTheDefaultHolds) {
         max_strain = std::max(max_strain, double(scene.stats().max_strain));
     }
     EXPECT_GT(max_strain, 0.5);
+}
+
+// Effort follows motion: the default's solve stops once no particle's
+// velocity change is off by more than a viewer could see
+// (kDefaultVelocityTolerance), so a cloth hanging still runs fewer
+// iterations than one falling, where the relative stop alone ran all five.
+TEST(DefaultSolver, AStillClothRunsFewerIterationsThanAFallingOne) {
+    cloth::testing::PinnedCloth hanging;
+    cloth_sleep_params awake = cloth_default_sleep_params();
+    awake.enabled = 0;
+    ASSERT_EQ(cloth_set_sleep(hanging.cloth, &awake), CLOTH_OK);
+    ASSERT_EQ(cloth_step(hanging.world, 1.0f / 60.0f), CLOTH_OK);
+    EXPECT_EQ(hanging.stats().last_solver_iterations, cloth::kDefaultMultigridIterations) << "falling";
+    for (int f = 1; f < 400; ++f) ASSERT_EQ(cloth_step(hanging.world, 1.0f / 60.0f), CLOTH_OK);
+    const cloth_stats still = hanging.stats();
+    EXPECT_LT(still.max_speed, 0.01f) << "it hangs still";
+    EXPECT_LE(still.last_solver_iterations, 2u) << "and its solve has little left to do";
+}
+
+// A cloth hanging at its strain limit comes to rest and sleeps: the
+// limiter's corrections leave velocities on the particles it holds that
+// move nothing, which the sleep test looks through (update_sleep).
+TEST(DefaultSolver, AClothHangingAtItsStrainLimitSleeps) {
+    cloth::testing::PinnedCloth held([](cloth_desc& desc) {
+        desc.area_density = 1.0f;
+        desc.structural.stiffness = 1e3f;
+    });
+    float strain = 0;
+    bool asleep = false;
+    for (int f = 0; f < 600 && !asleep; ++f) {
+        ASSERT_EQ(cloth_step(held.world, 1.0f / 60.0f), CLOTH_OK);
+        strain = held.stats().max_strain;
+        ASSERT_EQ(cloth_is_sleeping(held.cloth, &asleep), CLOTH_OK);
+    }
+    EXPECT_TRUE(asleep) << "within 10 s";
+    EXPECT_GT(strain, 0.07f) << "stretched to its limit, the case this checks";
+    EXPECT_LE(strain, 0.0801f) << "and held there";
 }
 
 TEST(DefaultSolver, SubstepsFollowGamma) {
