@@ -18,6 +18,8 @@ namespace {
 
 // cloth_stats as 1.6 had it: up to the strain-limit fields.
 constexpr size_t kStatsSize16 = offsetof(cloth_stats, strain_limit_excess);
+// 1.7 to 1.11 end before the rung the last step ran at.
+constexpr size_t kStatsSize111 = offsetof(cloth_stats, last_max_iterations);
 // The strain limit's promise after every step: within the limit plus this.
 constexpr float kStrainPromiseSlackOfAStep = 0.02f;
 
@@ -213,10 +215,10 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id id, cloth_stats* out) {
         if (!out) return null_error("out_stats");
         // 1.6's struct ends where the strain-limit fields begin.
         const uint32_t size = out->struct_size;
-        if (size != sizeof(cloth_stats) && size != kStatsSize16) {
+        if (size != sizeof(cloth_stats) && size != kStatsSize111 && size != kStatsSize16) {
             return Status::error(CLOTH_ERROR_INVALID_DESC,
-                                 "cloth_stats.struct_size is %u, expected %zu or %zu", size,
-                                 sizeof(cloth_stats), kStatsSize16);
+                                 "cloth_stats.struct_size is %u, expected %zu (or 1.11's %zu, 1.6's %zu)",
+                                 size, sizeof(cloth_stats), kStatsSize111, kStatsSize16);
         }
         const ClothMeasure m = measure(cloth, world.gravity);
         cloth_stats stats{};
@@ -234,6 +236,11 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id id, cloth_stats* out) {
         const float strain = cloth.holds_compression() ? m.max_abs_strain : m.max_strain;
         stats.strain_limit_excess = limit > 0.0f ? std::max(0.0f, strain - limit) : 0.0f;
         stats.strain_limit_unmet = stats.strain_limit_excess > kStrainPromiseSlackOfAStep ? 1 : 0;
+        if (cloth.last_step_ran()) {
+            const QualityRung ran = cloth.quality().ran_rung();
+            stats.last_max_iterations = ran.iterations;
+            stats.last_substeps = ran.substeps;
+        }
         std::memcpy(out, &stats, size);
         return {};
     });

@@ -987,10 +987,18 @@ typedef struct cloth_stats {
     /// the cloth can follow in one step or pins pull it apart. The state is
     /// finite and the following steps bring the cloth back; else 0. Since 1.7.
     uint8_t strain_limit_unmet;
+    /// the most iterations a solve of the last step could run: the solver's
+    /// setting, CLOTH_SOLVER_DEFAULT's own choice or a frame budget's cap
+    /// (last_solver_iterations is fewer where the solve stopped early).
+    /// Since 1.12.
+    uint32_t last_max_iterations;
+    /// the substeps of the last step (the same sources). Since 1.12.
+    uint32_t last_substeps;
 } cloth_stats;
 
 /// Measure the cloth now; the caller sets out_stats->struct_size first
-/// (the size of 1.6, without the strain-limit fields, is accepted too).
+/// (the sizes of 1.6, without the strain-limit fields, and of 1.7 to 1.11,
+/// without last_max_iterations and last_substeps, are accepted too).
 CLOTH_API cloth_result CLOTH_CALL cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);
 
 /* ------------------------------------------------------------------ */
@@ -1220,7 +1228,8 @@ CLOTH_API cloth_result CLOTH_CALL cloth_world_set_zone_callbacks(cloth_world_id 
  * before the iterations rise past half. And in a frame within budget, the
  * most relevant cloth below its top goes one rung up if lowering less
  * relevant cloths (to their floors, with their rates) pays for it.
- * cloth_stats.last_solver_iterations shows what a step ran, and setting the
+ * cloth_stats.last_max_iterations and last_substeps show the rung a step
+ * ran at, and setting the
  * policy again (or the solver) lifts the policy's cuts. */
 
 /// Set the world's frame budget in milliseconds, >= 0 (0: no budget, the default).

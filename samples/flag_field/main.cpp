@@ -261,8 +261,8 @@ int main(int argc, char** argv) {
         cloth_get_stats(rig.cloth(), &stats);
         uint32_t vehicle_rate = 1;
         cloth_get_update_rate(rig.cloth(), &vehicle_rate, nullptr);
-        if (frame == 0) own_iterations = stats.last_solver_iterations;
-        vehicle_full += vehicle_rate == 1 && stats.last_solver_iterations >= own_iterations;
+        if (frame == 0) own_iterations = stats.last_max_iterations;
+        vehicle_full += vehicle_rate == 1 && stats.last_max_iterations >= own_iterations;
         vehicle_strain = std::max(vehicle_strain, stats.max_strain);
         checks.strain_frames += !(stats.max_strain <= o.max_strain);
         ++frames_run;
@@ -270,13 +270,13 @@ int main(int argc, char** argv) {
         if (frame % 60 == 0) {
             double rate_sum[kClassCount] = {}, iteration_sum[kClassCount] = {};
             rate_sum[kNear] = vehicle_rate;
-            iteration_sum[kNear] = stats.last_solver_iterations;
+            iteration_sum[kNear] = stats.last_max_iterations;
             for (const FieldFlag& f : flags) {
                 cloth_stats s{};
                 s.struct_size = sizeof s;
                 cloth_get_stats(f.cloth, &s);
                 rate_sum[f.flag_class] += f.rate;
-                iteration_sum[f.flag_class] += s.last_solver_iterations;
+                iteration_sum[f.flag_class] += s.last_max_iterations;
             }
             char cells[kClassCount][32];
             for (int c = 0; c < kClassCount; ++c) {

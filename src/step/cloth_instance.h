@@ -137,6 +137,8 @@ class ClothInstance {
     void set_quality_policy(const QualityPolicy& policy);
     ClothQuality& quality() { return quality_; }
     const ClothQuality& quality() const { return quality_; }
+    // Whether a step has run (frame_ holds its settings).
+    bool last_step_ran() const { return frame_.h > 0; }
     // The strain limit the last step ran with (0: none).
     float ran_strain_limit() const {
         const StrainLimit& limit = frame_.solver.strain_limit;

@@ -122,6 +122,8 @@ TEST(DefaultSolver, AStillClothRunsFewerIterationsThanAFallingOne) {
     const cloth_stats still = hanging.stats();
     EXPECT_LT(still.max_speed, 0.01f) << "it hangs still";
     EXPECT_LE(still.last_solver_iterations, 2u) << "and its solve has little left to do";
+    EXPECT_EQ(still.last_max_iterations, cloth::kDefaultMultigridIterations) << "of the five it may run";
+    EXPECT_EQ(still.last_substeps, 2u);
 }
 
 // A cloth hanging at its strain limit comes to rest and sleeps: the

@@ -87,21 +87,26 @@ TEST_F(BadInput, GetStatsWithAWrongStructSizeReturnsInvalidDescAndWritesNothing)
 }
 
 // A caller built against 1.6, whose cloth_stats ends before the strain
-// limit's fields, keeps working: its fields are filled as a whole struct's
-// are, and not a byte past its size is written.
-TEST_F(BadInput, GetStatsWithThe16StructSizeFillsThatPrefixOnly) {
-    const size_t old_size = offsetof(cloth_stats, strain_limit_excess);
-    cloth_stats whole{};
-    whole.struct_size = sizeof whole;
-    ASSERT_EQ(cloth_get_stats(a_.cloth, &whole), CLOTH_OK);
-    cloth_stats old;
-    std::memset(&old, 0x5A, sizeof old);
-    old.struct_size = static_cast<uint32_t>(old_size);
-    ASSERT_EQ(cloth_get_stats(a_.cloth, &old), CLOTH_OK);
-    whole.struct_size = old.struct_size;
-    EXPECT_EQ(std::memcmp(&old, &whole, old_size), 0) << "the 1.6 fields differ from a whole struct's";
-    const unsigned char* tail = reinterpret_cast<const unsigned char*>(&old) + old_size;
-    for (size_t b = 0; b < sizeof old - old_size; ++b) EXPECT_EQ(tail[b], 0x5A) << "byte " << old_size + b;
+// limit's fields, or against 1.7 to 1.11, whose ends before the rung the
+// last step ran at, keeps working: its fields are filled as a whole
+// struct's are, and not a byte past its size is written.
+TEST_F(BadInput, GetStatsWithAnOlderStructSizeFillsThatPrefixOnly) {
+    for (const size_t old_size :
+         {offsetof(cloth_stats, strain_limit_excess), offsetof(cloth_stats, last_max_iterations)}) {
+        SCOPED_TRACE("struct_size " + std::to_string(old_size));
+        cloth_stats whole{};
+        whole.struct_size = sizeof whole;
+        ASSERT_EQ(cloth_get_stats(a_.cloth, &whole), CLOTH_OK);
+        cloth_stats old;
+        std::memset(&old, 0x5A, sizeof old);
+        old.struct_size = static_cast<uint32_t>(old_size);
+        ASSERT_EQ(cloth_get_stats(a_.cloth, &old), CLOTH_OK);
+        whole.struct_size = old.struct_size;
+        EXPECT_EQ(std::memcmp(&old, &whole, old_size), 0) << "the older fields differ from a whole struct's";
+        const unsigned char* tail = reinterpret_cast<const unsigned char*>(&old) + old_size;
+        for (size_t b = 0; b < sizeof old - old_size; ++b)
+            EXPECT_EQ(tail[b], 0x5A) << "byte " << old_size + b;
+    }
 }
 
 }  // namespace
