@@ -18,7 +18,11 @@
 // the grid's JACOBI k=1 step). Frame/DEFAULT_2_WORKERS/N: the default on a
 // world of two workers; counter x_faster_than_1_worker is the median
 // one-worker frame of the same scene, timed in the same run just before,
-// over its frame time.
+// over its frame time. Frame/DEFAULT_AT_REST/N: the default holding a
+// cloth hanging still (the hanging scene, 1e3 N/m, its top edge pinned,
+// awake, after 300 frames of settling); counter x_falling is its frame time over the median
+// frame of Frame/DEFAULT's falling cloth, timed in the same run just
+// before: what a quiet cloth costs against a moving one.
 //
 // Exit code 1 when a scene failed (what the ctest cloth_bench_smoke checks):
 // a benchmark that could not build its scene or whose step returned what it
@@ -190,6 +194,41 @@ void BM_FrameTwoWorkers(benchmark::State& state) {
     state.counters["one_worker_ms"] = one_worker * 1e3;
 }
 
+void BM_FrameAtRest(benchmark::State& state) {
+    const uint32_t resolution = static_cast<uint32_t>(state.range(0));
+    const double falling = median_frame_seconds(state, falling_flat(resolution, CLOTH_SOLVER_DEFAULT), 31);
+    if (state.error_occurred()) return;
+    SceneConfig config = falling_flat(resolution, CLOTH_SOLVER_DEFAULT);
+    config.kind = SceneKind::kHanging;
+    Scene scene(config);
+    if (!scene.ok()) {
+        state.SkipWithError(scene.error().c_str());
+        return;
+    }
+    if (!keep_awake(state, scene)) return;
+    // Its whole top edge pinned, the cloth hangs straight down and stills.
+    std::vector<uint32_t> top(resolution);
+    for (uint32_t i = 0; i < resolution; ++i) top[i] = i;
+    if (cloth_pin(scene.cloth(), top.data(), resolution) != CLOTH_OK) {
+        state.SkipWithError(cloth_get_last_error());
+        return;
+    }
+    CheckedSteps steps;
+    for (int i = 0; i < 300; ++i) steps.step(scene);
+    std::vector<double> times;
+    float max_speed = 0;
+    for (auto _ : state) {
+        const auto start = std::chrono::steady_clock::now();
+        steps.step(scene);
+        times.push_back(seconds_since(start));
+        max_speed = std::max(max_speed, scene.stats().max_speed);
+    }
+    if (!steps.report(state)) return;
+    state.counters["x_falling"] = median(times) / falling;
+    state.counters["falling_ms"] = falling * 1e3;
+    state.counters["max_speed"] = max_speed;
+}
+
 void BM_Frame(benchmark::State& state, cloth_solver_kind kind, bool mesh) {
     const uint32_t resolution = static_cast<uint32_t>(state.range(0));
     const double jacobi = jacobi_step_seconds(state, resolution);
@@ -235,6 +274,10 @@ void register_step_benchmarks() {
         b->Arg(32)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond);
     }
     benchmark::RegisterBenchmark("Frame/DEFAULT", BM_Frame, CLOTH_SOLVER_DEFAULT, false)
+        ->Arg(64)
+        ->Arg(128)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("Frame/DEFAULT_AT_REST", BM_FrameAtRest)
         ->Arg(64)
         ->Arg(128)
         ->Unit(benchmark::kMillisecond);
