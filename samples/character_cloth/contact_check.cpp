@@ -27,4 +27,19 @@ float closest_between(const std::vector<float>& a, const std::vector<float>& b, 
     return std::sqrt(least2);
 }
 
+float closest_within(const std::vector<float>& x, const std::vector<float>& rest, float apart, float beyond) {
+    const auto squared = [](const std::vector<float>& p, size_t i, size_t j) {
+        const float dx = p[i] - p[j], dy = p[i + 1] - p[j + 1], dz = p[i + 2] - p[j + 2];
+        return dx * dx + dy * dy + dz * dz;
+    };
+    float least2 = beyond * beyond;
+    for (size_t i = 0; i < x.size(); i += 3) {
+        for (size_t j = i + 3; j < x.size(); j += 3) {
+            const float now = squared(x, i, j);
+            if (now < least2 && squared(rest, i, j) >= apart * apart) least2 = now;
+        }
+    }
+    return std::sqrt(least2);
+}
+
 }  // namespace character_cloth

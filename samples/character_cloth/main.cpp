@@ -269,6 +269,13 @@ int main(int argc, char** argv) {
     const float garment_gap = 0.5f * (o.garment_contact > 0.0f ? o.garment_contact : 0.02f);
     float closest_garments = INFINITY;
     int garments_touching = 0;
+    // The cape against itself: particles at least three self-collision
+    // thicknesses apart at rest (beyond its rest neighbours) closer than
+    // half of one (1 cm when the cape's self-collision is off).
+    const float cape_thickness = o.cape_self_collision > 0.0f ? o.cape_self_collision : 0.01f;
+    const float cape_gap = 0.5f * cape_thickness;
+    float closest_folds = INFINITY;
+    int cape_folds_touching = 0;
     constexpr int kVideoWidth = 640, kVideoHeight = 400, kVideoFps = 30;
     cloth_samples::VideoWriter video;
     if (!o.video.empty() && !video.open(o.video, kVideoWidth, kVideoHeight, kVideoFps, &error)) {
@@ -336,6 +343,9 @@ int main(int argc, char** argv) {
         const float gap = closest_between(positions(cape), positions(skirt), 4.0f * garment_gap);
         closest_garments = std::min(closest_garments, gap);
         if (gap < garment_gap) ++garments_touching, ok = false;
+        const float fold = closest_within(positions(cape), cape.rest, 3.0f * cape_thickness, 4.0f * cape_gap);
+        closest_folds = std::min(closest_folds, fold);
+        if (fold < cape_gap) ++cape_folds_touching, ok = false;
         const Phase phase = clip.phase(time);
         ok = motion.observe(pose, phase, time, teleported, cape, skirt) && ok;
         ok = ok && speed <= o.max_speed;
@@ -391,6 +401,10 @@ int main(int argc, char** argv) {
         "  the cape and the skirt closer than %.3g m in %d frames (closest %.3g m; contact thickness %.3g "
         "m)\n",
         garment_gap, garments_touching, closest_garments, o.garment_contact);
+    std::printf(
+        "  the cape with itself (particles %.3g m apart at rest or more) closer than %.3g m in %d frames "
+        "(closest %.3g m; self-collision thickness %.3g m)\n",
+        3.0f * cape_thickness, cape_gap, cape_folds_touching, closest_folds, o.cape_self_collision);
     std::printf(
         "  max speed %.2f m/s (limit %.3g); cloth calls that failed: %d; frames failing a check: %d\n",
         worst_speed, o.max_speed, failed_calls, bad_frames);

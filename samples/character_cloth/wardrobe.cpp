@@ -27,6 +27,7 @@ bool dress(cloth_world_id world, cloth_body_id root, cloth_fabric_id fabric, con
     g->triangles.resize(3 * triangles);
     if (cloth_fabric_read_triangles(fabric, g->triangles.data(), 3 * triangles) != CLOTH_OK)
         return fail("triangles");
+    g->rest = rest;
     cloth_desc desc = cloth_default_desc();
     desc.fabric = fabric;
     desc.initial_positions = rest.data();

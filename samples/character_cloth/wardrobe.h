@@ -20,6 +20,7 @@ struct Garment {
     cloth_id cloth{};
     uint32_t count = 0;
     std::vector<uint32_t> triangles;
+    std::vector<float> rest;  // rest positions (xyz), for the check of the cape against itself
     std::vector<std::pair<uint32_t, uint32_t>>
         structural;  // pairs at their rest distance, for the strain check
     std::vector<float> rest_length;
