@@ -181,7 +181,7 @@ extern "C" {
 /// this minor version has every function and struct of this header.
 #define CLOTH_VERSION_MINOR 12
 /// Patch version of this header (fixes that change no interface).
-#define CLOTH_VERSION_PATCH 0
+#define CLOTH_VERSION_PATCH 1
 
 /// Library version. A library with another major version than the header a
 /// caller was built with is not compatible with it.
@@ -1361,8 +1361,9 @@ CLOTH_API cloth_result CLOTH_CALL cloth_is_sleeping(cloth_id cloth, bool* out_sl
 
 /* A snapshot is a cloth's dynamic state in a caller's buffer: positions,
  * velocities, pins and pin targets, solver kind, iterations and substeps,
- * air and wind, the sleep state, and whether CLOTH_SOLVER_DEFAULT's next
- * substep is backward Euler (cloth_solver_kind). Restoring it into a cloth
+ * air and wind, the sleep state, whether CLOTH_SOLVER_DEFAULT's next
+ * substep is backward Euler (cloth_solver_kind), and a skinned cloth's
+ * skin state ("Character cloth"). Restoring it into a cloth
  * of the same fabric and stepping again reproduces the same bits (replays,
  * rollback networking). Material, spring settings and feature settings
  * are not in it. The bytes are native-endian: for this library build and
@@ -1389,9 +1390,12 @@ CLOTH_API cloth_result CLOTH_CALL cloth_save_snapshot(cloth_id cloth, void* buff
 /// Restore a snapshot of `size` bytes (exactly the size it was saved with).
 /// A buffer that is truncated, has any byte changed, is no snapshot or one
 /// of another format is CLOTH_ERROR_CORRUPT_SNAPSHOT; an intact snapshot of
-/// a cloth of another particle count is CLOTH_ERROR_INVALID_COUNT, and of
-/// another fabric with the same count CLOTH_ERROR_INVALID_VALUE. In every
-/// case the cloth is unchanged.
+/// a cloth of another particle count is CLOTH_ERROR_INVALID_COUNT; of
+/// another fabric with the same count, or one whose skin does not match
+/// the cloth's (a skinned cloth's into a cloth without the same skin
+/// source and joint count, or an unskinned cloth's, or one saved before
+/// 1.12.1, into a skinned cloth), it is CLOTH_ERROR_INVALID_VALUE. In
+/// every case the cloth is unchanged.
 CLOTH_API cloth_result CLOTH_CALL cloth_restore_snapshot(cloth_id cloth, const void* buffer, size_t size);
 
 /* ------------------------------------------------------------------ */
@@ -1712,8 +1716,13 @@ CLOTH_API cloth_result CLOTH_CALL cloth_get_teleported(cloth_id cloth, bool* out
  * strain-limit pass and once more at the end of each substep
  * (docs/character_cloth.md gives the cost per particle).
  * Joint matrices map the bind pose to the world and may carry a uniform
- * scale; normals are rotated by them and renormalised. Skin data is not
- * part of snapshots. All since 1.8. */
+ * scale; normals are rotated by them and renormalised. A snapshot of a
+ * skinned cloth carries its skin's state (where the skin ended the last
+ * step, and the joint matrices or skinned positions the host gave last;
+ * since 1.12.1), not the skin itself (joints, weights, max distances and
+ * backstops are settings): restore it into a cloth given the same skin
+ * (a snapshot without a skin's state is refused by a skinned cloth).
+ * All since 1.8. */
 
 /// A cloth's skin: the joints each particle follows.
 typedef struct cloth_skin_desc {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "forces/aerodynamics.h"
@@ -266,6 +267,50 @@ void Skin::shift_origin(const Vec3& shift) {
         m[7] -= shift.y();
         m[11] -= shift.z();
     }
+}
+
+// Layout: the last frame's end, positions then normals (x, y, z arrays of
+// n floats each), then the joint matrices (kMatrixFloats per joint) or the
+// host's positions and normals (the same six arrays).
+size_t Skin::state_floats(uint32_t n) const {
+    const size_t given = source_ == Source::kJoints ? size_t{joint_count_} * kMatrixFloats : 6 * size_t{n};
+    return 6 * size_t{n} + given;
+}
+
+namespace {
+
+// The state's arrays in their order, as copy(data, count); Soa is
+// Vec3Soa or const Vec3Soa.
+template <class Soa, class Copy>
+void each_state_array(Soa& end_x, Soa& end_n, Soa& host_x, Soa& host_n, bool joints, Copy copy) {
+    for (Soa* a : {&end_x, &end_n, &host_x, &host_n}) {
+        if (joints && (a == &host_x || a == &host_n)) return;
+        for (auto* c : {&a->x, &a->y, &a->z}) copy(c->data(), c->size());
+    }
+}
+
+}  // namespace
+
+void Skin::save_state(unsigned char* out) const {
+    const bool joints = source_ == Source::kJoints;
+    const auto put = [&](const float* a, size_t count) {
+        std::memcpy(out, a, sizeof(float) * count);
+        out += sizeof(float) * count;
+    };
+    each_state_array(to_x_, to_n_, host_x_, host_n_, joints, put);
+    if (joints) put(matrices_.data(), matrices_.size());
+}
+
+void Skin::restore_state(bool primed, const unsigned char* in) {
+    const bool joints = source_ == Source::kJoints;
+    const auto take = [&](float* a, size_t count) {
+        std::memcpy(a, in, sizeof(float) * count);
+        in += sizeof(float) * count;
+    };
+    each_state_array(to_x_, to_n_, host_x_, host_n_, joints, take);
+    if (joints) take(matrices_.data(), matrices_.size());
+    primed_ = primed;
+    jump_ = false;
 }
 
 }  // namespace cloth

@@ -103,6 +103,19 @@ class Skin {
     // Origin rebasing: positions and matrices move by -shift.
     void shift_origin(const Vec3& shift);
 
+    // The state a snapshot keeps (step/cloth_snapshot.cpp), so that a
+    // restored cloth steps as the original did: whether a frame has been
+    // skinned, where the last frame ended (the next one starts there),
+    // and what the host gave last (the joint matrices, or its skinned
+    // positions and normals), as floats in bytes that need not be
+    // aligned. state_floats(): its size in floats, for an active skin of
+    // n particles.
+    size_t state_floats(uint32_t n) const;
+    void save_state(unsigned char* out) const;
+    // From save_state's bytes of a skin of the same source and joint
+    // count, sized for the same particles (the caller checks both).
+    void restore_state(bool primed, const unsigned char* in);
+
   private:
     // After the max distance pulled p into the backstop sphere again: the
     // point nearest p towards the skinned position s outside it.

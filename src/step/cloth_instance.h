@@ -160,6 +160,8 @@ class ClothInstance {
     void save_snapshot(void* out) const;
     // Validates everything before changing anything.
     Status restore_snapshot(const void* in, size_t size);
+    // Whether a snapshot of the cloth carries its skin's state.
+    bool snapshot_has_skin() const;
 
     // Particle groups: [group * kGroupSize, min(n, (group + 1) * kGroupSize)).
     // Every per-particle stage runs one task per group, so tasks carry about

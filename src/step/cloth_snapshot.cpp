@@ -1,16 +1,19 @@
 // Snapshots of a cloth's dynamic state, for replays and rollback
 // networking: positions, velocities, pins and their targets, the solver
-// settings a budget policy may have changed, air, and the sleep state, so
-// that restoring and stepping again gives the same bits as the first time.
+// settings a budget policy may have changed, air, the sleep state and a
+// skinned cloth's skin state, so that restoring and stepping again gives
+// the same bits as the first time.
 // Topology, material and scratch buffers are not saved (the snapshot is
 // restored into a cloth of the same fabric).
 //
 // Layout (native endianness, floats IEEE 754):
 //   SnapshotHeader, then x, y, z of positions, of velocities and of pin
-//   targets (n floats each), then the pinned flags (n floats, 0 or 1).
-//   The header's flags say whether the strain limiter of the last frame's
-//   last substep ended past its promise (the default's next substep
-//   depends on it), and whether the host holds the cloth asleep.
+//   targets (n floats each), then the pinned flags (n floats, 0 or 1);
+//   for a skinned cloth then a SkinSection and the skin's state
+//   (Skin::save_state). The header's flags say whether the strain limiter
+//   of the last frame's last substep ended past its promise (the
+//   default's next substep depends on it), whether the host holds the
+//   cloth asleep, and whether the skin's state follows.
 // The header's checksum is XXH3 of every byte before it and every byte
 // after it, so a restore checks it before it reads anything else: a
 // snapshot is either exactly what was saved or refused as corrupt.
@@ -57,6 +60,17 @@ struct SnapshotHeader {
 constexpr uint32_t kStrainedFlag = 1;
 // The host holds the sleeping cloth asleep (ClothInstance::hold_asleep).
 constexpr uint32_t kHeldAsleepFlag = 2;
+// A SkinSection and the skin's state follow the arrays (since 1.12.1).
+constexpr uint32_t kSkinFlag = 4;
+constexpr uint32_t kKnownFlags = kStrainedFlag | kHeldAsleepFlag | kSkinFlag;
+
+struct SkinSection {
+    uint32_t source;       // 1: joint matrices, 2: the host's skinned positions
+    uint32_t joint_count;  // of the skin (joint matrices only)
+    uint32_t primed;       // 1 once a frame has been skinned
+    uint32_t reserved;     // 0
+};
+constexpr uint32_t kSkinFromJoints = 1, kSkinFromHost = 2;
 
 constexpr size_t kChecksumAt = offsetof(SnapshotHeader, checksum);
 constexpr size_t kAfterChecksum = kChecksumAt + sizeof(uint64_t);
@@ -76,8 +90,13 @@ Status corrupt(const char* why) {
 
 }  // namespace
 
+// The skin's state goes into snapshots once the cloth has a skin.
+bool ClothInstance::snapshot_has_skin() const { return skin_.active() && skin_.sized_for(particle_count()); }
+
 size_t ClothInstance::snapshot_size() const {
-    return sizeof(SnapshotHeader) + kArrays * sizeof(float) * particle_count();
+    const size_t arrays = sizeof(SnapshotHeader) + kArrays * sizeof(float) * particle_count();
+    if (!snapshot_has_skin()) return arrays;
+    return arrays + sizeof(SkinSection) + sizeof(float) * skin_.state_floats(particle_count());
 }
 
 void ClothInstance::save_snapshot(void* out) const {
@@ -96,7 +115,8 @@ void ClothInstance::save_snapshot(void* out) const {
     h.substeps = solver_.substeps;
     h.sleeping = sleeping_ ? 1 : 0;
     h.rest_frames = rest_frames_;
-    h.flags = (strained_ ? kStrainedFlag : 0) | (held_asleep_ ? kHeldAsleepFlag : 0);
+    h.flags = (strained_ ? kStrainedFlag : 0) | (held_asleep_ ? kHeldAsleepFlag : 0) |
+              (snapshot_has_skin() ? kSkinFlag : 0);
     for (int c = 0; c < 3; ++c) h.wind[c] = aero_.wind[c];
     h.air_density = aero_.air_density;
     h.drag_coefficient = aero_.drag_coefficient;
@@ -111,6 +131,14 @@ void ClothInstance::save_snapshot(void* out) const {
                                        &pin_target_.y, &pin_target_.z, &pinned_}) {
         std::memcpy(bytes, a->data(), row);
         bytes += row;
+    }
+    if (snapshot_has_skin()) {
+        const bool joints = skin_.source() == Skin::Source::kJoints;
+        const SkinSection section{joints ? kSkinFromJoints : kSkinFromHost, joints ? skin_.joint_count() : 0,
+                                  skin_.primed() ? 1u : 0u, 0};
+        std::memcpy(bytes, &section, sizeof section);
+        bytes += sizeof section;
+        skin_.save_state(bytes);
     }
     const uint64_t checksum = checksum_of(start, snapshot_size());
     std::memcpy(start + kChecksumAt, &checksum, sizeof checksum);
@@ -140,15 +168,51 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
     if (h.checksum != checksum_of(bytes, size)) return corrupt("its checksum does not match its bytes");
 
     // Intact: it is what some cloth saved. Is it this cloth's kind?
-    if (h.particle_count != n || size != snapshot_size()) {
+    if (h.particle_count != n) {
         return Status::error(CLOTH_ERROR_INVALID_COUNT,
                              "snapshot of %u particles (%zu bytes) does not fit this cloth of %u particles",
                              h.particle_count, size, n);
     }
+    const size_t arrays_end = sizeof h + kArrays * sizeof(float) * n;
+    SkinSection skin{};
+    const bool has_skin = (h.flags & kSkinFlag) != 0;
+    uint64_t expected = arrays_end;
+    if (has_skin) {
+        if (size < arrays_end + sizeof skin) return corrupt("its skin section is cut short");
+        std::memcpy(&skin, bytes + arrays_end, sizeof skin);
+        if ((skin.source != kSkinFromJoints && skin.source != kSkinFromHost) || skin.primed > 1 ||
+            skin.reserved != 0 || (skin.source == kSkinFromHost && skin.joint_count != 0))
+            return corrupt("its skin section is out of range");
+        const uint64_t given = skin.source == kSkinFromJoints
+                                   ? uint64_t{skin.joint_count} * Skin::kMatrixFloats
+                                   : 6 * uint64_t{n};
+        expected += sizeof skin + sizeof(float) * (6 * uint64_t{n} + given);
+    }
+    if (expected != size) return corrupt("its size does not match its particle count");
     if (h.fabric_identity != fabric().identity) {
         return Status::error(CLOTH_ERROR_INVALID_VALUE,
                              "the snapshot is of another fabric (same particle count, other topology or "
                              "rest shape)");
+    }
+    if (!has_skin && snapshot_has_skin()) {
+        return Status::error(
+            CLOTH_ERROR_INVALID_VALUE,
+            "the snapshot is of a cloth without a skin (or from a library before 1.12.1, "
+            "whose snapshots hold no skin), and this cloth has one: it could not step as the "
+            "snapshot's cloth did");
+    }
+    if (has_skin) {
+        const bool joints = skin.source == kSkinFromJoints;
+        const Skin::Source source = joints ? Skin::Source::kJoints : Skin::Source::kHost;
+        if (!snapshot_has_skin() || skin_.source() != source ||
+            (joints && skin_.joint_count() != skin.joint_count)) {
+            return Status::error(
+                CLOTH_ERROR_INVALID_VALUE,
+                "the snapshot is of a cloth whose skin follows %s; restore it into a cloth "
+                "with the same skin (cloth_set_skin, and joint matrices or skinned positions "
+                "as the first had)",
+                joints ? "joint matrices" : "skinned positions the host gives");
+        }
     }
     // What a library of this format writes; checked again, so that a bug
     // elsewhere cannot restore a state no step could have made.
@@ -156,7 +220,7 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
         h.substeps < 1 || h.substeps > CLOTH_MAX_SUBSTEPS) {
         return corrupt("its solver settings are out of range");
     }
-    if ((h.flags & ~(kStrainedFlag | kHeldAsleepFlag)) != 0 || ((h.flags & kHeldAsleepFlag) && !h.sleeping)) {
+    if ((h.flags & ~kKnownFlags) != 0 || ((h.flags & kHeldAsleepFlag) && !h.sleeping)) {
         return corrupt("it has flags no library of this format writes");
     }
     const float air[7] = {h.wind[0],          h.wind[1],          h.wind[2],    h.air_density,
@@ -171,6 +235,12 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
         if (!std::isfinite(value)) return corrupt("it holds a value that is not finite");
         if (k >= 9 * static_cast<size_t>(n) && value != 0.0f && value != 1.0f)
             return corrupt("it holds a pinned flag that is neither 0 nor 1");
+    }
+    const unsigned char* skin_state = bytes + arrays_end + sizeof skin;
+    for (const unsigned char* at = skin_state; has_skin && at < bytes + size; at += sizeof(float)) {
+        float value;
+        std::memcpy(&value, at, sizeof value);
+        if (!std::isfinite(value)) return corrupt("its skin holds a value that is not finite");
     }
 
     // Valid: apply.
@@ -188,6 +258,7 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
         std::memcpy(a->data(), values, row);
         values += row;
     }
+    if (has_skin) skin_.restore_state(skin.primed != 0, skin_state);
     tethers_follow_pins_ = false;
     pinned_list_.clear();
     for (uint32_t i = 0; i < n; ++i) {

@@ -1,7 +1,7 @@
 // Character cloth through the C API: linear blend skinning against a
 // reference computed here, a max distance of 0 as a pin, the max-distance
-// and backstop promises under a fast skeleton, and the same bits for any
-// worker count with the skin on.
+// and backstop promises under a fast skeleton, the same bits for any
+// worker count with the skin on, and snapshots of a skinned cloth.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -375,6 +375,145 @@ TEST(Determinism, ASkinnedClothIsBitIdenticalForAnyWorkerCount) {
                 << workers << " workers";
         }
     }
+}
+
+// The skin's constraints of the determinism test above, on every particle
+// below the top row.
+void constrain(const SkinnedScene& scene) {
+    const uint32_t n = scene.count;
+    std::vector<float> reach(n), back_distance(n, 0.05f), back_radius(n, 0.04f);
+    for (uint32_t v = 0; v < n; ++v)
+        reach[v] = 0.1f * static_cast<float>(v / scene.side) / (scene.side - 1.0f);
+    ASSERT_EQ(cloth_set_max_distances(scene.cloth, reach.data(), n), CLOTH_OK);
+    ASSERT_EQ(cloth_set_backstops(scene.cloth, back_distance.data(), back_radius.data(), n), CLOTH_OK);
+}
+
+// The host's own skin at frame f: the rest grid (1 m, in the x-y plane,
+// top row at y = 0) carried along x at 5 m/s and swung in z, normals +z.
+void host_skin(SkinnedScene& scene, int f) {
+    const float t = static_cast<float>(f) * kFrame;
+    std::vector<float> x(3 * scene.count), normals(3 * scene.count, 0.0f);
+    for (uint32_t v = 0; v < scene.count; ++v) {
+        const float col = static_cast<float>(v % scene.side) / (scene.side - 1.0f);
+        const float down = static_cast<float>(v / scene.side) / (scene.side - 1.0f);
+        x[3 * v] = col + 5.0f * t;
+        x[3 * v + 1] = -down;
+        x[3 * v + 2] = 0.3f * down * std::sin(6.0f * t);
+        normals[3 * v + 2] = 1.0f;
+    }
+    ASSERT_EQ(cloth_set_skinned_positions(scene.cloth, x.data(), normals.data(), scene.count), CLOTH_OK);
+}
+
+// A snapshot of a skinned cloth holds where its skin ended the last frame
+// (the next frame moves the skin from there) and what the host gave it
+// last: a cloth restored from it steps as the original did, bit for bit,
+// whichever skin it followed before (here, another clip).
+TEST(SkinSnapshot, ARestoredSkinnedClothStepsAsTheOriginalDid) {
+    for (bool from_host : {false, true}) {
+        SCOPED_TRACE(from_host ? "the host's skinned positions" : "joint matrices");
+        const auto drive = [&](SkinnedScene& scene, int f) {
+            if (from_host) {
+                host_skin(scene, f);
+            } else {
+                scene.pose(f);
+            }
+        };
+        SkinnedScene original(16, 1), restored(16, 1);
+        constrain(original);
+        constrain(restored);
+        for (int f = 0; f < 30; ++f) {
+            drive(original, f);
+            ASSERT_EQ(cloth_step(original.world, kFrame), CLOTH_OK);
+        }
+        for (int f = 0; f < 7; ++f) {  // another past: a still skeleton for 7 frames
+            drive(restored, 0);
+            ASSERT_EQ(cloth_step(restored.world, kFrame), CLOTH_OK);
+        }
+        size_t size = 0;
+        ASSERT_EQ(cloth_get_snapshot_size(original.cloth, &size), CLOTH_OK);
+        std::vector<unsigned char> snapshot(size);
+        ASSERT_EQ(cloth_save_snapshot(original.cloth, snapshot.data(), size), CLOTH_OK);
+        ASSERT_EQ(cloth_restore_snapshot(restored.cloth, snapshot.data(), size), CLOTH_OK);
+        for (int f = 30; f < 60; ++f) {
+            for (SkinnedScene* scene : {&original, &restored}) {
+                drive(*scene, f);
+                ASSERT_EQ(cloth_step(scene->world, kFrame), CLOTH_OK);
+            }
+        }
+        const std::vector<float> a = original.read(cloth_read_positions),
+                                 b = restored.read(cloth_read_positions);
+        EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
+        const std::vector<float> sa = original.read([](cloth_id c, float* out, uint32_t capacity) {
+            return cloth_read_skinned_positions(c, out, nullptr, capacity);
+        });
+        const std::vector<float> sb = restored.read([](cloth_id c, float* out, uint32_t capacity) {
+            return cloth_read_skinned_positions(c, out, nullptr, capacity);
+        });
+        EXPECT_EQ(std::memcmp(sa.data(), sb.data(), sa.size() * sizeof(float)), 0);
+    }
+}
+
+// A snapshot and the cloth it is restored into agree on the skin: a cloth
+// without a skin, with another joint count, or following the host's
+// positions instead of joints refuses a skinned cloth's snapshot, and a
+// skinned cloth an unskinned one's, with CLOTH_ERROR_INVALID_VALUE,
+// unchanged.
+TEST(SkinSnapshot, AClothAndASnapshotThatDisagreeOnTheSkinAreRefusedUnchanged) {
+    SkinnedScene original(16, 1);
+    for (int f = 0; f < 10; ++f) {
+        original.pose(f);
+        ASSERT_EQ(cloth_step(original.world, kFrame), CLOTH_OK);
+    }
+    size_t size = 0;
+    ASSERT_EQ(cloth_get_snapshot_size(original.cloth, &size), CLOTH_OK);
+    std::vector<unsigned char> snapshot(size);
+    ASSERT_EQ(cloth_save_snapshot(original.cloth, snapshot.data(), size), CLOTH_OK);
+
+    SkinnedScene other_joints(16, 1), host(16, 1), bare(16, 1);
+    std::vector<uint32_t> joints(3 * 256);
+    std::vector<float> weights(3 * 256, 1.0f / 3.0f);
+    for (size_t i = 0; i < joints.size(); ++i) joints[i] = static_cast<uint32_t>(i % 3);
+    cloth_skin_desc skin = cloth_default_skin_desc();
+    skin.particle_count = 256;
+    skin.joint_count = 3;
+    skin.influences = 3;
+    skin.joints = joints.data();
+    skin.weights = weights.data();
+    ASSERT_EQ(cloth_set_skin(other_joints.cloth, &skin), CLOTH_OK);
+    host_skin(host, 0);
+    cloth_destroy(bare.cloth);
+    cloth_grid_desc grid = cloth_default_grid_desc();
+    grid.columns = grid.rows = 16;
+    cloth_fabric_id fabric{};
+    ASSERT_EQ(cloth_fabric_create_grid(bare.world, &grid, &fabric), CLOTH_OK);
+    cloth_desc desc = cloth_default_desc();
+    desc.fabric = fabric;
+    ASSERT_EQ(cloth_create(bare.world, &desc, &bare.cloth), CLOTH_OK);
+    for (SkinnedScene* scene : {&other_joints, &host, &bare}) {
+        ASSERT_EQ(cloth_step(scene->world, kFrame), CLOTH_OK);
+        const std::vector<float> before = scene->read(cloth_read_positions);
+        EXPECT_EQ(cloth_restore_snapshot(scene->cloth, snapshot.data(), size), CLOTH_ERROR_INVALID_VALUE);
+        const std::vector<float> after = scene->read(cloth_read_positions);
+        EXPECT_EQ(std::memcmp(before.data(), after.data(), before.size() * sizeof(float)), 0);
+    }
+    // And the other way: an unskinned cloth's snapshot into the skinned one.
+    size_t bare_size = 0;
+    ASSERT_EQ(cloth_get_snapshot_size(bare.cloth, &bare_size), CLOTH_OK);
+    EXPECT_LT(bare_size, size) << "an unskinned cloth's snapshot holds no skin";
+    std::vector<unsigned char> bare_snapshot(bare_size);
+    ASSERT_EQ(cloth_save_snapshot(bare.cloth, bare_snapshot.data(), bare_size), CLOTH_OK);
+    SkinnedScene twin(16, 1);
+    ASSERT_EQ(cloth_destroy(twin.cloth), CLOTH_OK);
+    ASSERT_EQ(cloth_fabric_create_grid(twin.world, &grid, &fabric), CLOTH_OK);
+    desc.fabric = fabric;
+    ASSERT_EQ(cloth_create(twin.world, &desc, &twin.cloth), CLOTH_OK);
+    ASSERT_EQ(cloth_restore_snapshot(twin.cloth, bare_snapshot.data(), bare_size), CLOTH_OK)
+        << "an unskinned cloth takes an unskinned cloth's snapshot";
+    const std::vector<float> before = original.read(cloth_read_positions);
+    EXPECT_EQ(cloth_restore_snapshot(original.cloth, bare_snapshot.data(), bare_size),
+              CLOTH_ERROR_INVALID_VALUE);
+    const std::vector<float> after = original.read(cloth_read_positions);
+    EXPECT_EQ(std::memcmp(before.data(), after.data(), before.size() * sizeof(float)), 0);
 }
 
 }  // namespace
