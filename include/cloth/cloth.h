@@ -628,7 +628,10 @@ CLOTH_API cloth_result CLOTH_CALL cloth_world_shift_origin(cloth_world_id world,
 /// allocate (it is the only part of a step that allocates, and it uses the
 /// C++ heap). CLOTH_ERROR_SOLVER_FAILED means CG stopped at its iteration
 /// limit; the cloth still advanced. A step allocates nothing from the
-/// world's allocator.
+/// world's allocator. With more cloths to step than workers, each worker
+/// steps whole cloths, so a cloth's data stays in one worker's cache
+/// through its frame; with fewer, each stage of every cloth runs over all
+/// the workers. The results are the same bits either way (since 1.12.1).
 CLOTH_API cloth_result CLOTH_CALL cloth_step(cloth_world_id world, float dt);
 
 /* ------------------------------------------------------------------ */
@@ -1119,7 +1122,10 @@ typedef struct cloth_frame_profile {
     uint32_t awake_cloths;
     /// cloths skipped because they sleep
     uint32_t sleeping_cloths;
-    /// per cloth_stage: wall time of its rounds, summed
+    /// per cloth_stage: wall time of its rounds, summed; in a step with
+    /// more cloths to step than workers, where each worker runs whole
+    /// cloths and no round spans the world, the time of its tasks, summed
+    /// over the workers (since 1.12.1)
     double stage_ms[CLOTH_MAX_STAGES];
     /// per cloth_stage: tasks run
     uint32_t stage_tasks[CLOTH_MAX_STAGES];

@@ -26,6 +26,8 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       round_times_(HostAllocator<TaskTime>(&memory_)),
       cloth_cost_ns_(HostAllocator<int64_t>(&memory_)),
       cloth_solve_ns_(HostAllocator<int64_t>(&memory_)),
+      worker_tally_(HostAllocator<WorkerTally>(&memory_)),
+      worker_records_(HostAllocator<TaskRecord>(&memory_)),
       profile_(&memory_),
       cloth_pairs_(HostAllocator<ClothPair>(&memory_)),
       budget_cloths_(HostAllocator<BudgetCloth>(&memory_)) {
@@ -43,6 +45,7 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
         tasks_ = &pool_;  // its threads keep their state on the C++ heap
     }
     profile_.worker_busy_ns.assign(tasks_->worker_count(), 0);
+    worker_tally_.assign(tasks_->worker_count(), WorkerTally{});
 }
 
 void World::log(cloth_log_level level, cloth_result code, const char* message) const {
@@ -117,10 +120,17 @@ void World::reserve_round_tasks(size_t extra_groups) {
 void World::set_profiling(uint32_t max_tasks) {
     if (max_tasks == 0) {
         HostVector<TaskRecord>{HostAllocator<TaskRecord>(&memory_)}.swap(profile_.tasks);
+        HostVector<TaskRecord>{HostAllocator<TaskRecord>(&memory_)}.swap(worker_records_);
+        records_per_worker_ = 0;
     } else {
+        // Every worker may run every task when whole cloths are tasks.
         HostVector<TaskRecord> records{HostAllocator<TaskRecord>(&memory_)};
+        HostVector<TaskRecord> per_worker{HostAllocator<TaskRecord>(&memory_)};
         records.reserve(max_tasks);
+        per_worker.resize(size_t{max_tasks} * worker_tally_.size());
         profile_.tasks.swap(records);
+        worker_records_.swap(per_worker);
+        records_per_worker_ = max_tasks;
     }
 }
 
@@ -249,24 +259,28 @@ Status World::step(float dt) {
         stepping_cloths_.push_back(cloth);
     }
     profile_.awake_cloths = static_cast<uint32_t>(stepping_.size());
-    auto run_range = [this](uint32_t begin, uint32_t end, uint32_t worker) {
-        run_round_range(begin, end, worker);
-    };
-    // One round: the current stage of every cloth still in its frame.
-    run_frames(stepping_cloths_.data(), static_cast<uint32_t>(stepping_cloths_.size()), [&] {
-        round_.clear();
-        for (uint32_t s : stepping_) {
-            ClothInstance* cloth = cloths_[s].object.get();
-            if (cloth->frame_done()) continue;
-            const uint32_t count = cloth->task_count();
-            for (uint32_t t = 0; t < count; ++t) {
-                round_.push_back(RoundTask{cloth, t, s, cloth->stage(), cloth->substep()});
+    if (steps_whole_cloths()) {
+        step_whole_cloths(timed);
+    } else {
+        auto run_range = [this](uint32_t begin, uint32_t end, uint32_t worker) {
+            run_round_range(begin, end, worker);
+        };
+        // One round: the current stage of every cloth still in its frame.
+        run_frames(stepping_cloths_.data(), static_cast<uint32_t>(stepping_cloths_.size()), [&] {
+            round_.clear();
+            for (uint32_t s : stepping_) {
+                ClothInstance* cloth = cloths_[s].object.get();
+                if (cloth->frame_done()) continue;
+                const uint32_t count = cloth->task_count();
+                for (uint32_t t = 0; t < count; ++t) {
+                    round_.push_back(RoundTask{cloth, t, s, cloth->stage(), cloth->substep()});
+                }
             }
-        }
-        const uint32_t count = static_cast<uint32_t>(round_.size());
-        parallel_for(*tasks_, count, kMinTasksPerRange, run_range);
-        if (timed) account_round(count);
-    });
+            const uint32_t count = static_cast<uint32_t>(round_.size());
+            parallel_for(*tasks_, count, kMinTasksPerRange, run_range);
+            if (timed) account_round(count);
+        });
+    }
 
     Status first_failure;
     for (uint32_t s : stepping_) {

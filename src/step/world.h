@@ -59,10 +59,12 @@ class World {
     Status shift_origin(const Vec3& shift);
 
     // Step every cloth; a cloth that goes non-finite is restored and
-    // reported, the others advance. All cloths advance together, stage by
-    // stage: each round runs the current stage of every unfinished cloth
-    // as one parallel_for over all their groups (cloths with fewer stages
-    // finish in fewer rounds), so many small cloths share the workers.
+    // reported, the others advance. With no more cloths to step than
+    // workers, all cloths advance together, stage by stage: each round
+    // runs the current stage of every unfinished cloth as one parallel_for
+    // over all their groups (cloths with fewer stages finish in fewer
+    // rounds), so a few cloths share the workers. With more, each worker
+    // runs whole cloths (world_whole_cloths.cpp). The bits are the same.
     Status step(float dt);
 
     void log(cloth_log_level level, cloth_result code, const char* message) const;
@@ -118,6 +120,20 @@ class World {
     // After a round's barrier: fold its task times into the profile and
     // the per-cloth costs.
     void account_round(uint32_t count);
+    // Whole cloths as tasks (world_whole_cloths.cpp): whether this frame
+    // runs that way, the frame, one cloth's frame as `worker`, and the
+    // per-worker times folded into the profile after it.
+    bool steps_whole_cloths() const;
+    void step_whole_cloths(bool timed);
+    void run_whole_cloth(uint32_t index, uint32_t worker, bool timed);
+    void account_whole_cloths();
+    // What one worker timed while it ran whole cloths.
+    struct WorkerTally {
+        int64_t stage_ns[kStageCount] = {};
+        int64_t first_start_ns[kStageCount] = {};
+        uint32_t stage_tasks[kStageCount] = {};
+        uint32_t records = 0, dropped = 0;  // in worker_records_, and past its share
+    };
 
     HostMemory memory_;
     cloth_log_fn* log_ = nullptr;
@@ -155,6 +171,9 @@ class World {
     HostVector<TaskTime> round_times_;            // one slot per task of the round, written by its worker
     HostVector<int64_t> cloth_cost_ns_;           // per cloth slot: task time of the last frame
     HostVector<int64_t> cloth_solve_ns_;          // per cloth slot: the part of it in solve stages
+    HostVector<WorkerTally> worker_tally_;        // per worker (whole cloths as tasks)
+    HostVector<TaskRecord> worker_records_;       // records_per_worker_ task records per worker
+    uint32_t records_per_worker_ = 0;
 
     FrameProfile profile_;
     uint64_t frame_ = 0;

@@ -6,10 +6,13 @@
 //   Field/W1/Budget4, Field/W2/Budget4  a 4 ms frame budget, every flag's
 //                                     policy allowing rate 8, importance
 //                                     falling with the flag's index
+//   Field/W1/Lone                     one such flag (10 m/s) alone in its world
 //
 // Counters (medians of the timed frames): step_ms, and what it held:
-// flags_per_ms and particles_per_ms (all 32 flags' particles over the
-// frame's time), and over_budget (the share of frames over 4 ms).
+// flags_per_ms and particles_per_ms (all the flags' particles over the
+// frame's time), and over_budget (the share of frames over 4 ms). A flag
+// of the field costs step_ms x workers / 32 of worker time, against
+// Field/W1/Lone's step_ms alone.
 #include <benchmark/benchmark.h>
 #include <cloth/cloth.h>
 
@@ -25,10 +28,10 @@ constexpr float kDt = 1.0f / 60.0f;
 constexpr float kBudgetMs = 4.0f;
 
 // The field; false with the benchmark skipped.
-bool make_field(benchmark::State& state, uint32_t workers, bool budget, cloth_world_id* out) {
+bool make_field(benchmark::State& state, uint32_t flags, uint32_t workers, bool budget, cloth_world_id* out) {
     cloth_world_desc wd = cloth_default_world_desc();
     wd.worker_count = workers;
-    wd.max_cloths = kFlags;
+    wd.max_cloths = flags;
     cloth_world_id world{};
     cloth_fabric_id fabric{};
     cloth_grid_desc grid = cloth_default_grid_desc();
@@ -45,13 +48,13 @@ bool make_field(benchmark::State& state, uint32_t workers, bool budget, cloth_wo
     *out = world;
     std::vector<uint32_t> pole_side;
     for (uint32_t r = 0; r < kRows; ++r) pole_side.push_back(r * kColumns);
-    for (uint32_t k = 0; k < kFlags; ++k) {
+    for (uint32_t k = 0; k < flags; ++k) {
         cloth_desc cd = cloth_default_desc();
         cd.fabric = fabric;
         cloth_id flag{};
         cloth_sleep_params sleep = cloth_default_sleep_params();
         sleep.enabled = 0;
-        const float wind[3] = {8.0f + static_cast<float>(k % 5), 0.0f, 1.0f};
+        const float wind[3] = {flags == 1 ? 10.0f : 8.0f + static_cast<float>(k % 5), 0.0f, 1.0f};
         bool ok = cloth_create(world, &cd, &flag) == CLOTH_OK &&
                   cloth_pin(flag, pole_side.data(), kRows) == CLOTH_OK &&
                   cloth_set_wind(flag, wind) == CLOTH_OK && cloth_set_sleep(flag, &sleep) == CLOTH_OK;
@@ -71,9 +74,9 @@ bool make_field(benchmark::State& state, uint32_t workers, bool budget, cloth_wo
     return true;
 }
 
-void field(benchmark::State& state, uint32_t workers, bool budget) {
+void field(benchmark::State& state, uint32_t workers, bool budget, uint32_t flags = kFlags) {
     cloth_world_id world{};
-    if (!make_field(state, workers, budget, &world)) {
+    if (!make_field(state, flags, workers, budget, &world)) {
         cloth_world_destroy(world);
         return;
     }
@@ -102,8 +105,8 @@ void field(benchmark::State& state, uint32_t workers, bool budget) {
     std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
     const double median = ms[ms.size() / 2];
     state.counters["step_ms"] = median;
-    state.counters["flags_per_ms"] = kFlags / median;
-    state.counters["particles_per_ms"] = kFlags * kColumns * kRows / median;
+    state.counters["flags_per_ms"] = flags / median;
+    state.counters["particles_per_ms"] = flags * kColumns * kRows / median;
     state.counters["over_budget"] = over / static_cast<double>(ms.size());
 }
 
@@ -111,6 +114,7 @@ void BM_FieldW1Full(benchmark::State& state) { field(state, 1, false); }
 void BM_FieldW2Full(benchmark::State& state) { field(state, 2, false); }
 void BM_FieldW1Budget(benchmark::State& state) { field(state, 1, true); }
 void BM_FieldW2Budget(benchmark::State& state) { field(state, 2, true); }
+void BM_FieldW1Lone(benchmark::State& state) { field(state, 1, false, 1); }
 
 }  // namespace
 
@@ -121,6 +125,11 @@ BENCHMARK(BM_FieldW1Full)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FieldW2Full)
     ->Name("Field/W2/Full")
+    ->UseManualTime()
+    ->Iterations(120)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FieldW1Lone)
+    ->Name("Field/W1/Lone")
     ->UseManualTime()
     ->Iterations(120)
     ->Unit(benchmark::kMillisecond);

@@ -142,7 +142,7 @@ uint64_t fnv1a(uint64_t hash, const void* data, size_t size) {
 // second flag in the same world so the stages of two cloths share the
 // workers. Hash of every cloth's positions and velocities.
 // spin_us: cloth_world_set_worker_spin (0: keep the default).
-uint64_t flag_hash(const cloth_world_desc& world, uint32_t spin_us = 0) {
+uint64_t flag_hash(const cloth_world_desc& world, uint32_t spin_us = 0, uint32_t flags = 2) {
     SceneConfig config;
     config.kind = SceneKind::kFlagInWind;
     config.resolution = 40;
@@ -150,7 +150,7 @@ uint64_t flag_hash(const cloth_world_desc& world, uint32_t spin_us = 0) {
     config.solver.iterations = 2;
     config.solver.substeps = 2;
     config.world = world;
-    config.copies = 2;
+    config.copies = flags;
     Scene scene(config);
     EXPECT_TRUE(scene.ok()) << scene.error();
     if (spin_us > 0) {
@@ -193,6 +193,25 @@ TEST(Determinism, FlagHashIsTheSameForEveryWorkerCountAndForTheHostJobSystem) {
     EXPECT_EQ(flag_hash(desc), reference) << "host job system";
     EXPECT_GT(host.enqueued.load(), static_cast<uint32_t>(kSteps))
         << "the host's job system ran the step's stages";
+}
+
+// Five flags: on fewer than five workers each worker runs whole flags
+// (world_whole_cloths.cpp), on eight every stage of every flag runs as a
+// round over the workers. The bits are the same either way.
+TEST(Determinism, AFieldIsBitIdenticalWhetherWorkersRunWholeClothsOrRoundsOfStages) {
+    const uint64_t reference = flag_hash(cloth_default_world_desc(), 0, 5);
+    for (uint32_t workers : {2u, 4u, 8u}) {
+        cloth_world_desc desc = cloth_default_world_desc();
+        desc.worker_count = workers;
+        EXPECT_EQ(flag_hash(desc, 0, 5), reference) << workers << " workers";
+    }
+    HostJobSystem host;
+    cloth_world_desc desc = cloth_default_world_desc();
+    desc.worker_count = HostJobSystem::kWorkers;
+    desc.enqueue_task = &HostJobSystem::enqueue;
+    desc.finish_task = &HostJobSystem::finish;
+    desc.task_user = &host;
+    EXPECT_EQ(flag_hash(desc, 0, 5), reference) << "host job system";
 }
 
 TEST(Determinism, HostCallbacksAreValidated) {

@@ -1,0 +1,98 @@
+// Whole cloths as tasks. Where a world steps more cloths than it has
+// workers, each worker takes whole cloths and runs each one's frame from
+// its first stage to its last: the cloth's particles stay in that worker's
+// cache through its substeps, and no barrier separates its stages. The
+// rounds of World::step instead run the current stage of every cloth at
+// once, streaming all the cloths' particles through the cache once per
+// stage (a field of 32 flags cost 1.8 times the sum of its flags alone
+// that way: docs/measurements.md, "Whole cloths as tasks"). A cloth's
+// frame does not depend on how its groups are split over workers, so the
+// bits are the rounds'. Times and task records are kept per worker while
+// the cloths run, and folded into the profile after the frame.
+#include <algorithm>
+
+#include "step/frame_rounds.h"
+#include "step/world.h"
+
+namespace cloth {
+
+bool World::steps_whole_cloths() const { return stepping_cloths_.size() > tasks_->worker_count(); }
+
+void World::step_whole_cloths(bool timed) {
+    std::fill(worker_tally_.begin(), worker_tally_.end(), WorkerTally{});
+    auto run = [this, timed](uint32_t begin, uint32_t end, uint32_t worker) {
+        for (uint32_t c = begin; c < end; ++c) run_whole_cloth(c, worker, timed);
+    };
+    parallel_for(*tasks_, static_cast<uint32_t>(stepping_cloths_.size()), 1, run);
+    if (timed) account_whole_cloths();
+}
+
+void World::run_whole_cloth(uint32_t index, uint32_t worker, bool timed) {
+    ClothInstance* cloth = stepping_cloths_[index];
+    if (!timed && !zone_begin_ && !zone_end_) {
+        run_frames(&cloth, 1, [&] {
+            for (uint32_t t = 0, n = cloth->task_count(); t < n; ++t) cloth->run_task(t, worker);
+        });
+        return;
+    }
+    // A host may pass any worker index; keep it inside the per-worker arrays.
+    worker = std::min(worker, static_cast<uint32_t>(worker_tally_.size()) - 1);
+    const uint32_t slot = stepping_[index];
+    WorkerTally& tally = worker_tally_[worker];
+    run_frames(&cloth, 1, [&] {
+        const Stage stage = cloth->stage();
+        const uint32_t s = static_cast<uint32_t>(stage), substep = cloth->substep();
+        const char* name = stage_name(stage);
+        // One clock read per task without zones, as run_round_range.
+        int64_t start = now_ns();
+        for (uint32_t t = 0, n = cloth->task_count(); t < n; ++t) {
+            if (zone_begin_) {
+                zone_begin_(name, worker, zone_user_);
+                start = now_ns();
+            }
+            cloth->run_task(t, worker);
+            const int64_t end = now_ns();
+            if (zone_end_) zone_end_(name, worker, zone_user_);
+            if (timed) {
+                const int64_t duration = end - start;
+                cloth_cost_ns_[slot] += duration;
+                if (is_solve_stage(stage)) cloth_solve_ns_[slot] += duration;
+                profile_.worker_busy_ns[worker] += duration;
+                if (tally.stage_tasks[s] == 0) tally.first_start_ns[s] = start;
+                tally.stage_ns[s] += duration;
+                tally.stage_tasks[s] += 1;
+                if (tally.records < records_per_worker_) {
+                    worker_records_[size_t{worker} * records_per_worker_ + tally.records++] =
+                        TaskRecord{slot, cloths_[slot].generation, stage, t, worker, substep, start, end};
+                } else {
+                    ++tally.dropped;
+                }
+            }
+            start = end;
+        }
+    });
+}
+
+void World::account_whole_cloths() {
+    for (uint32_t w = 0; w < worker_tally_.size(); ++w) {
+        const WorkerTally& tally = worker_tally_[w];
+        for (uint32_t s = 0; s < kStageCount; ++s) {
+            if (tally.stage_tasks[s] == 0) continue;
+            if (profile_.stage_tasks[s] == 0 || tally.first_start_ns[s] < profile_.stage_first_start_ns[s])
+                profile_.stage_first_start_ns[s] = tally.first_start_ns[s];
+            profile_.stage_ns[s] += tally.stage_ns[s];
+            profile_.stage_tasks[s] += tally.stage_tasks[s];
+        }
+        const TaskRecord* records = worker_records_.data() + size_t{w} * records_per_worker_;
+        for (uint32_t r = 0; r < tally.records; ++r) {
+            if (profile_.tasks.size() < profile_.tasks.capacity()) {
+                profile_.tasks.push_back(records[r]);
+            } else {
+                ++profile_.tasks_dropped;
+            }
+        }
+        profile_.tasks_dropped += tally.dropped;
+    }
+}
+
+}  // namespace cloth
