@@ -42,6 +42,16 @@ class HostJobSystem {
         for (std::thread& t : threads_) t.join();
     }
 
+    // A world description that steps on this job system.
+    cloth_world_desc world_desc() {
+        cloth_world_desc desc = cloth_default_world_desc();
+        desc.worker_count = kWorkers;
+        desc.enqueue_task = &HostJobSystem::enqueue;
+        desc.finish_task = &HostJobSystem::finish;
+        desc.task_user = this;
+        return desc;
+    }
+
     static void* enqueue(cloth_task_fn* task, uint32_t count, uint32_t min_range, void* context, void* user) {
         auto* self = static_cast<HostJobSystem*>(user);
         ++self->enqueued;
@@ -185,12 +195,7 @@ TEST(Determinism, FlagHashIsTheSameForEveryWorkerCountAndForTheHostJobSystem) {
         EXPECT_EQ(flag_hash(desc, spin_us), reference) << "2 workers polling for " << spin_us << " us";
     }
     HostJobSystem host;
-    cloth_world_desc desc = cloth_default_world_desc();
-    desc.worker_count = HostJobSystem::kWorkers;
-    desc.enqueue_task = &HostJobSystem::enqueue;
-    desc.finish_task = &HostJobSystem::finish;
-    desc.task_user = &host;
-    EXPECT_EQ(flag_hash(desc), reference) << "host job system";
+    EXPECT_EQ(flag_hash(host.world_desc()), reference) << "host job system";
     EXPECT_GT(host.enqueued.load(), static_cast<uint32_t>(kSteps))
         << "the host's job system ran the step's stages";
 }
@@ -206,12 +211,7 @@ TEST(Determinism, AFieldIsBitIdenticalWhetherWorkersRunWholeClothsOrRoundsOfStag
         EXPECT_EQ(flag_hash(desc, 0, 5), reference) << workers << " workers";
     }
     HostJobSystem host;
-    cloth_world_desc desc = cloth_default_world_desc();
-    desc.worker_count = HostJobSystem::kWorkers;
-    desc.enqueue_task = &HostJobSystem::enqueue;
-    desc.finish_task = &HostJobSystem::finish;
-    desc.task_user = &host;
-    EXPECT_EQ(flag_hash(desc, 0, 5), reference) << "host job system";
+    EXPECT_EQ(flag_hash(host.world_desc(), 0, 5), reference) << "host job system";
 }
 
 TEST(Determinism, HostCallbacksAreValidated) {
