@@ -69,6 +69,11 @@ constexpr float kStrainCableStiffness = 100.0f;
 // strain, or past the substep cap, run backward Euler (docs/method.md,
 // "The theta step"; resolve_solver and step/frame_plan.cpp).
 constexpr float kDefaultTheta = 0.7f;
+// The longest substep a frame budget's caps leave the default (s): a flag
+// stepping every 8th frame at 60 Hz in one substep of 2/15 s stretches to
+// 0.14, in two of 1/15 s to 0.10 (docs/measurements.md, "A slow rate's
+// substeps").
+constexpr float kLongestCappedSubstep = 1.0f / 15.0f;
 
 // The settings a step of `dt` runs with: `requested` itself unless its kind
 // is CLOTH_SOLVER_DEFAULT, in which case kind, preconditioner, iterations

@@ -15,6 +15,7 @@
 // cloth_stages.cpp that starts with expect_stage.
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -146,8 +147,13 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     frame_.own_substeps = frame_.solver.substeps;
     if (solver_.default_iteration_cap > 0)
         frame_.solver.iterations = std::min(frame_.solver.iterations, solver_.default_iteration_cap);
-    if (solver_.default_substep_cap > 0)
+    if (solver_.default_substep_cap > 0) {
         frame_.solver.substeps = std::min(frame_.solver.substeps, solver_.default_substep_cap);
+        // A budget's cap never stretches a substep past kLongestCappedSubstep
+        // (a slow update rate's step is long: solver_default.h).
+        const auto least = static_cast<uint32_t>(std::ceil(dt / kLongestCappedSubstep - 1e-4f));
+        frame_.solver.substeps = std::max(frame_.solver.substeps, std::min(least, frame_.own_substeps));
+    }
     if (contact_.carrier().active() || frame_.solver.kind == CLOTH_SOLVER_EXPLICIT) {
         frame_.backup = FrameBackup::kCopied;
         frame_.backup_x = x_;

@@ -174,6 +174,31 @@ TEST(Budget, TheDefaultSolverGivesUpQualityUnderATightBudgetAndTakesItBackUnderA
     EXPECT_EQ(last_substeps(world, capped), own_substeps);
 }
 
+// At the bottom of its ladder a flag steps every 8th frame; the budget's
+// cap of one substep would make that one substep of 8/60 s, which
+// stretches a flag far past its limit, so the step runs two of 1/15 s.
+TEST(Budget, ABudgetsCapsLeaveNoSubstepLongerThanAFifteenthOfASecond) {
+    SceneConfig config = four_flags(1);
+    config.solver.kind = CLOTH_SOLVER_DEFAULT;
+    config.copies = 1;
+    Scene scene(config);
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    cloth_quality_policy policy = cloth_default_quality_policy();
+    policy.enabled = true;
+    policy.max_update_rate = 8;
+    ASSERT_EQ(cloth_set_quality_policy(scene.cloth(), &policy), CLOTH_OK);
+    ASSERT_EQ(cloth_world_set_frame_budget(scene.world(), kNoStepMeets), CLOTH_OK);
+    for (int i = 0; i < 240; ++i) step_under_budget(scene);
+    uint32_t rate = 0, phase = 0;
+    ASSERT_EQ(cloth_get_update_rate(scene.cloth(), &rate, &phase), CLOTH_OK);
+    EXPECT_EQ(rate, 8u) << "the budget took the flag to its slowest rate";
+    cloth_stats stats{};
+    stats.struct_size = sizeof stats;
+    ASSERT_EQ(cloth_get_stats(scene.cloth(), &stats), CLOTH_OK);
+    EXPECT_EQ(stats.last_max_iterations, 1u) << "at the bottom of its ladder";
+    EXPECT_EQ(stats.last_substeps, 2u) << "8/60 s in substeps of at most 1/15 s";
+}
+
 // The policy's maxima bound the default's own choice, budget or not: a
 // host that gives a cloth one substep gets one substep.
 TEST(Budget, APolicysMaximaBoundTheDefaultSolversOwnChoice) {
