@@ -12,6 +12,7 @@
 
 #include "support/contract_gtest.h"
 #include "support/counting_allocator.h"
+#include "support/flag_fabric.h"
 
 namespace {
 
@@ -29,12 +30,7 @@ struct Scene {
     Scene() {
         cloth_world_desc wd = host.world_desc();
         EXPECT_EQ(cloth_world_create(&wd, &world), CLOTH_OK);
-        cloth_grid_desc gd = cloth_default_grid_desc();
-        gd.columns = kColumns;
-        gd.rows = kRows;
-        gd.u[0] = 0.8f;
-        gd.v[1] = -0.6f;
-        EXPECT_EQ(cloth_fabric_create_grid(world, &gd, &fabric), CLOTH_OK);
+        fabric = cloth_test::flag_fabric(world, kColumns, kRows, 0.8f, 0.6f);
         cloth_desc cd = cloth_default_desc();
         cd.fabric = fabric;
         EXPECT_EQ(cloth_create(world, &cd, &flag), CLOTH_OK);

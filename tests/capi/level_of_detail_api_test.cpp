@@ -18,6 +18,7 @@
 #include "support/contract.h"
 #include "support/contract_gtest.h"
 #include "support/counting_allocator.h"
+#include "support/flag_fabric.h"
 
 namespace {
 
@@ -35,12 +36,7 @@ struct Flags {
         cloth_world_desc wd = host.world_desc();
         wd.worker_count = workers;
         EXPECT_EQ(cloth_world_create(&wd, &world), CLOTH_OK);
-        cloth_grid_desc gd = cloth_default_grid_desc();
-        gd.columns = kColumns;
-        gd.rows = kRows;
-        gd.u[0] = 0.8f;
-        gd.v[1] = -0.6f;
-        EXPECT_EQ(cloth_fabric_create_grid(world, &gd, &fabric), CLOTH_OK);
+        fabric = cloth_test::flag_fabric(world, kColumns, kRows, 0.8f, 0.6f);
         for (uint32_t k = 0; k < count; ++k) flags.push_back(add());
     }
     ~Flags() {
