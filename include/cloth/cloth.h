@@ -1225,10 +1225,10 @@ CLOTH_API cloth_result CLOTH_CALL cloth_world_set_zone_callbacks(cloth_world_id 
  * a max_update_rate above 1 next doubles the cloth's update rate (see
  * "Importance and update rate") up to that rate: each step keeps its
  * iterations, substeps and strain-limit passes over a longer dt, and the
- * cloth steps less often (a cloth a body carries keeps rate 1). A
- * CLOTH_SOLVER_DEFAULT step the budget capped still runs no substep
- * longer than 1/15 s (two at rate 8 and 60 Hz; since 1.12.1), where a
- * longer one stretches the cloth past its limit. Past that the iterations go below
+ * cloth steps less often (a cloth a body carries keeps rate 1). Down to
+ * there a CLOTH_SOLVER_DEFAULT step the budget capped still runs no
+ * substep longer than 1/15 s (two at rate 8 and 60 Hz; since 1.12.1),
+ * where a longer one stretches the cloth past its limit. Past that the iterations go below
  * half only once most of the last frames ran over budget (a load, not a
  * spike), and there the strain limit runs only the passes asked for
  * (cloth_strain_limit.iterations), not the extra passes it otherwise adds

@@ -97,9 +97,13 @@ void BudgetPolicy::after_frame(double budget_ms, double step_ms, uint64_t frame,
     // judged against what the rung usually costs, not with itself in it.
     for (uint32_t c = 0; c < count; ++c) {
         ClothInstance& cloth = *cloths[c].cloth;
-        if (cloth.quality().policy().enabled)
-            cloth.quality().costs().record(cloth.quality().ran_rung(), static_cast<double>(cloths[c].cost_ns),
-                                           frame);
+        if (!cloth.quality().policy().enabled) continue;
+        const double cost = static_cast<double>(cloths[c].cost_ns);
+        cloth.quality().costs().record(cloth.quality().ran_rung(), cost, frame);
+        // Where more substeps ran than the rung has (frame_plan.cpp), the
+        // rung the policy sees costs what ran.
+        const QualityRung capped = cloth.quality().capped_rung();
+        if (!(capped == cloth.quality().ran_rung())) cloth.quality().costs().record(capped, cost, frame);
     }
 }
 

@@ -48,9 +48,14 @@ class ClothQuality {
     void set_settings(const SolverSettings& settings);
     // The ladder the policy moves the cloth along: from the policy's top,
     // or the default's own choice of the last frame, down to the policy's
-    // minimum. And the rung the last frame ran.
+    // minimum. And the rung the last frame ran, and the rung of the
+    // ladder that put it there (fewer substeps where a budget's cap would
+    // have made a substep too long: frame_plan.cpp).
     QualityLadder ladder() const;
     QualityRung ran_rung() const { return {frame_.solver.iterations, frame_.solver.substeps, rate_.rate()}; }
+    QualityRung capped_rung() const {
+        return {frame_.solver.iterations, frame_.capped_substeps, rate_.rate()};
+    }
     // The update rate the policy wants (set_rate), or the cloth's own.
     // The world applies a wanted rate after the policy's decision
     // (take_wanted_rate: 0 when there is none), since a rate's phase is

@@ -236,7 +236,7 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
         if (k >= 9 * static_cast<size_t>(n) && value != 0.0f && value != 1.0f)
             return corrupt("it holds a pinned flag that is neither 0 nor 1");
     }
-    const unsigned char* skin_state = bytes + arrays_end + sizeof skin;
+    const unsigned char* skin_state = has_skin ? bytes + arrays_end + sizeof skin : nullptr;
     for (const unsigned char* at = skin_state; has_skin && at < bytes + size; at += sizeof(float)) {
         float value;
         std::memcpy(&value, at, sizeof value);

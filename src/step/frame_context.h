@@ -70,6 +70,9 @@ struct FrameContext {
     // within a quality policy's maxima and before its caps.
     SolverSettings solver;
     uint32_t own_iterations = 0, own_substeps = 0;
+    // The substeps a budget's cap left, before the longest-substep floor
+    // (frame_plan.cpp) added any: the rung the budget put the cloth on.
+    uint32_t capped_substeps = 0;
 
     float h = 0;  // substep length, s
     // The lightest free particle's mass, kg, when the solve stops in

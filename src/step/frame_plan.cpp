@@ -147,10 +147,14 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     frame_.own_substeps = frame_.solver.substeps;
     if (solver_.default_iteration_cap > 0)
         frame_.solver.iterations = std::min(frame_.solver.iterations, solver_.default_iteration_cap);
-    if (solver_.default_substep_cap > 0) {
+    if (solver_.default_substep_cap > 0)
         frame_.solver.substeps = std::min(frame_.solver.substeps, solver_.default_substep_cap);
-        // A budget's cap never stretches a substep past kLongestCappedSubstep
-        // (a slow update rate's step is long: solver_default.h).
+    frame_.capped_substeps = frame_.solver.substeps;
+    // Down to the ladder's floor a budget's cap never stretches a substep
+    // past kLongestCappedSubstep (a slow update rate's step is long:
+    // solver_default.h); below it the budget wins and the strain gives, as
+    // the strain limit's passes do there (cloth_quality.h).
+    if (solver_.default_substep_cap > 0 && !quality_.below_floor()) {
         const auto least = static_cast<uint32_t>(std::ceil(dt / kLongestCappedSubstep - 1e-4f));
         frame_.solver.substeps = std::max(frame_.solver.substeps, std::min(least, frame_.own_substeps));
     }

@@ -27,7 +27,7 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       cloth_cost_ns_(HostAllocator<int64_t>(&memory_)),
       cloth_solve_ns_(HostAllocator<int64_t>(&memory_)),
       worker_tally_(HostAllocator<WorkerTally>(&memory_)),
-      worker_records_(HostAllocator<TaskRecord>(&memory_)),
+      whole_records_(HostAllocator<TaskRecord>(&memory_)),
       profile_(&memory_),
       cloth_pairs_(HostAllocator<ClothPair>(&memory_)),
       budget_cloths_(HostAllocator<BudgetCloth>(&memory_)) {
@@ -120,17 +120,15 @@ void World::reserve_round_tasks(size_t extra_groups) {
 void World::set_profiling(uint32_t max_tasks) {
     if (max_tasks == 0) {
         HostVector<TaskRecord>{HostAllocator<TaskRecord>(&memory_)}.swap(profile_.tasks);
-        HostVector<TaskRecord>{HostAllocator<TaskRecord>(&memory_)}.swap(worker_records_);
-        records_per_worker_ = 0;
+        HostVector<TaskRecord>{HostAllocator<TaskRecord>(&memory_)}.swap(whole_records_);
     } else {
-        // Every worker may run every task when whole cloths are tasks.
+        // Whole cloths as tasks write their records here, at once.
         HostVector<TaskRecord> records{HostAllocator<TaskRecord>(&memory_)};
-        HostVector<TaskRecord> per_worker{HostAllocator<TaskRecord>(&memory_)};
+        HostVector<TaskRecord> concurrent{HostAllocator<TaskRecord>(&memory_)};
         records.reserve(max_tasks);
-        per_worker.resize(size_t{max_tasks} * worker_tally_.size());
+        concurrent.resize(max_tasks);
         profile_.tasks.swap(records);
-        worker_records_.swap(per_worker);
-        records_per_worker_ = max_tasks;
+        whole_records_.swap(concurrent);
     }
 }
 

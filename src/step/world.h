@@ -8,6 +8,7 @@
 
 #include <cloth/cloth.h>
 
+#include <atomic>
 #include <memory>
 
 #include "base/host_allocator.h"
@@ -132,7 +133,6 @@ class World {
         int64_t stage_ns[kStageCount] = {};
         int64_t first_start_ns[kStageCount] = {};
         uint32_t stage_tasks[kStageCount] = {};
-        uint32_t records = 0, dropped = 0;  // in worker_records_, and past its share
     };
 
     HostMemory memory_;
@@ -172,8 +172,10 @@ class World {
     HostVector<int64_t> cloth_cost_ns_;           // per cloth slot: task time of the last frame
     HostVector<int64_t> cloth_solve_ns_;          // per cloth slot: the part of it in solve stages
     HostVector<WorkerTally> worker_tally_;        // per worker (whole cloths as tasks)
-    HostVector<TaskRecord> worker_records_;       // records_per_worker_ task records per worker
-    uint32_t records_per_worker_ = 0;
+    // Task records of whole cloths as tasks, in the order the workers
+    // claimed their slots (whole_record_count_: claims this frame).
+    HostVector<TaskRecord> whole_records_;
+    std::atomic<uint32_t> whole_record_count_{0};
 
     FrameProfile profile_;
     uint64_t frame_ = 0;

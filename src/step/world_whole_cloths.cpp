@@ -7,8 +7,9 @@
 // stage (a field of 32 flags cost 1.8 times the sum of its flags alone
 // that way: docs/measurements.md, "Whole cloths as tasks"). A cloth's
 // frame does not depend on how its groups are split over workers, so the
-// bits are the rounds'. Times and task records are kept per worker while
-// the cloths run, and folded into the profile after the frame.
+// bits are the rounds'. Times are kept per worker, and task records in
+// slots the workers claim from one atomic counter, while the cloths run;
+// both are folded into the profile after the frame.
 #include <algorithm>
 
 #include "step/frame_rounds.h"
@@ -20,6 +21,8 @@ bool World::steps_whole_cloths() const { return stepping_cloths_.size() > tasks_
 
 void World::step_whole_cloths(bool timed) {
     std::fill(worker_tally_.begin(), worker_tally_.end(), WorkerTally{});
+    whole_record_count_.store(0, std::memory_order_relaxed);
+    whole_record_count_.store(0, std::memory_order_relaxed);
     auto run = [this, timed](uint32_t begin, uint32_t end, uint32_t worker) {
         for (uint32_t c = begin; c < end; ++c) run_whole_cloth(c, worker, timed);
     };
@@ -61,11 +64,13 @@ void World::run_whole_cloth(uint32_t index, uint32_t worker, bool timed) {
                 if (tally.stage_tasks[s] == 0) tally.first_start_ns[s] = start;
                 tally.stage_ns[s] += duration;
                 tally.stage_tasks[s] += 1;
-                if (tally.records < records_per_worker_) {
-                    worker_records_[size_t{worker} * records_per_worker_ + tally.records++] =
-                        TaskRecord{slot, cloths_[slot].generation, stage, t, worker, substep, start, end};
-                } else {
-                    ++tally.dropped;
+                // Workers claim record slots from one counter: a profile keeps
+                // the first tasks up to its capacity, whichever worker ran them.
+                if (!whole_records_.empty()) {
+                    const uint32_t at = whole_record_count_.fetch_add(1, std::memory_order_relaxed);
+                    if (at < whole_records_.size())
+                        whole_records_[at] =
+                            TaskRecord{slot, cloths_[slot].generation, stage, t, worker, substep, start, end};
                 }
             }
             start = end;
@@ -83,15 +88,15 @@ void World::account_whole_cloths() {
             profile_.stage_ns[s] += tally.stage_ns[s];
             profile_.stage_tasks[s] += tally.stage_tasks[s];
         }
-        const TaskRecord* records = worker_records_.data() + size_t{w} * records_per_worker_;
-        for (uint32_t r = 0; r < tally.records; ++r) {
-            if (profile_.tasks.size() < profile_.tasks.capacity()) {
-                profile_.tasks.push_back(records[r]);
-            } else {
-                ++profile_.tasks_dropped;
-            }
+    }
+    // After the parallel_for's barrier: every claim is written.
+    const uint32_t claimed = whole_record_count_.load(std::memory_order_relaxed);
+    for (uint32_t r = 0; r < claimed; ++r) {
+        if (r < whole_records_.size() && profile_.tasks.size() < profile_.tasks.capacity()) {
+            profile_.tasks.push_back(whole_records_[r]);
+        } else {
+            ++profile_.tasks_dropped;
         }
-        profile_.tasks_dropped += tally.dropped;
     }
 }
 
