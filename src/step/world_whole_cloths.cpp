@@ -22,7 +22,6 @@ bool World::steps_whole_cloths() const { return stepping_cloths_.size() > tasks_
 void World::step_whole_cloths(bool timed) {
     std::fill(worker_tally_.begin(), worker_tally_.end(), WorkerTally{});
     whole_record_count_.store(0, std::memory_order_relaxed);
-    whole_record_count_.store(0, std::memory_order_relaxed);
     auto run = [this, timed](uint32_t begin, uint32_t end, uint32_t worker) {
         for (uint32_t c = begin; c < end; ++c) run_whole_cloth(c, worker, timed);
     };
