@@ -21,7 +21,7 @@ float stiffness_over_mass(const Material& material, float lightest_free_mass) {
 }
 
 SolverSettings resolve_solver(const SolverSettings& requested, float dt, float stiffness_per_mass,
-                              bool multigrid) {
+                              bool multigrid, bool quiet) {
     if (requested.kind != CLOTH_SOLVER_DEFAULT) return requested;
     SolverSettings out = requested;
     out.kind = CLOTH_SOLVER_PCG;
@@ -37,8 +37,10 @@ SolverSettings resolve_solver(const SolverSettings& requested, float dt, float s
     // kDefaultLongestSubstep bounds the cable's pull instead, and
     // docs/stability.md maps where this holds.
     const double gamma = static_cast<double>(dt) * dt * stiffness_per_mass;
-    const double wanted = std::max(std::ceil(std::sqrt(gamma / gamma_limit)),
-                                   std::ceil(static_cast<double>(dt) / kDefaultLongestSubstep - 1e-6));
+    const double wanted = quiet
+                              ? std::ceil(static_cast<double>(dt) / kDefaultQuietLongestSubstep - 1e-6)
+                              : std::max(std::ceil(std::sqrt(gamma / gamma_limit)),
+                                         std::ceil(static_cast<double>(dt) / kDefaultLongestSubstep - 1e-6));
     const uint32_t substeps = static_cast<uint32_t>(
         std::min<double>(std::max(wanted, 1.0), static_cast<double>(kDefaultMaxSubsteps)));
     out.substeps = std::max(requested.substeps, substeps);

@@ -50,6 +50,16 @@ constexpr uint32_t kDefaultMaxSubsteps = 16;
 // how far a long step pulls the strain cable, which gamma does not count
 // (docs/measurements.md, "The stability map").
 constexpr double kDefaultLongestSubstep = 1.0 / 120.0;
+// A quiet cloth (ClothInstance::starts_quiet: no free particle faster
+// than kDefaultQuietSpeed at this frame's start and the last's, no spring
+// past the strain limit, pins as slow, no change by the host, nothing
+// carrying it) takes substeps of up to a 60 Hz frame whatever its gamma,
+// so its solve and strain limit run once a frame, not twice; past the
+// gamma limit the substep runs backward Euler, whose damping a still
+// cloth does not see. Whatever pulls it ends the quiet in that frame or
+// the next.
+constexpr double kDefaultQuietLongestSubstep = 1.0 / 60.0;
+constexpr float kDefaultQuietSpeed = 1e-2f;  // m/s, as kDefaultVelocityTolerance
 // Softer springs stretch more than 10 % near the pins even when solved
 // exactly (a corner spring of a 64x64, 1 kg cloth at 1e3 N/m carries ~5 N:
 // strain ~ F / (k l0) ~ 0.3), so the default limits strain unless the user
@@ -80,8 +90,10 @@ constexpr float kLongestCappedSubstep = 1.0f / 15.0f;
 // and substeps follow from gamma as above (requested.substeps is a lower
 // bound), and theta is kDefaultTheta unless the strain limit is off or
 // the substep gamma stays past its limit at kDefaultMaxSubsteps;
-// `multigrid`: whether the cloth has coarse levels.
+// `multigrid`: whether the cloth has coarse levels; `quiet`: whether the
+// cloth is quiet (kDefaultQuietLongestSubstep instead of
+// kDefaultLongestSubstep).
 SolverSettings resolve_solver(const SolverSettings& requested, float dt, float stiffness_per_mass,
-                              bool multigrid);
+                              bool multigrid, bool quiet = false);
 
 }  // namespace cloth

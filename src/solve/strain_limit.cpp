@@ -177,7 +177,7 @@ void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, floa
     pass_ = pass;
     asked_strain_ = pass.max_strain;
     iterations_ = asked_ = iterations;
-    past_promise_ = false;
+    past_promise_ = held_ = false;
     round_ = 0;
     h_ = h;
     x_ = &x;
@@ -228,6 +228,7 @@ void StrainLimiter::finish_round() {
                 over_limit += counts_[g].over_limit;
                 over_promise += counts_[g].over_promise;
             }
+            if (pass == 0) held_ = over_limit > 0;
             if (pass + 1 == asked_) past_promise_ = over_promise > 0;
             if (over_limit == 0) {
                 iterations_ = pass + 1;  // this pass applies nothing, nor would any after it

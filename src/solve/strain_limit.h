@@ -167,6 +167,9 @@ class StrainLimiter final : public StagedAlgorithm {
     // kStrainPromiseSlack (with `counts`): the passes asked for did not
     // hold it. False until that pass.
     bool past_promise() const { return past_promise_; }
+    // The first pass found a spring longer than the limit (with `counts`):
+    // the limiter held the cloth. False until that pass.
+    bool held() const { return held_; }
     // The current round applies corrections.
     bool applying() const { return !tether_round() && (round_ - first_pass_round_) % 2 == 1; }
 
@@ -184,6 +187,7 @@ class StrainLimiter final : public StagedAlgorithm {
     const Tethers* tethers_ = nullptr;
     uint32_t iterations_ = 0, max_iterations_ = 0, asked_ = 0, round_ = 0, first_pass_round_ = 0;
     bool past_promise_ = false;
+    bool held_ = false;
     StretchCount* counts_ = nullptr;  // per group, written by the corrections or terms round
     float h_ = 0;
     Vec3Soa* x_ = nullptr;

@@ -210,6 +210,11 @@ void ClothInstance::set_sleep(const SleepSettings& settings) {
 }
 
 void ClothInstance::wake() {
+    end_sleep();
+    quiet_ = false;
+}
+
+void ClothInstance::end_sleep() {
     if (held_asleep_) contact_.wake_up();
     held_asleep_ = false;
     sleeping_ = false;

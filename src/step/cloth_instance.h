@@ -195,7 +195,7 @@ class ClothInstance {
     bool is_pinned(uint32_t particle) const { return pinned_[particle] != 0.0f; }
     void set_pin_target(uint32_t particle, const Vec3& target) {
         pin_target_.set(particle, target);
-        wake();
+        end_sleep();  // the pin's move is measured when the frame starts (starts_quiet)
     }
     // Teleport a particle: new position, zero velocity (and pin target).
     void set_position(uint32_t particle, const Vec3& x);
@@ -369,6 +369,19 @@ class ClothInstance {
     FrameContext frame_;  // the frame in progress, or the last one
 
     void update_sleep();  // end of a successful frame
+    // Whether a frame of `dt` starts quiet (solver_default.h,
+    // kDefaultQuietSpeed): it starts slow (frame_.started_slow), the last
+    // frame started slow too with no spring past the strain limit and no
+    // change by the host since (quiet_), no pin moves faster, and nothing
+    // carries the cloth. Two slow frame ends in a row: a swing's turning
+    // point, where the speed passes through zero, has one.
+    bool starts_quiet(float dt) const;
+    bool free_particles_slower_than(float speed) const;
+    // The last frame started slow with no spring past the strain limit,
+    // and the host has not changed the cloth since (wake); saved in
+    // snapshots.
+    bool quiet_ = false;
+    void end_sleep();  // wake(), but a quiet cloth stays quiet
     // The largest squared speed of a particle's move over the frame, from
     // the frame's start positions (in frame_.backup_x); -1 when they are
     // not kept.

@@ -62,7 +62,9 @@ constexpr uint32_t kStrainedFlag = 1;
 constexpr uint32_t kHeldAsleepFlag = 2;
 // A SkinSection and the skin's state follow the arrays (since 1.12.1).
 constexpr uint32_t kSkinFlag = 4;
-constexpr uint32_t kKnownFlags = kStrainedFlag | kHeldAsleepFlag | kSkinFlag;
+// The last frame left the cloth quiet (ClothInstance::starts_quiet; since 1.12.2).
+constexpr uint32_t kQuietFlag = 8;
+constexpr uint32_t kKnownFlags = kStrainedFlag | kHeldAsleepFlag | kSkinFlag | kQuietFlag;
 
 struct SkinSection {
     uint32_t source;       // 1: joint matrices, 2: the host's skinned positions
@@ -116,7 +118,7 @@ void ClothInstance::save_snapshot(void* out) const {
     h.sleeping = sleeping_ ? 1 : 0;
     h.rest_frames = rest_frames_;
     h.flags = (strained_ ? kStrainedFlag : 0) | (held_asleep_ ? kHeldAsleepFlag : 0) |
-              (snapshot_has_skin() ? kSkinFlag : 0);
+              (snapshot_has_skin() ? kSkinFlag : 0) | (quiet_ ? kQuietFlag : 0);
     for (int c = 0; c < 3; ++c) h.wind[c] = aero_.wind[c];
     h.air_density = aero_.air_density;
     h.drag_coefficient = aero_.drag_coefficient;
@@ -270,6 +272,7 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
     if (held_asleep_) contact_.fall_asleep();  // a carrier is caught up with from where it is now
     rest_frames_ = h.rest_frames;
     strained_ = (h.flags & kStrainedFlag) != 0;
+    quiet_ = (h.flags & kQuietFlag) != 0;
     update_rate_.settle();  // reports show the restored state at once
     return {};
 }

@@ -253,7 +253,9 @@ void ClothInstance::limit_strain(const GroupTask& task) {
 }
 
 void ClothInstance::note_strain() {
-    if (frame_.strain_limiter.done()) frame_.strained = frame_.strain_limiter.past_promise();
+    if (!frame_.strain_limiter.done()) return;
+    frame_.strained = frame_.strain_limiter.past_promise();
+    frame_.limit_held |= frame_.strain_limiter.held();
 }
 
 void ClothInstance::resolve_self_contacts(const GroupTask& task) {

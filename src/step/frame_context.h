@@ -83,9 +83,11 @@ struct FrameContext {
     // The strain the pins ask of this substep (Tethers::strain_pins_demand):
     // past the limit, the limit gives way to it in the solve and the passes.
     float strain_pins_demand = 0;
-    bool strained = false;  // a substep of this frame ended past the strain limit's promise
-    bool collides = false;  // this frame runs the collision stage
-    bool touching = false;  // this substep's collision stage found a contact
+    bool strained = false;      // a substep of this frame ended past the strain limit's promise
+    bool limit_held = false;    // a substep's strain limiter found a spring past the limit
+    bool started_slow = false;  // no free particle faster than kDefaultQuietSpeed at its start
+    bool collides = false;      // this frame runs the collision stage
+    bool touching = false;      // this substep's collision stage found a contact
     bool converged = true;
     bool out_of_memory = false;  // set by the serial solve task
     FrameBackup backup = FrameBackup::kCopied;

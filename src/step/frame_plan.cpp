@@ -132,7 +132,10 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
                                ? lightest_free_mass(mass_.data(), pinned_.data(), particle_count())
                                : 0.0f;
     const float stiffness_per_mass = stiffness_over_mass(material_, lightest);
-    frame_.solver = resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty());
+    frame_.started_slow =
+        solver_.kind == CLOTH_SOLVER_DEFAULT && free_particles_slower_than(kDefaultQuietSpeed);
+    const bool quiet = starts_quiet(dt);
+    frame_.solver = resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty(), quiet);
     frame_.lightest_free_mass = frame_.solver.velocity_tolerance > 0 ? lightest : 0.0f;
     frame_.strained = strained_;
     // The default's own choice within a quality policy's maxima (the
@@ -178,11 +181,29 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     frame_.h = dt / static_cast<float>(frame_.solver.substeps);
     frame_.gravity = gravity;
     frame_.converged = true;
+    frame_.limit_held = false;
     frame_.out_of_memory = false;
     std::fill(frame_.group_finite.begin(), frame_.group_finite.end(), uint8_t{1});
     frame_.substep = frame_.entry = frame_.round = 0;
     plan_substep();
     frame_.done = false;
+}
+
+bool ClothInstance::free_particles_slower_than(float speed) const {
+    const float most = speed * speed;
+    for (uint32_t i = 0; i < particle_count(); ++i) {
+        if (pinned_[i] == 0.0f && v_.get(i).squaredNorm() > most) return false;
+    }
+    return true;
+}
+
+bool ClothInstance::starts_quiet(float dt) const {
+    if (!quiet_ || !frame_.started_slow || contact_.rides_bodies() || skin_.active()) return false;
+    const float farthest = kDefaultQuietSpeed * kDefaultQuietSpeed * dt * dt;
+    for (uint32_t i : pinned_list_) {
+        if ((pin_target_.get(i) - x_.get(i)).squaredNorm() > farthest) return false;
+    }
+    return true;
 }
 
 Stage ClothInstance::stage() const {
@@ -278,6 +299,7 @@ Status ClothInstance::end_frame() {
     }
     last_step_result_ = frame_.converged ? CLOTH_OK : CLOTH_ERROR_SOLVER_FAILED;
     strained_ = frame_.strained;
+    quiet_ = frame_.started_slow && !frame_.limit_held;
     update_sleep();
     if (!frame_.converged) {
         return Status::error(CLOTH_ERROR_SOLVER_FAILED,

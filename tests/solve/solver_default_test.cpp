@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <vector>
 
 #include "pinned_cloth.h"
 #include "scenes.h"
@@ -110,7 +112,8 @@ TEST(DefaultSolver, ThePaperStepFailsWhereTheDefaultHolds) {
 // Effort follows motion: the default's solve stops once no particle's
 // velocity change is off by more than a viewer could see
 // (kDefaultVelocityTolerance), so a cloth hanging still runs fewer
-// iterations than one falling, where the relative stop alone ran all five.
+// iterations than one falling, where the relative stop alone ran all five,
+// and a quiet cloth runs one substep (kDefaultQuietSpeed).
 TEST(DefaultSolver, AStillClothRunsFewerIterationsThanAFallingOne) {
     cloth::testing::PinnedCloth hanging;
     cloth_sleep_params awake = cloth_default_sleep_params();
@@ -118,12 +121,72 @@ TEST(DefaultSolver, AStillClothRunsFewerIterationsThanAFallingOne) {
     ASSERT_EQ(cloth_set_sleep(hanging.cloth, &awake), CLOTH_OK);
     ASSERT_EQ(cloth_step(hanging.world, 1.0f / 60.0f), CLOTH_OK);
     EXPECT_EQ(hanging.stats().last_solver_iterations, cloth::kDefaultMultigridIterations) << "falling";
+    EXPECT_EQ(hanging.stats().last_substeps, 2u) << "released from rest, it is not quiet";
     for (int f = 1; f < 400; ++f) ASSERT_EQ(cloth_step(hanging.world, 1.0f / 60.0f), CLOTH_OK);
     const cloth_stats still = hanging.stats();
     EXPECT_LT(still.max_speed, 0.01f) << "it hangs still";
     EXPECT_LE(still.last_solver_iterations, 2u) << "and its solve has little left to do";
     EXPECT_EQ(still.last_max_iterations, cloth::kDefaultMultigridIterations) << "of the five it may run";
-    EXPECT_EQ(still.last_substeps, 2u);
+    EXPECT_EQ(still.last_substeps, 1u) << "in one substep where a moving cloth runs two";
+}
+
+// A quiet cloth gets its substeps back in the frame something pulls it:
+// a pin that moves faster than kDefaultQuietSpeed is seen when the frame
+// starts, and a change by the host (the wind here) ends the quiet.
+TEST(DefaultSolver, AQuietClothGetsItsSubstepsBackInTheFrameAPinOrTheHostMovesIt) {
+    cloth::testing::PinnedCloth hanging;
+    cloth_sleep_params awake = cloth_default_sleep_params();
+    awake.enabled = 0;
+    ASSERT_EQ(cloth_set_sleep(hanging.cloth, &awake), CLOTH_OK);
+    auto settle = [&] {
+        for (int f = 0; f < 600 && hanging.stats().last_substeps != 1; ++f)
+            ASSERT_EQ(cloth_step(hanging.world, 1.0f / 60.0f), CLOTH_OK);
+        ASSERT_EQ(hanging.stats().last_substeps, 1u) << "quiet within 10 s";
+    };
+    settle();
+    std::vector<float> x(3 * 32 * 32);
+    ASSERT_EQ(cloth_read_positions(hanging.cloth, x.data(), static_cast<uint32_t>(x.size())), CLOTH_OK);
+    const uint32_t corner = 0;
+    const float same[3] = {x[0], x[1], x[2]};
+    ASSERT_EQ(cloth_set_pin_targets(hanging.cloth, &corner, same, 1), CLOTH_OK);
+    ASSERT_EQ(cloth_step(hanging.world, 1.0f / 60.0f), CLOTH_OK);
+    EXPECT_EQ(hanging.stats().last_substeps, 1u) << "a pin target set where the pin is keeps it quiet";
+    const float moved[3] = {x[0], x[1], x[2] + 0.05f};  // out of the plane: no spring past the limit
+    ASSERT_EQ(cloth_set_pin_targets(hanging.cloth, &corner, moved, 1), CLOTH_OK);
+    ASSERT_EQ(cloth_step(hanging.world, 1.0f / 60.0f), CLOTH_OK);
+    EXPECT_EQ(hanging.stats().last_substeps, 2u) << "a pin moving 3 m/s";
+    settle();
+    const float breeze[3] = {0.0f, 0.0f, 0.5f};
+    ASSERT_EQ(cloth_set_wind(hanging.cloth, breeze), CLOTH_OK);
+    ASSERT_EQ(cloth_step(hanging.world, 1.0f / 60.0f), CLOTH_OK);
+    EXPECT_EQ(hanging.stats().last_substeps, 2u) << "new wind";
+}
+
+// Whether a cloth is quiet is part of its snapshot: a quiet cloth's
+// snapshot restored into a cloth that has never stepped steps as the
+// original does, to the bit.
+TEST(DefaultSolver, ARestoredQuietClothStepsAsTheOriginal) {
+    cloth::testing::PinnedCloth original, copy;
+    cloth_sleep_params awake = cloth_default_sleep_params();
+    awake.enabled = 0;
+    for (cloth_id c : {original.cloth, copy.cloth}) ASSERT_EQ(cloth_set_sleep(c, &awake), CLOTH_OK);
+    for (int f = 0; f < 600 && original.stats().last_substeps != 1; ++f)
+        ASSERT_EQ(cloth_step(original.world, 1.0f / 60.0f), CLOTH_OK);
+    ASSERT_EQ(original.stats().last_substeps, 1u);
+    size_t size = 0;
+    ASSERT_EQ(cloth_get_snapshot_size(original.cloth, &size), CLOTH_OK);
+    std::vector<unsigned char> snapshot(size);
+    ASSERT_EQ(cloth_save_snapshot(original.cloth, snapshot.data(), size), CLOTH_OK);
+    ASSERT_EQ(cloth_restore_snapshot(copy.cloth, snapshot.data(), size), CLOTH_OK);
+    std::vector<float> a(3 * 32 * 32), b(a.size());
+    for (int f = 0; f < 10; ++f) {
+        ASSERT_EQ(cloth_step(original.world, 1.0f / 60.0f), CLOTH_OK);
+        ASSERT_EQ(cloth_step(copy.world, 1.0f / 60.0f), CLOTH_OK);
+        EXPECT_EQ(copy.stats().last_substeps, original.stats().last_substeps) << "frame " << f;
+        ASSERT_EQ(cloth_read_positions(original.cloth, a.data(), static_cast<uint32_t>(a.size())), CLOTH_OK);
+        ASSERT_EQ(cloth_read_positions(copy.cloth, b.data(), static_cast<uint32_t>(b.size())), CLOTH_OK);
+        ASSERT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << "frame " << f;
+    }
 }
 
 // A cloth hanging at its strain limit comes to rest and sleeps: the
