@@ -745,9 +745,10 @@ typedef enum cloth_solver_kind {
     /// takes them at the end (backward Euler) in a substep after one whose strain-limit passes left a
     /// spring more than 0.01 past the limit, and in every substep when the limit is 0 (off) or the
     /// cloth is too stiff for its step in 16 substeps. A quiet cloth (no free particle faster than
-    /// 1 cm/s and no pin moving faster, a step since the host last changed it, no carrier or skin,
-    /// and no spring past the strain limit in its last step) takes substeps of up to 1/60 s whatever
-    /// its gamma, backward Euler where gamma asks for more: a cloth at rest costs about half
+    /// 1 cm/s and no pin moving faster, a step since the host last changed it, no carrier,
+    /// attachment, collider or skin, and no spring past the strain limit in its last step) takes
+    /// substeps of up to 1/60 s whatever its gamma, backward Euler where gamma asks for more: a
+    /// cloth at rest costs about a quarter of a falling one
     CLOTH_SOLVER_DEFAULT = 0,
     /// linearized backward Euler, `iterations` Jacobi sweeps (1 = the paper's method)
     CLOTH_SOLVER_JACOBI = 1,

@@ -52,9 +52,9 @@ constexpr uint32_t kDefaultMaxSubsteps = 16;
 constexpr double kDefaultLongestSubstep = 1.0 / 120.0;
 // A quiet cloth (ClothInstance::starts_quiet: no free particle faster
 // than kDefaultQuietSpeed at this frame's start and the last's, no spring
-// past the strain limit, pins as slow, no change by the host, nothing
-// carrying it) takes substeps of up to a 60 Hz frame whatever its gamma,
-// so its solve and strain limit run once a frame, not twice; past the
+// past the strain limit, pins as slow, no change by the host, no bodies
+// to follow, no skin) takes substeps of up to a 60 Hz frame whatever its
+// gamma, so its solve and strain limit run once a frame, not twice; past the
 // gamma limit the substep runs backward Euler, whose damping a still
 // cloth does not see. Whatever pulls it ends the quiet in that frame or
 // the next.

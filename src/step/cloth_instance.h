@@ -372,9 +372,10 @@ class ClothInstance {
     // Whether a frame of `dt` starts quiet (solver_default.h,
     // kDefaultQuietSpeed): it starts slow (frame_.started_slow), the last
     // frame started slow too with no spring past the strain limit and no
-    // change by the host since (quiet_), no pin moves faster, and nothing
-    // carries the cloth. Two slow frame ends in a row: a swing's turning
-    // point, where the speed passes through zero, has one.
+    // change by the host since (quiet_), no pin moves faster, and the
+    // cloth follows no bodies (as for sleep) and has no skin. Two slow
+    // frame ends in a row: a swing's turning point, where the speed passes
+    // through zero, has one.
     bool starts_quiet(float dt) const;
     bool free_particles_slower_than(float speed) const;
     // The last frame started slow with no spring past the strain limit,

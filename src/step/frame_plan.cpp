@@ -132,10 +132,7 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
                                ? lightest_free_mass(mass_.data(), pinned_.data(), particle_count())
                                : 0.0f;
     const float stiffness_per_mass = stiffness_over_mass(material_, lightest);
-    frame_.started_slow =
-        solver_.kind == CLOTH_SOLVER_DEFAULT && free_particles_slower_than(kDefaultQuietSpeed);
-    const bool quiet = starts_quiet(dt);
-    frame_.solver = resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty(), quiet);
+    frame_.solver = resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty());
     frame_.lightest_free_mass = frame_.solver.velocity_tolerance > 0 ? lightest : 0.0f;
     frame_.strained = strained_;
     // The default's own choice within a quality policy's maxima (the
@@ -152,6 +149,18 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
         frame_.solver.iterations = std::min(frame_.solver.iterations, solver_.default_iteration_cap);
     if (solver_.default_substep_cap > 0)
         frame_.solver.substeps = std::min(frame_.solver.substeps, solver_.default_substep_cap);
+    // A quiet cloth's fewer substeps come last: its own choice, which a
+    // budget's ladder starts from, is that of a moving cloth.
+    frame_.started_slow =
+        solver_.kind == CLOTH_SOLVER_DEFAULT && free_particles_slower_than(kDefaultQuietSpeed);
+    if (starts_quiet(dt)) {
+        const SolverSettings quiet =
+            resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty(), true);
+        if (quiet.substeps < frame_.solver.substeps) {
+            frame_.solver.substeps = quiet.substeps;
+            frame_.solver.theta = quiet.theta;
+        }
+    }
     frame_.capped_substeps = frame_.solver.substeps;
     // Down to the ladder's floor a budget's cap never stretches a substep
     // past kLongestCappedSubstep (a slow update rate's step is long:
@@ -198,7 +207,7 @@ bool ClothInstance::free_particles_slower_than(float speed) const {
 }
 
 bool ClothInstance::starts_quiet(float dt) const {
-    if (!quiet_ || !frame_.started_slow || contact_.rides_bodies() || skin_.active()) return false;
+    if (!quiet_ || !frame_.started_slow || contact_.follows_bodies() || skin_.active()) return false;
     const float farthest = kDefaultQuietSpeed * kDefaultQuietSpeed * dt * dt;
     for (uint32_t i : pinned_list_) {
         if ((pin_target_.get(i) - x_.get(i)).squaredNorm() > farthest) return false;

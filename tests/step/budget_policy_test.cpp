@@ -304,6 +304,26 @@ TEST(BudgetPolicyModel, AtTheFloorASlowerRateComesBeforeFewerIterationsAndGoesFi
     }
 }
 
+// A quiet default cloth runs one substep, but its ladder's top stays the
+// moving cloth's choice: a rung the budget picks while it rests is one of
+// the moving cloth's ladder, not one counted down from the quiet frame.
+TEST(BudgetPolicyModel, AQuietDefaultClothKeepsTheMovingClothsLadder) {
+    ModelWorld world;
+    SolverSettings automatic;
+    automatic.kind = CLOTH_SOLVER_DEFAULT;
+    ClothInstance& resting = world.add(automatic, 20000.0f);
+    QualityPolicy policy;
+    policy.enabled = true;
+    resting.set_quality_policy(policy);
+    world.frame(1e9);
+    const QualityRung moving = resting.quality().ran_rung();
+    ASSERT_GT(moving.substeps, 1u) << "released from rest, it runs the moving cloth's substeps";
+    for (int i = 0; i < 600 && resting.quality().ran_rung().substeps != 1; ++i) world.frame(1e9);
+    ASSERT_EQ(resting.quality().ran_rung().substeps, 1u) << "quiet within 10 s";
+    EXPECT_EQ(resting.quality().ladder().top.substeps, moving.substeps);
+    EXPECT_EQ(resting.quality().ladder().top.iterations, moving.iterations);
+}
+
 // A stiff cloth at 60 Hz: the default solver chooses several iterations
 // and substeps by itself.
 TEST(BudgetPolicyModel, TheDefaultKeepsHalfItsIterationsWhileSubstepsCanGoAndGetsItsOwnChoiceBack) {
