@@ -126,7 +126,6 @@ int main(int argc, char** argv) {
     FlagSettings settings;
     settings.threads = o.threads;
     settings.profile_tasks = kProfileTasks;
-    settings.max_strain = 0.08f;  // the default solver's own limit, as the field's flags and vehicle_flag
     cloth_samples::TraceWriter trace;
     const double world_zero_us = trace.now_us();
     FlagRig rig(settings, vehicle);

@@ -36,7 +36,7 @@ struct FlagSettings {
     float damping = 0.5f;       // structural N s/m (the library's default); shear 0.4x, bend 0.1x
     float thickness = 0.01f;    // m, kept from every collider
     float friction = 0.3f;
-    float max_strain = 0.1f;  // strain limit after each substep (0: off)
+    float max_strain = 0.08f;  // strain limit after each substep (0: off): the default solver's own
     cloth_solver_settings solver = cloth_default_solver_settings();
     uint32_t threads = 1;            // workers of the cloth world (1: the calling thread only)
     uint32_t profile_tasks = 0;      // task records kept per frame (0: profiling off)

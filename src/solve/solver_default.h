@@ -54,10 +54,10 @@ constexpr double kDefaultLongestSubstep = 1.0 / 120.0;
 // than kDefaultQuietSpeed at this frame's start and the last's, no spring
 // past the strain limit, pins as slow, no change by the host, no bodies
 // to follow, no skin) takes substeps of up to a 60 Hz frame whatever its
-// gamma, so its solve and strain limit run once a frame, not twice; past the
-// gamma limit the substep runs backward Euler, whose damping a still
-// cloth does not see. Whatever pulls it ends the quiet in that frame or
-// the next.
+// gamma, so its solve and strain limit run once a frame, not in each of
+// its substeps; past the gamma limit the substep runs backward Euler,
+// whose damping a still cloth does not see. Whatever pulls it ends the
+// quiet in that frame or the next.
 constexpr double kDefaultQuietLongestSubstep = 1.0 / 60.0;
 constexpr float kDefaultQuietSpeed = 1e-2f;  // m/s, as kDefaultVelocityTolerance
 // Softer springs stretch more than 10 % near the pins even when solved
