@@ -162,6 +162,23 @@ TEST(DefaultSolver, AQuietClothGetsItsSubstepsBackInTheFrameAPinOrTheHostMovesIt
     EXPECT_EQ(hanging.stats().last_substeps, 2u) << "new wind";
 }
 
+// A cloth with a collider to meet follows bodies the host moves without a
+// call on the cloth, so it is never quiet: a still cloth beside a sphere
+// keeps its substeps.
+TEST(DefaultSolver, AClothThatCollidesIsNeverQuiet) {
+    cloth::testing::PinnedCloth hanging;
+    cloth_sleep_params awake = cloth_default_sleep_params();
+    awake.enabled = 0;
+    ASSERT_EQ(cloth_set_sleep(hanging.cloth, &awake), CLOTH_OK);
+    cloth_collider_desc desc = cloth_default_collider_desc();
+    desc.local_position[0] = 10.0f;  // far from the cloth: no contact
+    cloth_collider_id sphere{};
+    ASSERT_EQ(cloth_collider_create_sphere(hanging.world, &desc, 0.5f, &sphere), CLOTH_OK);
+    for (int f = 0; f < 400; ++f) ASSERT_EQ(cloth_step(hanging.world, 1.0f / 60.0f), CLOTH_OK);
+    EXPECT_LT(hanging.stats().max_speed, 0.01f) << "it hangs still";
+    EXPECT_EQ(hanging.stats().last_substeps, 2u);
+}
+
 // Whether a cloth is quiet is part of its snapshot: a quiet cloth's
 // snapshot restored into a cloth that has never stepped steps as the
 // original does, to the bit.
