@@ -144,9 +144,20 @@ SolverSettings jacobi(uint32_t iterations) {
     return s;
 }
 
+SolverSettings automatic() {
+    SolverSettings s;
+    s.kind = CLOTH_SOLVER_DEFAULT;
+    return s;
+}
+
+QualityPolicy policy_on() {
+    QualityPolicy policy;
+    policy.enabled = true;
+    return policy;
+}
+
 QualityPolicy sweeps_policy() {
-    QualityPolicy p;
-    p.enabled = true;
+    QualityPolicy p = policy_on();
     p.min_iterations = 1;
     p.max_iterations = 16;
     p.max_substeps = 1;
@@ -309,12 +320,8 @@ TEST(BudgetPolicyModel, AtTheFloorASlowerRateComesBeforeFewerIterationsAndGoesFi
 // the moving cloth's ladder, not one counted down from the quiet frame.
 TEST(BudgetPolicyModel, AQuietDefaultClothKeepsTheMovingClothsLadder) {
     ModelWorld world;
-    SolverSettings automatic;
-    automatic.kind = CLOTH_SOLVER_DEFAULT;
-    ClothInstance& resting = world.add(automatic, 20000.0f);
-    QualityPolicy policy;
-    policy.enabled = true;
-    resting.set_quality_policy(policy);
+    ClothInstance& resting = world.add(automatic(), 20000.0f);
+    resting.set_quality_policy(policy_on());
     world.frame(1e9);
     const QualityRung moving = resting.quality().ran_rung();
     ASSERT_GT(moving.substeps, 1u) << "released from rest, it runs the moving cloth's substeps";
@@ -328,14 +335,10 @@ TEST(BudgetPolicyModel, AQuietDefaultClothKeepsTheMovingClothsLadder) {
 // and substeps by itself.
 TEST(BudgetPolicyModel, TheDefaultKeepsHalfItsIterationsWhileSubstepsCanGoAndGetsItsOwnChoiceBack) {
     ModelWorld world;
-    SolverSettings automatic;
-    automatic.kind = CLOTH_SOLVER_DEFAULT;
-    ClothInstance& capped = world.add(automatic, 20000.0f);
-    ClothInstance& free_running = world.add(automatic, 20000.0f);  // no policy
+    ClothInstance& capped = world.add(automatic(), 20000.0f);
+    ClothInstance& free_running = world.add(automatic(), 20000.0f);  // no policy
     world.keep_moving();  // the default's own choice stays what it is in the first frame
-    QualityPolicy policy;
-    policy.enabled = true;
-    capped.set_quality_policy(policy);
+    capped.set_quality_policy(policy_on());
 
     world.frame(1e9);
     const QualityRung own = free_running.quality().ran_rung();
