@@ -1398,7 +1398,7 @@ CLOTH_API cloth_result CLOTH_CALL cloth_is_sleeping(cloth_id cloth, bool* out_sl
  * library that changes the format says so here; one that keeps it reads
  * snapshots written by any library of the same format, except that a
  * snapshot holding state a library does not know is refused as corrupt:
- * a skinned cloth's before 1.12.1, a quiet cloth's before 1.12.2. */
+ * a skinned cloth's needs a library of 1.12.1 on, a quiet cloth's 1.12.2. */
 
 /// Bytes a snapshot of this cloth needs.
 CLOTH_API cloth_result CLOTH_CALL cloth_get_snapshot_size(cloth_id cloth, size_t* out_size);
