@@ -377,6 +377,9 @@ class ClothInstance {
     // frame ends in a row: a swing's turning point, where the speed passes
     // through zero, has one.
     bool starts_quiet(float dt) const;
+    // Bodies move without a call on the cloth, and a skin moves it each
+    // frame: such a cloth is never quiet, and pays for no speed check.
+    bool may_be_quiet() const { return !contact_.follows_bodies() && !skin_.active(); }
     bool free_particles_slower_than(float speed) const;
     // The last frame started slow with no spring past the strain limit,
     // and the host has not changed the cloth since (wake); saved in

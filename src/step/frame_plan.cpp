@@ -151,8 +151,8 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
         frame_.solver.substeps = std::min(frame_.solver.substeps, solver_.default_substep_cap);
     // A quiet cloth's fewer substeps come last: its own choice, which a
     // budget's ladder starts from, is that of a moving cloth.
-    frame_.started_slow =
-        solver_.kind == CLOTH_SOLVER_DEFAULT && free_particles_slower_than(kDefaultQuietSpeed);
+    frame_.started_slow = solver_.kind == CLOTH_SOLVER_DEFAULT && may_be_quiet() &&
+                          free_particles_slower_than(kDefaultQuietSpeed);
     if (starts_quiet(dt)) {
         const SolverSettings quiet =
             resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty(), true);
@@ -207,7 +207,7 @@ bool ClothInstance::free_particles_slower_than(float speed) const {
 }
 
 bool ClothInstance::starts_quiet(float dt) const {
-    if (!quiet_ || !frame_.started_slow || contact_.follows_bodies() || skin_.active()) return false;
+    if (!quiet_ || !frame_.started_slow) return false;  // started_slow implies may_be_quiet
     const float farthest = kDefaultQuietSpeed * kDefaultQuietSpeed * dt * dt;
     for (uint32_t i : pinned_list_) {
         if ((pin_target_.get(i) - x_.get(i)).squaredNorm() > farthest) return false;
