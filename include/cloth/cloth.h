@@ -181,7 +181,7 @@ extern "C" {
 /// this minor version has every function and struct of this header.
 #define CLOTH_VERSION_MINOR 12
 /// Patch version of this header (fixes that change no interface).
-#define CLOTH_VERSION_PATCH 2
+#define CLOTH_VERSION_PATCH 3
 
 /// Library version. A library with another major version than the header a
 /// caller was built with is not compatible with it.
@@ -1041,9 +1041,10 @@ CLOTH_API cloth_result CLOTH_CALL cloth_world_set_worker_spin(cloth_world_id wor
 /// numbered in the order the stages were added, not in run order; a substep
 /// runs, of those its cloth uses: AIR, FORCES, then EXPLICIT, or ASSEMBLE,
 /// one solve (JACOBI_SWEEP, SERIAL_SOLVE or ITERATIVE_SOLVE, each possibly
-/// several rounds) and INTEGRATE; then COLLISIONS, STRAIN_LIMIT (with
-/// LIMIT_COLLISIONS between its passes), and SELF_COLLISION, SELF_SORT,
-/// SELF_CONTACTS, SELF_PROJECT, SELF_RESPOND.
+/// several rounds) and INTEGRATE; then COLLISIONS; SELF_COLLISION,
+/// SELF_SORT, SELF_CONTACTS, SELF_PROJECT, SELF_RESPOND; and STRAIN_LIMIT
+/// (with LIMIT_COLLISIONS, and with self-collision a SELF_PROJECT, between
+/// its passes).
 typedef enum cloth_stage {
     /// per triangle: wind drag and lift
     CLOTH_STAGE_AIR = 0,
@@ -1067,7 +1068,8 @@ typedef enum cloth_stage {
     CLOTH_STAGE_SELF_SORT = 9,
     /// self-collision: each particle's contact list
     CLOTH_STAGE_SELF_CONTACTS = 10,
-    /// self-collision: one projection pass (repeated while overlaps remain)
+    /// self-collision: one projection pass (repeated while overlaps remain;
+    /// and one after each strain-limit pass)
     CLOTH_STAGE_SELF_PROJECT = 11,
     /// self-collision: velocity response (paper eq. 13) and friction
     CLOTH_STAGE_SELF_RESPOND = 12,

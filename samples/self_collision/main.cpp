@@ -52,6 +52,7 @@ struct RunResult {
     double stage_ms[CLOTH_MAX_STAGES] = {};  // summed over frames (frame profile)
     double p50_ms = 0, p95_ms = 0;
     uint32_t max_contacts = 0;
+    float max_strain = 0;           // over the run, after each step (cloth_stats)
     uint32_t interpenetrating = 0;  // far-apart pairs (> 3 grid steps) closer than thickness / 2
     std::vector<float> positions, normals;
     std::vector<uint32_t> indices;
@@ -183,6 +184,10 @@ RunResult run(const Options& o, bool self_collision, bool print) {
         stats.struct_size = sizeof stats;
         cloth_get_self_collision_stats(cloth, &stats);
         out.max_contacts = std::max(out.max_contacts, stats.contacts);
+        cloth_stats cloth_stats{};
+        cloth_stats.struct_size = sizeof cloth_stats;
+        cloth_get_stats(cloth, &cloth_stats);
+        out.max_strain = std::max(out.max_strain, cloth_stats.max_strain);
         if (print && (frame % 30 == 0 || frame == o.frames - 1)) {
             std::printf("%6d %9.3f %9u %4u/%-4u %7u\n", frame, step_ms.back(), stats.contacts,
                         stats.valid_regions, stats.regions, stats.passes);
@@ -249,6 +254,8 @@ int main(int argc, char** argv) {
         "(shared, noisy machine: compare the two, not across runs)\n",
         on.p50_ms, on.p95_ms, off.p50_ms, off.p95_ms);
     std::printf("most contacts in a frame: %u\n", on.max_contacts);
+    std::printf("max strain over the run: %.3f with, %.3f without self-collision\n", on.max_strain,
+                off.max_strain);
     // Frame profile: where the time of the run with self-collision went.
     double total = 0;
     for (double ms : on.stage_ms) total += ms;

@@ -110,6 +110,7 @@ class SelfCollision final : public StagedAlgorithm {
     void respond_velocities(const Vec3Soa& x, const Vec3Soa& v, uint32_t begin, uint32_t end);
     void apply_velocities(Vec3Soa& v);
     const Vec3Soa& next_velocities() const { return next_v_; }
+    const Vec3Soa& next_positions() const { return next_x_; }  // a projection's, before apply_positions
 
     // The rounds, in order (the file comment's stages 1-5).
     enum class Round : uint8_t { kHash, kSort, kContacts, kProject, kRespond, kDone };

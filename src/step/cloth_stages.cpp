@@ -234,6 +234,8 @@ void ClothInstance::limit_strain(const GroupTask& task) {
     expect_stage(Stage::kStrainLimit);
     if (frame_.limit_rounds.colliding()) {
         collide(task);  // limit_rounds.h: when and why
+    } else if (frame_.limit_rounds.projecting()) {
+        self_collision_->project(x_, task.begin, task.end);
     } else {
         // The skin's constraints run several times in the substep: its
         // skinned positions and normals are worked out once, in the first round.
@@ -297,10 +299,12 @@ CLOTH_HOT_LOOP bool range_is_finite(const Vec3Soa& x, const Vec3Soa& v, uint32_t
 
 void ClothInstance::check_finite(uint32_t group) {
     // The state the last round wrote, which becomes x_, v_ after the barrier:
-    // self-collision's response velocities, or the first integration's output.
+    // self-collision's response velocities or projected positions, or the
+    // first integration's output.
     const Stage stage = planned().stage;
     const bool integrated = stage == Stage::kIntegrate;
-    const Vec3Soa& x = integrated ? integration_x() : x_;
+    const bool projected = stage == Stage::kStrainLimit && frame_.limit_rounds.projecting();
+    const Vec3Soa& x = integrated ? integration_x() : projected ? self_collision_->next_positions() : x_;
     const Vec3Soa& v = stage == Stage::kSelfCollision ? self_collision_->next_velocities()
                        : integrated                   ? integration_v()
                                                       : v_;

@@ -62,11 +62,13 @@ void ClothInstance::plan_substep() {
     }
     // After integration, where contact plugs in.
     if (frame_.collides) plan(Stage::kCollisions, &C::collide_stage, &C::note_contacts);
-    if (limits_strain()) plan(Stage::kStrainLimit, &C::limit_strain, &C::note_strain, begin_strain_limit());
+    // Self-collision before the strain limiter, which projects its contacts
+    // again between its passes (limit_rounds.h).
     if (self_collision_) {
         self_collision_->begin(x_, v_, mass_.data(), pinned_.data());
         plan(Stage::kSelfCollision, &C::resolve_self_contacts, nullptr, self_collision_.get());
     }
+    if (limits_strain()) plan(Stage::kStrainLimit, &C::limit_strain, &C::note_strain, begin_strain_limit());
     // Last: max distance and backstop are promises after every substep.
     if (skin_.active() && skin_.constrains()) plan(Stage::kSkinConstraints, &C::constrain_to_skin);
 }
@@ -100,7 +102,8 @@ StagedAlgorithm* ClothInstance::begin_strain_limit() {
         quality_.below_floor() ? limit.iterations : kStrainLimitMorePasses * limit.iterations;
     frame_.strain_limiter.begin(pass, limit.iterations, frame_.h, x_, v_, solver_work_.r, solver_work_.z,
                                 accelerate, &grid_strain_terms_, &tethers_, stretch_counts_.data(), most);
-    frame_.limit_rounds.begin(&frame_.strain_limiter, frame_.collides, &frame_.touching);
+    frame_.limit_rounds.begin(&frame_.strain_limiter, frame_.collides, &frame_.touching,
+                              self_collision_.get(), &x_);
     return &frame_.limit_rounds;
 }
 
@@ -218,6 +221,7 @@ bool ClothInstance::starts_quiet(float dt) const {
 Stage ClothInstance::stage() const {
     const PlannedStage& s = planned();
     if (s.stage == Stage::kStrainLimit && frame_.limit_rounds.colliding()) return Stage::kLimitCollisions;
+    if (s.stage == Stage::kStrainLimit && frame_.limit_rounds.projecting()) return Stage::kSelfProject;
     if (s.stage != Stage::kSelfCollision) return s.stage;
     switch (self_collision_->round()) {  // self-collision's rounds have stages of their own
         case SelfCollision::Round::kSort:

@@ -128,7 +128,9 @@ std::vector<Stage> stage_sequence(ClothInstance& cloth) {
 }
 
 // The order frame_plan.cpp writes down, with every optional stage on: air,
-// a staged solver, a strain limit and self-collision, over two substeps.
+// a staged solver, self-collision, and a strain limit whose pass is
+// followed by a projection of the self-collision's contacts, over two
+// substeps.
 TEST(StepStages, AFrameRunsThePlannedStagesInThePlannedOrderEverySubstep) {
     auto fabric = make_grid(40, 30);
     SolverSettings solver;
@@ -142,9 +144,9 @@ TEST(StepStages, AFrameRunsThePlannedStagesInThePlannedOrderEverySubstep) {
     self.thickness = 0.5f * mean_rest_edge(*fabric);
     cloth.set_self_collision(&self);
     const std::vector<Stage> substep = {
-        Stage::kAir,          Stage::kForces,      Stage::kAssemble,      Stage::kIterativeSolve,
-        Stage::kIntegrate,    Stage::kStrainLimit, Stage::kSelfCollision, Stage::kSelfSort,
-        Stage::kSelfContacts, Stage::kSelfProject, Stage::kSelfRespond};
+        Stage::kAir,         Stage::kForces,        Stage::kAssemble,    Stage::kIterativeSolve,
+        Stage::kIntegrate,   Stage::kSelfCollision, Stage::kSelfSort,    Stage::kSelfContacts,
+        Stage::kSelfProject, Stage::kSelfRespond,   Stage::kStrainLimit, Stage::kSelfProject};
     std::vector<Stage> expected = substep;
     expected.insert(expected.end(), substep.begin(), substep.end());
     const std::vector<Stage> seen = stage_sequence(cloth);
