@@ -1042,9 +1042,10 @@ CLOTH_API cloth_result CLOTH_CALL cloth_world_set_worker_spin(cloth_world_id wor
 /// runs, of those its cloth uses: AIR, FORCES, then EXPLICIT, or ASSEMBLE,
 /// one solve (JACOBI_SWEEP, SERIAL_SOLVE or ITERATIVE_SOLVE, each possibly
 /// several rounds) and INTEGRATE; then COLLISIONS; SELF_COLLISION,
-/// SELF_SORT, SELF_CONTACTS, SELF_PROJECT, SELF_RESPOND; and STRAIN_LIMIT
-/// (with LIMIT_COLLISIONS, and with self-collision a SELF_PROJECT, between
-/// its passes).
+/// SELF_SORT, SELF_CONTACTS, SELF_PROJECT, SELF_RESPOND; and STRAIN_LIMIT,
+/// with rounds of LIMIT_COLLISIONS after its passes and, with
+/// self-collision, a SELF_PROJECT after each pass and the SELF_RESPOND after
+/// the last instead of before the passes.
 typedef enum cloth_stage {
     /// per triangle: wind drag and lift
     CLOTH_STAGE_AIR = 0,
@@ -1068,7 +1069,7 @@ typedef enum cloth_stage {
     CLOTH_STAGE_SELF_SORT = 9,
     /// self-collision: each particle's contact list
     CLOTH_STAGE_SELF_CONTACTS = 10,
-    /// self-collision: one projection pass (repeated while overlaps remain;
+    /// self-collision: one projection pass (repeated while overlaps remain,
     /// and one after each strain-limit pass)
     CLOTH_STAGE_SELF_PROJECT = 11,
     /// self-collision: velocity response (paper eq. 13) and friction
@@ -1844,6 +1845,7 @@ typedef struct cloth_self_collision_desc {
     /// 1: skip pairs inside collision-free regions; 0 or 1, default 1
     uint8_t use_regions;
     /// at most this many projection passes per substep, 1..CLOTH_MAX_SELF_COLLISION_PASSES; default 8
+    /// (with a strain limit, one more after each of its passes)
     uint32_t passes;
     /// set by the struct\'s cloth_default_*() function; do not change
     uint32_t internal_cookie;
@@ -1874,7 +1876,8 @@ typedef struct cloth_self_collision_stats {
     uint32_t valid_regions;
     /// particles with more close neighbours than contact slots (16)
     uint32_t overflowed_particles;
-    /// projection passes run
+    /// projection passes run in the last substep (at most `passes`; those
+    /// after the strain limit's passes are not counted)
     uint32_t passes;
 } cloth_self_collision_stats;
 

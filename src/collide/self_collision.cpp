@@ -178,7 +178,6 @@ void SelfCollision::apply_positions(Vec3Soa& x) {
     x.x.swap(next_x_.x);
     x.y.swap(next_x_.y);
     x.z.swap(next_x_.z);
-    ++last_passes_;
 }
 
 bool SelfCollision::any_overlapping() const {
@@ -223,7 +222,8 @@ void SelfCollision::apply_velocities(Vec3Soa& v) {
     v.z.swap(next_v_.z);
 }
 
-void SelfCollision::begin(Vec3Soa& x, Vec3Soa& v, const float* mass, const float* pinned) {
+void SelfCollision::begin(Vec3Soa& x, Vec3Soa& v, const float* mass, const float* pinned, bool respond) {
+    respond_ = respond;
     x_ = &x;
     v_ = &v;
     mass_ = mass;
@@ -273,7 +273,9 @@ void SelfCollision::finish_round() {
         case Round::kProject:
             // Another pass while overlaps remain, at most `passes` in all.
             apply_positions(*x_);
-            if (!any_overlapping() || last_passes_ >= settings_.passes) round_ = Round::kRespond;
+            ++last_passes_;
+            if (!any_overlapping() || last_passes_ >= settings_.passes)
+                round_ = respond_ ? Round::kRespond : Round::kDone;
             break;
         case Round::kRespond:
             apply_velocities(*v_);

@@ -62,7 +62,8 @@ struct SelfCollisionStats {
     uint32_t regions = 0;               // collision-free region candidates of the fabric
     uint32_t valid_regions = 0;         // of those, collision-free at the last check
     uint32_t overflowed_particles = 0;  // particles with more near neighbours than contact slots
-    uint32_t passes = 0;                // projection passes run in the last substep
+    uint32_t passes =
+        0;  // the stage's projection passes in the last substep (not those between the strain limiter's)
 };
 
 // Rest edges of the fabric's triangles, their mean length (m).
@@ -114,8 +115,10 @@ class SelfCollision final : public StagedAlgorithm {
 
     // The rounds, in order (the file comment's stages 1-5).
     enum class Round : uint8_t { kHash, kSort, kContacts, kProject, kRespond, kDone };
-    // Starts the rounds on x, v (which outlive them), resolving this substep's contacts.
-    void begin(Vec3Soa& x, Vec3Soa& v, const float* mass, const float* pinned);
+    // Starts the rounds on x, v (which outlive them), resolving this substep's
+    // contacts; without `respond` they end after the projection, for a
+    // caller that runs respond_velocities itself later in the substep.
+    void begin(Vec3Soa& x, Vec3Soa& v, const float* mass, const float* pinned, bool respond = true);
     Round round() const { return round_; }
     bool done() const override { return round_ == Round::kDone; }
     bool single_task() const override { return round_ == Round::kSort; }
@@ -179,6 +182,7 @@ class SelfCollision final : public StagedAlgorithm {
     HostVector<float> inverse_mass_;
     Vec3Soa next_x_, next_v_;
     uint32_t last_passes_ = 0;
+    bool respond_ = true;
 
     // The rounds in progress.
     Round round_ = Round::kDone;

@@ -188,6 +188,12 @@ void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, floa
     accelerate_ = accelerate;
 }
 
+void StrainLimiter::moved_between_passes(const Vec3Soa& from, const Vec3Soa& to, uint32_t begin,
+                                         uint32_t end) {
+    for (uint32_t i = begin; i < end; ++i)
+        previous_->set(i, Vec3(previous_->get(i) + (to.get(i) - from.get(i))));
+}
+
 void StrainLimiter::hold_at_least(float demand) { pass_.max_strain = std::max(asked_strain_, demand); }
 
 void StrainLimiter::run(const GroupTask& task) {

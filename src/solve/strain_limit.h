@@ -170,6 +170,10 @@ class StrainLimiter final : public StagedAlgorithm {
     // The first pass found a spring longer than the limit (with `counts`):
     // the limiter held the cloth. False until that pass.
     bool held() const { return held_; }
+    // Particles [begin, end) moved between two passes by something else
+    // (`from` -> `to`, a self-collision projection): the next accelerated
+    // pass carries the move over as it is, not as part of its momentum.
+    void moved_between_passes(const Vec3Soa& from, const Vec3Soa& to, uint32_t begin, uint32_t end);
     // The current round applies corrections.
     bool applying() const { return !tether_round() && (round_ - first_pass_round_) % 2 == 1; }
 

@@ -232,26 +232,35 @@ void ClothInstance::collide(const GroupTask& task, uint32_t* contacts) {
 
 void ClothInstance::limit_strain(const GroupTask& task) {
     expect_stage(Stage::kStrainLimit);
-    if (frame_.limit_rounds.colliding()) {
-        collide(task);  // limit_rounds.h: when and why
-    } else if (frame_.limit_rounds.projecting()) {
-        self_collision_->project(x_, task.begin, task.end);
-    } else {
-        // The skin's constraints run several times in the substep: its
-        // skinned positions and normals are worked out once, in the first round.
-        const bool skin = skin_.active() && skin_.constrains();
-        if (skin && frame_.round == 0) skin_.prepare(task.begin, task.end, substep_end_fraction());
-        // The skin's constraints follow every pass's application, as
-        // in Jolt's and NvCloth's iterations, so the next pass limits the
-        // springs where the skin holds their ends: run only after the last
-        // pass, they undid it and left the cape stretched 25-fold in a
-        // fast turn (docs/measurements.md, "The skin's constraints between
-        // the strain limiter's passes"). They touch only this group's
-        // particles, so they share the pass's task.
-        const bool applying = frame_.strain_limiter.applying();
-        frame_.strain_limiter.run(task);
-        if (applying && skin) hold_to_skin(task, true);
+    switch (frame_.limit_rounds.round()) {  // limit_rounds.h: what runs between the passes, and why
+        case LimitRounds::Round::kColliders:
+            collide(task);
+            return;
+        case LimitRounds::Round::kProject:
+            self_collision_->project(x_, task.begin, task.end);
+            frame_.strain_limiter.moved_between_passes(x_, self_collision_->next_positions(), task.begin,
+                                                       task.end);
+            return;
+        case LimitRounds::Round::kRespond:
+            self_collision_->respond_velocities(x_, v_, task.begin, task.end);
+            return;
+        case LimitRounds::Round::kPass:
+            break;
     }
+    // The skin's constraints run several times in the substep: its
+    // skinned positions and normals are worked out once, in the first round.
+    const bool skin = skin_.active() && skin_.constrains();
+    if (skin && frame_.round == 0) skin_.prepare(task.begin, task.end, substep_end_fraction());
+    // The skin's constraints follow every pass's application, as
+    // in Jolt's and NvCloth's iterations, so the next pass limits the
+    // springs where the skin holds their ends: run only after the last
+    // pass, they undid it and left the cape stretched 25-fold in a
+    // fast turn (docs/measurements.md, "The skin's constraints between
+    // the strain limiter's passes"). They touch only this group's
+    // particles, so they share the pass's task.
+    const bool applying = frame_.strain_limiter.applying();
+    frame_.strain_limiter.run(task);
+    if (applying && skin) hold_to_skin(task, true);
 }
 
 void ClothInstance::note_strain() {
@@ -303,11 +312,13 @@ void ClothInstance::check_finite(uint32_t group) {
     // first integration's output.
     const Stage stage = planned().stage;
     const bool integrated = stage == Stage::kIntegrate;
-    const bool projected = stage == Stage::kStrainLimit && frame_.limit_rounds.projecting();
-    const Vec3Soa& x = integrated ? integration_x() : projected ? self_collision_->next_positions() : x_;
-    const Vec3Soa& v = stage == Stage::kSelfCollision ? self_collision_->next_velocities()
-                       : integrated                   ? integration_v()
-                                                      : v_;
+    const LimitRounds::Round between =
+        stage == Stage::kStrainLimit ? frame_.limit_rounds.round() : LimitRounds::Round::kPass;
+    const bool responded = stage == Stage::kSelfCollision || between == LimitRounds::Round::kRespond;
+    const Vec3Soa& x = integrated                                ? integration_x()
+                       : between == LimitRounds::Round::kProject ? self_collision_->next_positions()
+                                                                 : x_;
+    const Vec3Soa& v = responded ? self_collision_->next_velocities() : integrated ? integration_v() : v_;
     const GroupTask task = group_task(group);
     float speed_squared = 0;
     frame_.group_finite[group] = range_is_finite(x, v, task.begin, task.end, speed_squared) ? 1 : 0;

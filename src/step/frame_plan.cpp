@@ -63,9 +63,9 @@ void ClothInstance::plan_substep() {
     // After integration, where contact plugs in.
     if (frame_.collides) plan(Stage::kCollisions, &C::collide_stage, &C::note_contacts);
     // Self-collision before the strain limiter, which projects its contacts
-    // again between its passes (limit_rounds.h).
+    // again between its passes and then responds (limit_rounds.h).
     if (self_collision_) {
-        self_collision_->begin(x_, v_, mass_.data(), pinned_.data());
+        self_collision_->begin(x_, v_, mass_.data(), pinned_.data(), !limits_strain());
         plan(Stage::kSelfCollision, &C::resolve_self_contacts, nullptr, self_collision_.get());
     }
     if (limits_strain()) plan(Stage::kStrainLimit, &C::limit_strain, &C::note_strain, begin_strain_limit());
@@ -103,7 +103,7 @@ StagedAlgorithm* ClothInstance::begin_strain_limit() {
     frame_.strain_limiter.begin(pass, limit.iterations, frame_.h, x_, v_, solver_work_.r, solver_work_.z,
                                 accelerate, &grid_strain_terms_, &tethers_, stretch_counts_.data(), most);
     frame_.limit_rounds.begin(&frame_.strain_limiter, frame_.collides, &frame_.touching,
-                              self_collision_.get(), &x_);
+                              self_collision_.get(), &x_, &v_);
     return &frame_.limit_rounds;
 }
 
@@ -220,8 +220,18 @@ bool ClothInstance::starts_quiet(float dt) const {
 
 Stage ClothInstance::stage() const {
     const PlannedStage& s = planned();
-    if (s.stage == Stage::kStrainLimit && frame_.limit_rounds.colliding()) return Stage::kLimitCollisions;
-    if (s.stage == Stage::kStrainLimit && frame_.limit_rounds.projecting()) return Stage::kSelfProject;
+    if (s.stage == Stage::kStrainLimit) {
+        switch (frame_.limit_rounds.round()) {  // the rounds between its passes have stages of their own
+            case LimitRounds::Round::kColliders:
+                return Stage::kLimitCollisions;
+            case LimitRounds::Round::kProject:
+                return Stage::kSelfProject;
+            case LimitRounds::Round::kRespond:
+                return Stage::kSelfRespond;
+            case LimitRounds::Round::kPass:
+                return s.stage;
+        }
+    }
     if (s.stage != Stage::kSelfCollision) return s.stage;
     switch (self_collision_->round()) {  // self-collision's rounds have stages of their own
         case SelfCollision::Round::kSort:

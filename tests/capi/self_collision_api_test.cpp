@@ -320,16 +320,34 @@ TEST(SelfCollisionApi, ASkinnedClothWithSelfCollisionStillKeepsItsMaxDistances) 
 
 namespace {
 
+// Pairs of particles more than 3 grid steps apart on a side x side grid
+// closer than `distance`.
+uint32_t far_pairs_within(const std::vector<float>& x, uint32_t side, float distance) {
+    uint32_t close = 0;
+    for (uint32_t i = 0; i < side * side; ++i) {
+        for (uint32_t j = i + 1; j < side * side; ++j) {
+            const int dc = std::abs(static_cast<int>(i % side) - static_cast<int>(j % side));
+            const int dr = std::abs(static_cast<int>(i / side) - static_cast<int>(j / side));
+            if (std::max(dc, dr) <= 3) continue;
+            const float dx = x[3 * i] - x[3 * j], dy = x[3 * i + 1] - x[3 * j + 1],
+                        dz = x[3 * i + 2] - x[3 * j + 2];
+            close += dx * dx + dy * dy + dz * dz < distance * distance;
+        }
+    }
+    return close;
+}
+
 // Self-collision's pushes part a cloth's layers by stretching the springs
 // beside them; the strain limiter's passes take that stretch back, and
-// the contacts are projected again after each pass so that they do not
-// pull the layers together. A 24x24, 1 m default curtain hanging from its
-// top corners, which close to a third of its width over two seconds while
-// gusts blow into it, folds onto itself (self_collision --scene wind):
-// after every one of 240 steps its max strain stays within 0.2 (projected
-// only after the limiter's passes it reached 0.5; without self-collision
-// 0.09), and at the end no two particles more than 3 grid steps apart are
-// within half the thickness.
+// the contacts are projected again after each pass so that the passes do
+// not pull the layers together. A 24x24, 1 m default curtain hanging from
+// its top corners, which close to a third of its width over two seconds
+// while gusts blow into it, folds onto itself (self_collision --scene
+// wind). Over 240 steps its max strain stays within 0.2 and no two
+// particles more than 3 grid steps apart end a step within half the
+// thickness. Self-collision after the limiter's passes reached 0.57
+// strain; before them without the projections between, such a pair
+// ended 4 of the steps.
 TEST(SelfCollisionApi, AFoldingCurtainKeepsItsLayersApartWithoutStretching) {
     constexpr uint32_t kSide = 24, kCount = kSide * kSide;
     cloth_world_desc wd = cloth_default_world_desc();
@@ -357,7 +375,7 @@ TEST(SelfCollisionApi, AFoldingCurtainKeepsItsLayersApartWithoutStretching) {
     const uint32_t corners[2] = {0, kSide - 1};
     ASSERT_EQ(cloth_pin(cloth, corners, 2), CLOTH_OK);
     float worst = 0.0f;
-    uint32_t contacts = 0;
+    uint32_t contacts = 0, frames_close = 0, most_close = 0;
     for (int frame = 0; frame < 240; ++frame) {
         const float t = static_cast<float>(frame) / 60.0f;
         const float closing = std::min(1.0f, t / 2.0f) * 0.33f;
@@ -375,23 +393,16 @@ TEST(SelfCollisionApi, AFoldingCurtainKeepsItsLayersApartWithoutStretching) {
         self.struct_size = sizeof self;
         ASSERT_EQ(cloth_get_self_collision_stats(cloth, &self), CLOTH_OK);
         contacts += self.contacts;
+        std::vector<float> x(3 * kCount);
+        ASSERT_EQ(cloth_read_positions(cloth, x.data(), 3 * kCount), CLOTH_OK);
+        const uint32_t close = far_pairs_within(x, kSide, 0.5f * thickness);
+        frames_close += close > 0;
+        most_close = std::max(most_close, close);
     }
     EXPECT_GT(contacts, 0u) << "the curtain must fold onto itself for the test to mean anything";
     EXPECT_LE(worst, 0.2f) << "the pushes that part the layers stretched the curtain";
-    std::vector<float> x(3 * kCount);
-    ASSERT_EQ(cloth_read_positions(cloth, x.data(), 3 * kCount), CLOTH_OK);
-    uint32_t close = 0;
-    for (uint32_t i = 0; i < kCount; ++i) {
-        for (uint32_t j = i + 1; j < kCount; ++j) {
-            const int dc = std::abs(static_cast<int>(i % kSide) - static_cast<int>(j % kSide));
-            const int dr = std::abs(static_cast<int>(i / kSide) - static_cast<int>(j / kSide));
-            if (std::max(dc, dr) <= 3) continue;
-            const float dx = x[3 * i] - x[3 * j], dy = x[3 * i + 1] - x[3 * j + 1],
-                        dz = x[3 * i + 2] - x[3 * j + 2];
-            close += dx * dx + dy * dy + dz * dz < 0.25f * thickness * thickness;
-        }
-    }
-    EXPECT_EQ(close, 0u) << "far-apart particles within half the thickness at the end";
+    EXPECT_EQ(frames_close, 0u) << "steps ended with far-apart particles within half the thickness, up to "
+                                << most_close << " pairs";
     cloth_world_destroy(world);
 }
 
