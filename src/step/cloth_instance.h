@@ -289,7 +289,8 @@ class ClothInstance {
     void collide_stage(const GroupTask& task);
     void note_contacts();
     void collide(const GroupTask& task, uint32_t* contacts = nullptr);
-    /// One round of strain limiting, or of the colliders between its passes (limit_rounds.h).
+    /// One round of strain limiting, or of what runs between its passes: the
+    /// self-collision's projection or response, the colliders (limit_rounds.h).
     void limit_strain(const GroupTask& task);
     /// After the strain limiter's last round: whether it ended past its promise.
     void note_strain();
