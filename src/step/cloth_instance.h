@@ -292,6 +292,9 @@ class ClothInstance {
     /// One round of strain limiting, or of what runs between its passes: the
     /// self-collision's projection or response, the colliders (limit_rounds.h).
     void limit_strain(const GroupTask& task);
+    /// The self-collision's projection (with `limiter` told of its move) or
+    /// response between a strain limiter's passes (limit_rounds.h).
+    void self_between_passes(LimitRounds::Round round, StrainLimiter& limiter, const GroupTask& task);
     /// After the strain limiter's last round: whether it ended past its promise.
     void note_strain();
     /// Free particles into their max distances, out of their backstops

@@ -200,9 +200,24 @@ void ClothInstance::settle_after_contact() {
                                    holds_compression()};
         // As many passes as a substep's limiter may run: a push of the
         // thickness is several times a fine fabric's edge.
-        StrainLimit limit = frame_.solver.strain_limit;
-        limit.iterations *= kStrainLimitMorePasses;
-        cloth::limit_strain(pass, limit, frame, x_, v_, solver_work_.r, solver_work_.z);
+        const uint32_t passes = frame_.solver.strain_limit.iterations * kStrainLimitMorePasses;
+        StrainLimiter limiter;
+        limiter.begin(pass, passes, frame, x_, v_, solver_work_.r, solver_work_.z, true);
+        // With self-collision its last substep's contacts are projected
+        // between the passes, as in the substep (limit_rounds.h).
+        LimitRounds rounds;
+        rounds.begin(&limiter, false, nullptr, self_collision_.get(), &x_, &v_);
+        while (!rounds.done()) {
+            for (uint32_t g = 0; g < group_count_; ++g) {
+                const GroupTask task = GroupTask::of(g, group_count_, particle_count());
+                if (rounds.round() == LimitRounds::Round::kPass) {
+                    limiter.run(task);
+                } else {
+                    self_between_passes(rounds.round(), limiter, task);
+                }
+            }
+            rounds.finish_round();
+        }
     }
     if (skin_.active() && skin_.constrains())
         skin_.constrain(0, particle_count(), 1.0f, frame, pinned_.data(), x_, v_);
@@ -237,12 +252,8 @@ void ClothInstance::limit_strain(const GroupTask& task) {
             collide(task);
             return;
         case LimitRounds::Round::kProject:
-            self_collision_->project(x_, task.begin, task.end);
-            frame_.strain_limiter.moved_between_passes(x_, self_collision_->next_positions(), task.begin,
-                                                       task.end);
-            return;
         case LimitRounds::Round::kRespond:
-            self_collision_->respond_velocities(x_, v_, task.begin, task.end);
+            self_between_passes(frame_.limit_rounds.round(), frame_.strain_limiter, task);
             return;
         case LimitRounds::Round::kPass:
             break;
@@ -261,6 +272,16 @@ void ClothInstance::limit_strain(const GroupTask& task) {
     const bool applying = frame_.strain_limiter.applying();
     frame_.strain_limiter.run(task);
     if (applying && skin) hold_to_skin(task, true);
+}
+
+void ClothInstance::self_between_passes(LimitRounds::Round round, StrainLimiter& limiter,
+                                        const GroupTask& task) {
+    if (round == LimitRounds::Round::kProject) {
+        self_collision_->project(x_, task.begin, task.end);
+        limiter.moved_between_passes(x_, self_collision_->next_positions(), task.begin, task.end);
+    } else {
+        self_collision_->respond_velocities(x_, v_, task.begin, task.end);
+    }
 }
 
 void ClothInstance::note_strain() {
