@@ -62,8 +62,7 @@ struct SelfCollisionStats {
     uint32_t regions = 0;               // collision-free region candidates of the fabric
     uint32_t valid_regions = 0;         // of those, collision-free at the last check
     uint32_t overflowed_particles = 0;  // particles with more near neighbours than contact slots
-    uint32_t passes =
-        0;  // the stage's projection passes in the last substep (not those between the strain limiter's)
+    uint32_t passes = 0;                // the stage's own projection passes in the last substep
 };
 
 // Rest edges of the fabric's triangles, their mean length (m).

@@ -51,7 +51,6 @@ class LimitRounds final : public StagedAlgorithm {
     // What the current round runs: a strain-limit pass, or between passes
     // the self-collision's projection or response, or the colliders.
     Round round() const { return round_; }
-    bool colliding() const { return round_ == Round::kColliders; }
     StrainLimiter& limiter() { return *limiter_; }
 
     bool done() const override { return round_ == Round::kPass && limiter_->done(); }
