@@ -38,9 +38,19 @@ SpringEval spring_force_and_jacobian(const Vec3& xi, const Vec3& xj, float rest_
 // spreads a stiff spring's pull over the whole cloth in the same substep;
 // passes alone leave a pinned 128 x 128 cloth at 1e3 N/m up to 34 %
 // stretched at its pins (docs/measurements.md, "The strain cable").
+//
+// cable_approach > 0 puts the cable's stiffness in the Jacobian from
+// (cable_stretch - cable_approach) l0, before it pulls. Without it a spring
+// that the load holds just past cable_stretch * l0 never rests: a substep
+// that starts slack does not see the cable and overshoots into it, the
+// next one starts taut and pulls back past the kink, and so on; with it
+// the step approaches the kink as a stiff spring would and stops on the
+// cable (docs/measurements.md, "A cloth held at its limit rests on the
+// cable").
 struct SpringModel {
     float a_min, ratio_max;
     float cable_stretch = 1.0f, cable_factor = 0.0f;  // cable off: factor 0
+    float cable_approach = 0.0f;
 
     static SpringModel make(bool compression_safe) {
         const float inf = std::numeric_limits<float>::infinity();
@@ -79,15 +89,18 @@ inline SpringTerm spring_term(float dx, float dy, float dz, float rvx, float rvy
     float b = k * std::min(model.ratio_max, ratio);
     float pull = k * (length - rest);
     if constexpr (kCable) {
-        // The cable: a stretched spring of rest length cable_rest when taut.
-        // A slack cable adds exact zeros: its ratio and stretch are not even
-        // formed, since a huge accepted limit makes them inf, and 0 * inf is NaN.
+        // The cable: a stretched spring of rest length cable_rest when taut,
+        // its stiffness from `near` on. A cable not near adds exact zeros:
+        // its ratio and stretch are not even formed, since a huge accepted
+        // limit makes them inf, and 0 * inf is NaN. Near but slack, 1 - ratio
+        // is negative: the across term stays the spring's own.
         const float cable_rest = model.cable_stretch * rest;
         const bool taut = length > cable_rest;
-        const float cable = taut ? k * model.cable_factor : 0.0f;
-        const float cable_ratio = taut ? cable_rest * inv : 0.0f;
+        const bool near = length > (model.cable_stretch - model.cable_approach) * rest;
+        const float cable = near ? k * model.cable_factor : 0.0f;
+        const float cable_ratio = near ? cable_rest * inv : 0.0f;
         const float cable_stretch = taut ? length - cable_rest : 0.0f;
-        a += cable * (1.0f - cable_ratio);
+        a += cable * std::max(0.0f, 1.0f - cable_ratio);
         b += cable * cable_ratio;
         pull += cable * cable_stretch;
     }

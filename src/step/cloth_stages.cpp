@@ -31,9 +31,13 @@ SpringModel ClothInstance::spring_model() const {
     // solver; the explicit integrator, whose step a spring 100 times
     // stiffer would blow up, relies on the projection passes alone.
     if (frame_.solver.strain_limit.max_strain > 0 && frame_.solver.kind != CLOTH_SOLVER_EXPLICIT) {
-        model.cable_stretch =
-            1.0f + std::max(frame_.solver.strain_limit.max_strain, frame_.strain_pins_demand);
+        // The default's cable takes a held cloth's load just inside the
+        // limit, where the passes leave it at rest (solver_default.h).
+        const bool inside = solver_.kind == CLOTH_SOLVER_DEFAULT;
+        const float limit = frame_.solver.strain_limit.max_strain * (inside ? kStrainCableInside : 1.0f);
+        model.cable_stretch = 1.0f + std::max(limit, frame_.strain_pins_demand);
         model.cable_factor = kStrainCableStiffness;
+        model.cable_approach = inside ? kStrainCableApproach : 0.0f;
     }
     return model;
 }

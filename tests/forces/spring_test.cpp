@@ -120,6 +120,40 @@ TEST(SpringJacobian, StrainCablePullsOnlyPastItsLengthAndItsJacobianIsTheForcesD
     }
 }
 
+// cable_approach (springs.h): within it short of cable_stretch * l0 the
+// cable pulls nothing, but its stiffness is in the block along the spring,
+// so a substep starting there sees the kink it is heading for; short of
+// the band, and past cable_stretch, the term is the one without it.
+TEST(SpringJacobian, ANearCableIsInTheJacobianButPullsNothing) {
+    const float rest = 0.25f, k = 40.0f;
+    SpringModel plain = SpringModel::make(true);
+    plain.cable_stretch = 1.08f;
+    plain.cable_factor = 100.0f;
+    SpringModel approaching = plain;
+    approaching.cable_approach = 0.01f;
+    const Vec3 u = Vec3(-0.2f, 0.9f, 0.4f).normalized();
+    auto term = [&](float ratio, const SpringModel& model) {
+        const Vec3 d = u * (rest * ratio);
+        return spring_term(d.x(), d.y(), d.z(), 0, 0, 0, rest, k, 0.0f, 1.0f, model);
+    };
+    auto along = [&](const SpringTerm& t) {
+        return u.dot(Sym3{t.bxx, t.bxy, t.bxz, t.byy, t.byz, t.bzz}.to_matrix() * u);
+    };
+    auto force = [&](const SpringTerm& t) { return Vec3(t.fx, t.fy, t.fz).dot(u); };
+    const SpringTerm near = term(1.075f, approaching), near_plain = term(1.075f, plain);
+    EXPECT_EQ(force(near), force(near_plain)) << "the near cable pulls nothing";
+    EXPECT_NEAR(along(near), k + k * plain.cable_factor * 1.08f / 1.075f, 1e-3f * k * plain.cable_factor)
+        << "but its stiffness is in the block";
+    EXPECT_NEAR(along(near_plain), k, 1e-4f * k);
+    for (float ratio : {1.05f, 1.12f}) {
+        SCOPED_TRACE("length / rest = " + std::to_string(ratio));
+        const SpringTerm a = term(ratio, approaching), b = term(ratio, plain);
+        const float x[] = {a.fx, a.fy, a.fz, a.bxx, a.bxy, a.bxz, a.byy, a.byz, a.bzz};
+        const float y[] = {b.fx, b.fy, b.fz, b.bxx, b.bxy, b.bxz, b.byy, b.byz, b.bzz};
+        for (int c = 0; c < 9; ++c) EXPECT_EQ(x[c], y[c]) << "component " << c;
+    }
+}
+
 TEST(SpringJacobian, ASlackCableAddsExactlyNothingEvenWithAnEnormousStrainLimit) {
     // The C API accepts any finite max_strain: up to FLT_MAX, the cable's rest
     // length overflows to inf. A slack cable must still add exact zeros (not

@@ -130,6 +130,35 @@ TEST(DefaultSolver, AStillClothRunsFewerIterationsThanAFallingOne) {
     EXPECT_EQ(still.last_substeps, 1u) << "in one substep where a moving cloth runs two";
 }
 
+// A cloth whose springs cannot carry it within the strain limit rests on
+// the strain cable just inside the limit (kStrainCableInside): the
+// matrix's hanging 64x64 sheet at 1e3 N/m, whose top springs need more
+// than 8 %, comes to rest, runs one substep and at most two iterations
+// like a cloth within its limit, and ends every frame within the limit.
+// With the cable at the limit itself the passes put it back every substep
+// and it ran five iterations in two substeps at 1-9 cm/s to frame 600.
+TEST(DefaultSolver, AClothHeldAtItsStrainLimitRestsOnTheCable) {
+    SceneConfig config;
+    config.kind = SceneKind::kHanging;
+    config.resolution = 64;
+    Scene scene(config);
+    ASSERT_TRUE(scene.ok());
+    cloth_sleep_params awake = cloth_default_sleep_params();
+    awake.enabled = 0;
+    ASSERT_EQ(cloth_set_sleep(scene.cloth(), &awake), CLOTH_OK);
+    float strain = 0;
+    for (int f = 0; f < 300; ++f) {
+        ASSERT_EQ(scene.step(1.0f / 60.0f), CLOTH_OK);
+        strain = std::max(strain, scene.stats().max_strain);
+    }
+    EXPECT_GT(strain, 0.075f) << "its springs reach the limit, the case this checks";
+    EXPECT_LE(strain, 0.0801f) << "and are held there";
+    const cloth_stats still = scene.stats();
+    EXPECT_LT(still.max_speed, 0.01f) << "it hangs still";
+    EXPECT_EQ(still.last_substeps, 1u) << "quiet";
+    EXPECT_LE(still.last_solver_iterations, 2u);
+}
+
 // A quiet cloth gets its substeps back in the frame something pulls it:
 // a pin that moves faster than kDefaultQuietSpeed is seen when the frame
 // starts, and a change by the host (the wind here) ends the quiet.
