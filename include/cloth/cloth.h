@@ -181,7 +181,7 @@ extern "C" {
 /// this minor version has every function and struct of this header.
 #define CLOTH_VERSION_MINOR 12
 /// Patch version of this header (fixes that change no interface).
-#define CLOTH_VERSION_PATCH 3
+#define CLOTH_VERSION_PATCH 4
 
 /// Library version. A library with another major version than the header a
 /// caller was built with is not compatible with it.

@@ -34,10 +34,11 @@ SpringModel ClothInstance::spring_model() const {
         // The default's cable takes a held cloth's load just inside the
         // limit, where the passes leave it at rest (solver_default.h).
         const bool inside = solver_.kind == CLOTH_SOLVER_DEFAULT;
-        const float limit = frame_.solver.strain_limit.max_strain * (inside ? kStrainCableInside : 1.0f);
-        model.cable_stretch = 1.0f + std::max(limit, frame_.strain_pins_demand);
+        const float limit = frame_.solver.strain_limit.max_strain;
+        model.cable_stretch =
+            1.0f + std::max(inside ? limit * kStrainCableInside : limit, frame_.strain_pins_demand);
         model.cable_factor = kStrainCableStiffness;
-        model.cable_approach = inside ? kStrainCableApproach : 0.0f;
+        model.cable_approach = inside ? limit * kStrainCableApproach : 0.0f;
     }
     return model;
 }
