@@ -798,9 +798,11 @@ CLOTH_API cloth_solver_settings CLOTH_CALL cloth_default_solver_settings(void);
 
 /// Strain limiting, in two parts. Inside the solve (every kind but
 /// CLOTH_SOLVER_EXPLICIT): a spring longer than (1 + max_strain) times its
-/// rest length is held by a cable 100 times as stiff as the spring, which
-/// the implicit solve spreads over the whole cloth at once (stats count its
-/// energy). After every substep: first each free particle that the fabric
+/// rest length (CLOTH_SOLVER_DEFAULT: 1 + 0.975 max_strain, so that a cloth
+/// too heavy for its springs rests on the cable inside the limit) is held
+/// by a cable 100 times as stiff as the spring, which the implicit solve
+/// spreads over the whole cloth at once (stats count its energy). After
+/// every substep: first each free particle that the fabric
 /// links to pinned or attached particles is pulled back within
 /// (1 + max_strain) times its rest distance of each of its four nearest
 /// ones (tethers, or long-range attachments: one pass that holds the whole

@@ -31,12 +31,17 @@ SpringModel ClothInstance::spring_model() const {
     // solver; the explicit integrator, whose step a spring 100 times
     // stiffer would blow up, relies on the projection passes alone.
     if (frame_.solver.strain_limit.max_strain > 0 && frame_.solver.kind != CLOTH_SOLVER_EXPLICIT) {
-        // The default's cable takes a held cloth's load just inside the
-        // limit, where the passes leave it at rest (solver_default.h).
+        // The passes hold the limit, or what the pins demand where that is
+        // more (Tethers::strain_pins_demand). The default's cable takes a
+        // held cloth's load just inside that, where the passes leave it at
+        // rest (solver_default.h).
         const bool inside = solver_.kind == CLOTH_SOLVER_DEFAULT;
-        const float limit = frame_.solver.strain_limit.max_strain;
-        model.cable_stretch =
-            1.0f + std::max(inside ? limit * kStrainCableInside : limit, frame_.strain_pins_demand);
+        const float limit = frame_.solver.strain_limit.max_strain, demand = frame_.strain_pins_demand;
+        float cable = std::max(limit, demand);
+        if (inside)
+            cable =
+                demand > limit ? demand - limit * (1.0f - kStrainCableInside) : limit * kStrainCableInside;
+        model.cable_stretch = 1.0f + cable;
         model.cable_factor = kStrainCableStiffness;
         model.cable_approach = inside ? limit * kStrainCableApproach : 0.0f;
     }
