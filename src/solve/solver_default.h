@@ -73,12 +73,12 @@ constexpr uint32_t kDefaultStrainLimitPasses = 4;
 constexpr float kStrainCableStiffness = 100.0f;
 // The default's cable pulls from this fraction of the strain limit, its
 // stiffness in the Jacobian kStrainCableApproach of the limit before that
-// (springs.h; 0.003 strain at the default's 8 %): a cloth whose springs
+// (springs.h; 0.002 strain at the default's 8 %): a cloth whose springs
 // cannot carry it within the limit then rests on the cable just inside
 // the limit instead of being put back by the passes every substep, which
 // never let it settle.
 constexpr float kStrainCableInside = 0.975f;
-constexpr float kStrainCableApproach = 0.0375f;
+constexpr float kStrainCableApproach = 0.025f;
 // The theta step (integrate.h): backward Euler's own damping, not the
 // solve, is most of its error in calm scenes; at 0.7 the 64x64 flag in
 // wind is 121 mm from the converged reference at the same cost

@@ -273,8 +273,9 @@ TEST(Tethers, AClothFarTooHeavyForItsSpringsHangsWithinThirteenPerCentStrain) {
 // inverse mass alone a light particle between heavy ones takes nearly all
 // of each correction and cannot meet both springs: with the 0.08 limit a
 // checkerboard of them reached 0.117 and one light column 0.147. With
-// each end's share at least kLeastShare, 0.104 and 0.132; with the limit
-// off the same cloths stretch past 2.
+// each end's share at least kLeastShare, 0.104 and 0.132 (0.111 and 0.127
+// with the default's cable just inside the limit); with the limit off the
+// same cloths stretch past 2.
 TEST(Tethers, AClothOfLightParticlesBesideHeavyOnesHangsCloseToTheLimit) {
     for (const bool checkerboard : {true, false}) {
         SCOPED_TRACE(checkerboard ? "checkerboard" : "one light column");
@@ -300,7 +301,7 @@ TEST(Tethers, AClothOfLightParticlesBesideHeavyOnesHangsCloseToTheLimit) {
             }
             return worst;
         };
-        EXPECT_LT(worst_strain(0.08f), checkerboard ? 0.11f : 0.14f);
+        EXPECT_LT(worst_strain(0.08f), checkerboard ? 0.115f : 0.14f);
         EXPECT_GT(worst_strain(0.0f), 2.0f) << "the limit is what holds it";
     }
 }
