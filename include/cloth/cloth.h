@@ -181,7 +181,7 @@ extern "C" {
 /// this minor version has every function and struct of this header.
 #define CLOTH_VERSION_MINOR 12
 /// Patch version of this header (fixes that change no interface).
-#define CLOTH_VERSION_PATCH 4
+#define CLOTH_VERSION_PATCH 5
 
 /// Library version. A library with another major version than the header a
 /// caller was built with is not compatible with it.
@@ -1237,8 +1237,12 @@ CLOTH_API cloth_result CLOTH_CALL cloth_world_set_zone_callbacks(cloth_world_id 
  * iterations, substeps and strain-limit passes over a longer dt, and the
  * cloth steps less often (a cloth a body carries keeps rate 1). Down to
  * there a CLOTH_SOLVER_DEFAULT step the budget capped still runs no
- * substep longer than 1/15 s (two at rate 8 and 60 Hz; since 1.12.1),
- * where a longer one stretches the cloth past its limit. Past that the iterations go below
+ * substep longer than 1/15 s (two at rate 8 and 60 Hz; since 1.12.1), and
+ * none longer than twice its last step's substep or than the time its
+ * fastest particle takes to cross three rest edges relative to its pins
+ * (since 1.12.5; never shorter than 1/60 s), where a longer one stretches
+ * the cloth past its limit: a flapping cloth eases into a slow rate over
+ * a few steps of more substeps. Past that the iterations go below
  * half only once most of the last frames ran over budget (a load, not a
  * spike), and there the strain limit runs only the passes asked for
  * (cloth_strain_limit.iterations), not the extra passes it otherwise adds

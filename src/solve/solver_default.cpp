@@ -20,6 +20,20 @@ float stiffness_over_mass(const Material& material, float lightest_free_mass) {
     return lightest_free_mass > 0 ? k / lightest_free_mass : 0.0f;
 }
 
+float longest_capped_substep(float last_substep, float fastest_speed, float rest_edge) {
+    float longest = kLongestCappedSubstep;
+    if (last_substep > 0) longest = std::min(longest, kCappedSubstepGrowth * last_substep);
+    if (fastest_speed > 0 && rest_edge > 0)
+        longest = std::min(longest, kCappedSubstepEdges * rest_edge / fastest_speed);
+    return std::max(longest, kCappedSubstepAlways);
+}
+
+bool within_substep_gamma(float dt, float stiffness_per_mass, uint32_t substeps, bool multigrid) {
+    const double gamma_limit = multigrid ? kDefaultMultigridSubstepGamma : kDefaultSubstepGamma;
+    const double gamma = static_cast<double>(dt) * dt * stiffness_per_mass;
+    return gamma <= gamma_limit * double(substeps) * substeps;
+}
+
 SolverSettings resolve_solver(const SolverSettings& requested, float dt, float stiffness_per_mass,
                               bool multigrid, bool quiet) {
     if (requested.kind != CLOTH_SOLVER_DEFAULT) return requested;
@@ -50,8 +64,9 @@ SolverSettings resolve_solver(const SolverSettings& requested, float dt, float s
     // Past the substep gamma above (the substep cap binds) the theta step
     // gains energy and backward Euler's damping holds it
     // (docs/measurements.md, "Backward Euler past the substep cap").
-    const bool within_gamma = gamma <= gamma_limit * double(out.substeps) * out.substeps;
-    out.theta = limited && within_gamma ? kDefaultTheta : 1.0f;
+    out.theta = limited && within_substep_gamma(dt, stiffness_per_mass, out.substeps, multigrid)
+                    ? kDefaultTheta
+                    : 1.0f;
     return out;
 }
 

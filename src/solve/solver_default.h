@@ -92,6 +92,26 @@ constexpr float kDefaultTheta = 0.7f;
 // 0.14, in two of 1/15 s to 0.10 (docs/measurements.md, "A slow rate's
 // substeps").
 constexpr float kLongestCappedSubstep = 1.0f / 15.0f;
+// Nor longer than kCappedSubstepGrowth times the cloth's last substep, or
+// than the time its fastest free particle takes to cross
+// kCappedSubstepEdges rest edges (relative to its pins, which a carrier
+// may move fast): a flag that flapped in short substeps
+// and is then given 1/15 s ones at once passes the limit before their
+// damping has calmed it (docs/measurements.md, "A slow rate's substeps").
+// These two never ask for a substep shorter than kCappedSubstepAlways:
+// a 60 Hz frame's single substep stays the budget's to take.
+constexpr float kCappedSubstepGrowth = 2.0f;
+constexpr float kCappedSubstepEdges = 3.0f;
+constexpr float kCappedSubstepAlways = 1.0f / 60.0f;
+// The longest substep a budget's caps leave a cloth whose last substep
+// was `last_substep` (0: none yet), whose fastest free particle moves at
+// `fastest_speed` and whose rest edges are `rest_edge` long on average.
+float longest_capped_substep(float last_substep, float fastest_speed, float rest_edge);
+
+// Whether `substeps` of a step of `dt` bring the substep's gamma within the
+// default's limit: past it the theta step gains energy, and the default
+// runs backward Euler (theta 1).
+bool within_substep_gamma(float dt, float stiffness_per_mass, uint32_t substeps, bool multigrid);
 
 // The settings a step of `dt` runs with: `requested` itself unless its kind
 // is CLOTH_SOLVER_DEFAULT, in which case kind, preconditioner, iterations

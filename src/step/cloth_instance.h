@@ -330,6 +330,10 @@ class ClothInstance {
     Vec3 pin_position(uint32_t i, float frame_fraction) const;
 
     std::shared_ptr<const Fabric> fabric_;
+    float rest_edge_ = 0;  // the mean rest length of the structural springs (m)
+    // The last step's substep (s): a budget's caps lengthen substeps
+    // gradually (longest_capped_substep).
+    float last_substep_ = 0;
     Material material_;
     SolverSettings solver_;
     AeroParams aero_;
@@ -385,6 +389,10 @@ class ClothInstance {
     // frame: such a cloth is never quiet, and pays for no speed check.
     bool may_be_quiet() const { return !contact_.follows_bodies() && !skin_.active(); }
     bool free_particles_slower_than(float speed) const;
+    // The largest speed of a free particle relative to the mean velocity
+    // of the pinned particles (of all, without pins): its motion within
+    // the cloth, whatever carries it.
+    float fastest_free_speed_in_cloth() const;
     // The last frame started slow with no spring past the strain limit,
     // and the host has not changed the cloth since (wake); saved in
     // snapshots.

@@ -166,13 +166,21 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     }
     frame_.capped_substeps = frame_.solver.substeps;
     // Down to the ladder's floor a budget's cap never stretches a substep
-    // past kLongestCappedSubstep (a slow update rate's step is long:
+    // past longest_capped_substep (a slow update rate's step is long:
     // solver_default.h); below it the budget wins and the strain gives, as
     // the strain limit's passes do there (cloth_quality.h).
     if (solver_.default_substep_cap > 0 && !quality_.below_floor()) {
-        const auto least = static_cast<uint32_t>(std::ceil(dt / kLongestCappedSubstep - 1e-4f));
-        frame_.solver.substeps = std::max(frame_.solver.substeps, std::min(least, frame_.own_substeps));
+        const float longest =
+            longest_capped_substep(last_substep_, fastest_free_speed_in_cloth(), rest_edge_);
+        const auto least = static_cast<uint32_t>(std::min(std::ceil(static_cast<double>(dt) / longest - 1e-4),
+                                                          static_cast<double>(frame_.own_substeps)));
+        frame_.solver.substeps = std::max(frame_.solver.substeps, least);
     }
+    // Substeps past the substep gamma run backward Euler, whether the
+    // default's most substeps or a cap put them there (resolve_solver).
+    if (solver_.kind == CLOTH_SOLVER_DEFAULT &&
+        !within_substep_gamma(dt, stiffness_per_mass, frame_.solver.substeps, !multigrid_.empty()))
+        frame_.solver.theta = 1.0f;
     if (contact_.carrier().active() || frame_.solver.kind == CLOTH_SOLVER_EXPLICIT) {
         frame_.backup = FrameBackup::kCopied;
         frame_.backup_x = x_;
@@ -191,6 +199,7 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     // A teleport of the carrier is one of the character the skin is on.
     if (skin_.active()) skin_.begin_frame(contact_.carrier().teleported());
     frame_.h = dt / static_cast<float>(frame_.solver.substeps);
+    last_substep_ = frame_.h;
     frame_.gravity = gravity;
     frame_.converged = true;
     frame_.limit_held = false;
@@ -199,6 +208,23 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     frame_.substep = frame_.entry = frame_.round = 0;
     plan_substep();
     frame_.done = false;
+}
+
+float ClothInstance::fastest_free_speed_in_cloth() const {
+    const uint32_t n = particle_count();
+    Vec3 mean = Vec3::Zero();
+    if (!pinned_list_.empty()) {
+        for (uint32_t i : pinned_list_) mean += v_.get(i);
+        mean /= static_cast<float>(pinned_list_.size());
+    } else {
+        for (uint32_t i = 0; i < n; ++i) mean += v_.get(i);
+        mean /= static_cast<float>(std::max(n, 1u));
+    }
+    float most = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        if (pinned_[i] == 0.0f) most = std::max(most, (v_.get(i) - mean).squaredNorm());
+    }
+    return std::sqrt(most);
 }
 
 bool ClothInstance::free_particles_slower_than(float speed) const {

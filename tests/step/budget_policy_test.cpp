@@ -16,7 +16,10 @@
 //     loose budget, never past its own choice;
 //   - a cloth without an enabled policy is never changed;
 //   - the least important cloth is lowered first and the most important
-//     raised first.
+//     raised first;
+//   - a flapping flag the budget moves to its floor at rate 8 keeps the
+//     strain limit (the substeps' length grows step by step, and with the
+//     flag's speed).
 //
 // And the ladder and the cost memory the policy reads, alone.
 #include "step/budget_policy.h"
@@ -29,6 +32,8 @@
 #include <utility>
 #include <vector>
 
+#include "solve/solver_default.h"
+#include "step/cloth_measure.h"
 #include "test_support.h"
 
 namespace cloth {
@@ -376,6 +381,65 @@ TEST(BudgetPolicyModel, TheDefaultKeepsHalfItsIterationsWhileSubstepsCanGoAndGet
 // The ladder: iterations down to half the top's, then a substep with the
 // iterations back at the top's, ...; at the fewest substeps down to the
 // minimum; up retraces it rung by rung.
+// A 1 m flag of the field sample's fabric (40x40, 0.25 kg/m^2, the
+// default springs) pinned along one edge, flapping in gusts at full
+// quality for two seconds; then the budget's floor at rate 8 (half the
+// default's iterations, one substep asked), steps of 8 frames at once.
+// Returns the largest strain after any of those steps.
+float worst_strain_at_rate_8_after_flapping() {
+    Material material;
+    material.area_density = 0.25f;
+    AeroParams air;
+    ClothInstance flag(cloth::testing::heap(), make_grid(40, 40), material, automatic(), air);
+    for (uint32_t r = 0; r < 40; ++r) flag.pin(r * 40);
+    SleepSettings awake;
+    awake.enabled = false;
+    flag.set_sleep(awake);
+    QualityPolicy policy = policy_on();
+    policy.max_substeps = 16;
+    policy.max_update_rate = 8;
+    flag.set_quality_policy(policy);
+    auto gust = [&](uint64_t frame) {
+        const float t = kDt * static_cast<float>(frame);
+        flag.aero().wind = Vec3(8.0f + 2.0f * std::sin(0.9f * t), 0.0f, 1.0f + 1.5f * std::sin(1.9f * t));
+    };
+    uint64_t frame = 0;
+    while (++frame <= 120) {
+        gust(frame);
+        EXPECT_TRUE(flag.step(kDt, kGravity).ok());
+    }
+    SolverSettings floor = flag.quality().settings();
+    floor.iterations = (floor.iterations + 1) / 2;
+    floor.substeps = 1;
+    flag.quality().set_settings(floor);
+    flag.set_update_rate(8, 0);
+    float worst = 0;
+    for (; frame <= 120 + 8 * 30; ++frame) {
+        if (!flag.update_rate().due(frame)) continue;
+        gust(frame);
+        const uint32_t frames = flag.begin_rate_step(frame);
+        EXPECT_TRUE(flag.step(kDt * static_cast<float>(frames), kGravity).ok());
+        worst = std::max(worst, measure(flag, kGravity).max_strain);
+    }
+    return worst;
+}
+
+TEST(CappedSubsteps, AFlappingFlagTheBudgetStepsEightFramesAtOnceKeepsItsStrainLimit) {
+    // 0.086; in two substeps of 1/15 s from its first slow step, 0.147.
+    EXPECT_LE(worst_strain_at_rate_8_after_flapping(), 0.12f);
+}
+
+TEST(CappedSubsteps, GrowStepByStepAndWithTheSpeedNeverBelowOneFrame) {
+    const float edge = 0.025f;
+    EXPECT_EQ(longest_capped_substep(0.0f, 0.0f, edge), kLongestCappedSubstep) << "a still cloth, no history";
+    EXPECT_FLOAT_EQ(longest_capped_substep(1.0f / 60.0f, 0.0f, edge), kCappedSubstepGrowth / 60.0f);
+    EXPECT_FLOAT_EQ(longest_capped_substep(0.0f, 2.0f, edge), kCappedSubstepEdges * edge / 2.0f)
+        << "three rest edges at the fastest particle's speed";
+    EXPECT_EQ(longest_capped_substep(1.0f / 240.0f, 20.0f, edge), kCappedSubstepAlways)
+        << "never shorter than a 60 Hz frame: the budget keeps its one-substep rungs";
+    EXPECT_EQ(longest_capped_substep(1.0f, 0.01f, 0.0f), kLongestCappedSubstep) << "no edges: no speed bound";
+}
+
 TEST(QualityLadder, GivesUpIterationsToHalfBeforeEachSubstepAndRetracesItsStepsUp) {
     const QualityLadder ladder{{5, 3}, 1, 1};
     EXPECT_EQ(ladder.floor(), 3u);
