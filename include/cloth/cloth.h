@@ -1239,10 +1239,11 @@ CLOTH_API cloth_result CLOTH_CALL cloth_world_set_zone_callbacks(cloth_world_id 
  * there a CLOTH_SOLVER_DEFAULT step the budget capped still runs no
  * substep longer than 1/15 s (two at rate 8 and 60 Hz; since 1.12.1), and
  * none longer than twice its last step's substep or than the time its
- * fastest particle takes to cross three rest edges relative to its pins
- * (since 1.12.5; never shorter than 1/60 s), where a longer one stretches
- * the cloth past its limit: a flapping cloth eases into a slow rate over
- * a few steps of more substeps. Past that the iterations go below
+ * fastest free particle takes to cross three mean structural rest lengths
+ * relative to its pins (since 1.12.5; these two never below 1/60 s, and
+ * within the policy's max_substeps), where a longer one stretches the
+ * cloth past its limit: a flapping cloth eases into a slow rate over a
+ * few steps of more substeps. Past that the iterations go below
  * half only once most of the last frames ran over budget (a load, not a
  * spike), and there the strain limit runs only the passes asked for
  * (cloth_strain_limit.iterations), not the extra passes it otherwise adds
@@ -1390,8 +1391,10 @@ CLOTH_API cloth_result CLOTH_CALL cloth_is_sleeping(cloth_id cloth, bool* out_sl
  * skin state ("Character cloth"). Restoring it into a cloth
  * of the same fabric and stepping again reproduces the same bits (replays,
  * rollback networking). Material, spring settings and feature settings
- * are not in it. The bytes are native-endian: for this library build and
- * machine.
+ * are not in it, nor is what a frame budget decided (a quality policy's
+ * caps, and the last substep the caps' growth starts from): a cloth under
+ * a budget steps after a restore as the budget then decides. The bytes are native-endian: for this library
+ * build and machine.
  *
  * A snapshot opens with a header: a magic number, the snapshot format
  * version, the version of the library that wrote it, the size of the whole

@@ -87,8 +87,9 @@ bool FlagField::create(cloth_world_id world, const double origin[3], const vehic
         cloth_quality_policy policy = cloth_default_quality_policy();
         policy.enabled = 1;
         policy.max_update_rate = max_update_rate;
-        // The default's own substeps unbounded: a flag going to a slow rate
-        // while it flaps takes up to 16 short substeps in its first step.
+        // Room for the default's own substeps (16 at most): a flag going to
+        // rate 8 while it flaps takes up to 8 in its first slow step, where
+        // the policy's default of 4 would cut it short.
         policy.max_substeps = 16;
         if (cloth_set_sleep(f.cloth, &sleep) != CLOTH_OK) return failed("cloth_set_sleep");
         if (cloth_set_quality_policy(f.cloth, &policy) != CLOTH_OK) return failed("cloth_set_quality_policy");

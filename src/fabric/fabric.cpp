@@ -210,6 +210,15 @@ bool within_range3(const float* v) {
            std::abs(v[2]) <= CLOTH_MAX_COORDINATE;
 }
 
+float mean_structural_rest_length(const Fabric& fabric) {
+    double sum = 0;
+    for (uint32_t s = 0; s < fabric.spring_count(); ++s) {
+        if (fabric.spring_kind[s] == kStructural) sum += fabric.spring_rest_length[s];
+    }
+    const uint32_t count = fabric.springs_of_kind[kStructural];
+    return count > 0 ? static_cast<float>(sum / count) : 0.0f;
+}
+
 uint64_t fabric_identity(const Fabric& f) {
     const uint32_t counts[] = {f.particle_count(),
                                f.triangle_count(),

@@ -157,6 +157,9 @@ struct Fabric {
 // lengths and kinds, grid families and vertex order.
 uint64_t fabric_identity(const Fabric& fabric);
 
+// The mean rest length of the fabric's structural springs (m; 0 without any).
+float mean_structural_rest_length(const Fabric& fabric);
+
 // Largest particle count a fabric may have, and triangle count a mesh
 // fabric may have (cloth.h).
 constexpr uint32_t kMaxParticles = CLOTH_MAX_PARTICLES;

@@ -20,12 +20,12 @@ float stiffness_over_mass(const Material& material, float lightest_free_mass) {
     return lightest_free_mass > 0 ? k / lightest_free_mass : 0.0f;
 }
 
-float longest_capped_substep(float last_substep, float fastest_speed, float rest_edge) {
+float longest_capped_substep(float last_substep, float fastest_speed, float rest_length) {
     float longest = kLongestCappedSubstep;
     if (last_substep > 0) longest = std::min(longest, kCappedSubstepGrowth * last_substep);
-    if (fastest_speed > 0 && rest_edge > 0)
-        longest = std::min(longest, kCappedSubstepEdges * rest_edge / fastest_speed);
-    return std::max(longest, kCappedSubstepAlways);
+    if (fastest_speed > 0 && rest_length > 0)
+        longest = std::min(longest, kCappedSubstepEdges * rest_length / fastest_speed);
+    return std::max(longest, kCappedSubstepBoundFloor);
 }
 
 bool within_substep_gamma(float dt, float stiffness_per_mass, uint32_t substeps, bool multigrid) {

@@ -84,29 +84,32 @@ constexpr float kStrainCableApproach = 0.025f;
 // wind is 121 mm from the converged reference at the same cost
 // (docs/measurements.md, "The theta step"). A less damped cloth snaps
 // harder when something yanks it, so substeps where nothing holds the
-// strain, or past the substep cap, run backward Euler (docs/method.md,
-// "The theta step"; resolve_solver and step/frame_plan.cpp).
+// strain, or past the substep gamma (the default's most substeps, or a
+// cap, put them there), run backward Euler (docs/method.md, "The theta
+// step"; resolve_solver and step/frame_plan.cpp).
 constexpr float kDefaultTheta = 0.7f;
-// The longest substep a frame budget's caps leave the default (s): a flag
+// The ceiling on a substep a frame budget's caps lengthen (s): a flag
 // stepping every 8th frame at 60 Hz in one substep of 2/15 s stretches to
 // 0.14, in two of 1/15 s to 0.10 (docs/measurements.md, "A slow rate's
 // substeps").
 constexpr float kLongestCappedSubstep = 1.0f / 15.0f;
-// Nor longer than kCappedSubstepGrowth times the cloth's last substep, or
-// than the time its fastest free particle takes to cross
-// kCappedSubstepEdges rest edges (relative to its pins, which a carrier
-// may move fast): a flag that flapped in short substeps
-// and is then given 1/15 s ones at once passes the limit before their
-// damping has calmed it (docs/measurements.md, "A slow rate's substeps").
-// These two never ask for a substep shorter than kCappedSubstepAlways:
-// a 60 Hz frame's single substep stays the budget's to take.
+// Below that ceiling, a capped substep is no longer than
+// kCappedSubstepGrowth times the cloth's last substep, nor than the time
+// its fastest free particle takes to cross kCappedSubstepEdges mean
+// structural rest lengths (its speed relative to its pins, which a carrier
+// may move fast): a flag that flapped in short substeps and is then given
+// 1/15 s ones passes the limit before their damping has calmed it
+// (docs/measurements.md, "A slow rate's first steps"). These two bounds
+// never go below kCappedSubstepBoundFloor, so that a 60 Hz frame's single
+// substep stays the budget's to take.
 constexpr float kCappedSubstepGrowth = 2.0f;
 constexpr float kCappedSubstepEdges = 3.0f;
-constexpr float kCappedSubstepAlways = 1.0f / 60.0f;
+constexpr float kCappedSubstepBoundFloor = 1.0f / 60.0f;
 // The longest substep a budget's caps leave a cloth whose last substep
 // was `last_substep` (0: none yet), whose fastest free particle moves at
-// `fastest_speed` and whose rest edges are `rest_edge` long on average.
-float longest_capped_substep(float last_substep, float fastest_speed, float rest_edge);
+// `fastest_speed` relative to its pins, and whose structural springs are
+// `rest_length` long on average.
+float longest_capped_substep(float last_substep, float fastest_speed, float rest_length);
 
 // Whether `substeps` of a step of `dt` bring the substep's gamma within the
 // default's limit: past it the theta step gains energy, and the default

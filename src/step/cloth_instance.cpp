@@ -50,12 +50,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
         a->resize(n);
     }
     for (uint32_t i = 0; i < n; ++i) x_.set(i, f.rest_positions[i]);
-    double edges = 0;
-    for (uint32_t s = 0; s < f.spring_count(); ++s) {
-        if (f.spring_kind[s] == kStructural) edges += f.spring_rest_length[s];
-    }
-    if (f.springs_of_kind[kStructural] > 0)
-        rest_edge_ = static_cast<float>(edges / f.springs_of_kind[kStructural]);
+    mean_structural_rest_length_ = mean_structural_rest_length(f);
     pin_target_ = x_;
     mass_.resize(n);
     pinned_.assign(n, 0.0f);

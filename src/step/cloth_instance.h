@@ -179,6 +179,8 @@ class ClothInstance {
     SpringModel spring_model() const;
     SolverSettings& solver() { return solver_; }
     const SolverSettings& solver() const { return solver_; }
+    // What the last frame ran: CLOTH_SOLVER_DEFAULT's choice, caps and theta.
+    const SolverSettings& last_frame_solver() const { return frame_.solver; }
     // New solver settings from the host: a quality policy's caps and its
     // memory of what each rung cost go with the old ones.
     void set_solver(const SolverSettings& settings);
@@ -330,7 +332,7 @@ class ClothInstance {
     Vec3 pin_position(uint32_t i, float frame_fraction) const;
 
     std::shared_ptr<const Fabric> fabric_;
-    float rest_edge_ = 0;  // the mean rest length of the structural springs (m)
+    float mean_structural_rest_length_ = 0;  // m
     // The last step's substep (s): a budget's caps lengthen substeps
     // gradually (longest_capped_substep).
     float last_substep_ = 0;
@@ -392,7 +394,7 @@ class ClothInstance {
     // The largest speed of a free particle relative to the mean velocity
     // of the pinned particles (of all, without pins): its motion within
     // the cloth, whatever carries it.
-    float fastest_free_speed_in_cloth() const;
+    float fastest_free_speed_relative_to_pins() const;
     // The last frame started slow with no spring past the strain limit,
     // and the host has not changed the cloth since (wake); saved in
     // snapshots.

@@ -170,8 +170,8 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     // solver_default.h); below it the budget wins and the strain gives, as
     // the strain limit's passes do there (cloth_quality.h).
     if (solver_.default_substep_cap > 0 && !quality_.below_floor()) {
-        const float longest =
-            longest_capped_substep(last_substep_, fastest_free_speed_in_cloth(), rest_edge_);
+        const float longest = longest_capped_substep(last_substep_, fastest_free_speed_relative_to_pins(),
+                                                     mean_structural_rest_length_);
         const auto least = static_cast<uint32_t>(std::min(std::ceil(static_cast<double>(dt) / longest - 1e-4),
                                                           static_cast<double>(frame_.own_substeps)));
         frame_.solver.substeps = std::max(frame_.solver.substeps, least);
@@ -210,7 +210,7 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     frame_.done = false;
 }
 
-float ClothInstance::fastest_free_speed_in_cloth() const {
+float ClothInstance::fastest_free_speed_relative_to_pins() const {
     const uint32_t n = particle_count();
     Vec3 mean = Vec3::Zero();
     if (!pinned_list_.empty()) {

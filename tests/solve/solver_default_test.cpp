@@ -294,23 +294,6 @@ TEST(DefaultSolver, SubstepsFollowGamma) {
         << "explicit kinds are untouched";
 }
 
-TEST(DefaultSolver, SubstepsPastTheGammaRunBackwardEulerWhoeverChoseThem) {
-    // The field sample's flag (k / m = 6.4e6 /s^2) stepping 8 frames at once.
-    const float dt = 8.0f / 60.0f, k_over_m = 6.4e6f;
-    const double gamma = double(dt) * dt * k_over_m;
-    for (uint32_t substeps : {1u, 2u, 3u, 16u}) {
-        EXPECT_EQ(cloth::within_substep_gamma(dt, k_over_m, substeps, true),
-                  gamma <= cloth::kDefaultMultigridSubstepGamma * substeps * substeps)
-            << substeps << " substeps";
-    }
-    EXPECT_FALSE(cloth::within_substep_gamma(dt, k_over_m, 2, true)) << "a budget's two substeps of 1/15 s";
-    cloth::SolverSettings requested;
-    requested.kind = CLOTH_SOLVER_DEFAULT;
-    const cloth::SolverSettings own = cloth::resolve_solver(requested, dt, k_over_m, true);
-    EXPECT_TRUE(cloth::within_substep_gamma(dt, k_over_m, own.substeps, true));
-    EXPECT_EQ(own.theta, cloth::kDefaultTheta) << "its own choice: the theta step";
-}
-
 TEST(DefaultSolver, TakesTheThetaStepOnlyWithAStrainLimitToWatchIt) {
     const float dt = 1.0f / 60.0f, k_over_m = 1e6f;
     cloth::SolverSettings requested;

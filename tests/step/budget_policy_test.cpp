@@ -17,9 +17,10 @@
 //   - a cloth without an enabled policy is never changed;
 //   - the least important cloth is lowered first and the most important
 //     raised first;
-//   - a flapping flag the budget moves to its floor at rate 8 keeps the
-//     strain limit (the substeps' length grows step by step, and with the
-//     flag's speed).
+//   - a flapping flag the budget moves to its floor at rate 8 stays within
+//     the samples' 12 % (the substeps' length grows step by step, and with
+//     the flag's speed), and substeps a cap takes past the default's
+//     substep gamma run backward Euler.
 //
 // And the ladder and the cost memory the policy reads, alone.
 #include "step/budget_policy.h"
@@ -378,9 +379,6 @@ TEST(BudgetPolicyModel, TheDefaultKeepsHalfItsIterationsWhileSubstepsCanGoAndGet
     EXPECT_FALSE(capped.quality().can_rise()) << "and nothing is raised past the default's own choice";
 }
 
-// The ladder: iterations down to half the top's, then a substep with the
-// iterations back at the top's, ...; at the fewest substeps down to the
-// minimum; up retraces it rung by rung.
 // A 1 m flag of the field sample's fabric (40x40, 0.25 kg/m^2, the
 // default springs) pinned along one edge, flapping in gusts at full
 // quality for two seconds; then the budget's floor at rate 8 (half the
@@ -424,22 +422,53 @@ float worst_strain_at_rate_8_after_flapping() {
     return worst;
 }
 
-TEST(CappedSubsteps, AFlappingFlagTheBudgetStepsEightFramesAtOnceKeepsItsStrainLimit) {
-    // 0.086; in two substeps of 1/15 s from its first slow step, 0.147.
+TEST(CappedSubsteps, AFlappingFlagTheBudgetStepsEightFramesAtOnceStaysWithinTwelvePercent) {
+    // The samples' check on the default's 8 % limit. Without the bounds on
+    // a capped substep its first slow step reaches 0.147.
     EXPECT_LE(worst_strain_at_rate_8_after_flapping(), 0.12f);
 }
 
-TEST(CappedSubsteps, GrowStepByStepAndWithTheSpeedNeverBelowOneFrame) {
+// A stiff 16x16 cloth (k / m past the default's substep gamma in one
+// substep of 1/60 s) hanging from two corners: the theta the frame ran.
+float theta_of_a_frame(const QualityPolicy& policy, uint32_t budget_substep_cap) {
+    ClothInstance cloth(cloth::testing::heap(), make_grid(16, 16), uniform_material(3e4f, 0.0f, 0.1f),
+                        automatic(), cloth::testing::still_air());
+    cloth.pin(0);
+    cloth.pin(15);
+    cloth.set_quality_policy(policy);
+    EXPECT_TRUE(cloth.step(kDt, kGravity).ok());
+    if (budget_substep_cap > 0) {  // as BudgetPolicy sets it, below the last frame's own choice
+        SolverSettings caps = cloth.quality().settings();
+        caps.substeps = budget_substep_cap;
+        cloth.quality().set_settings(caps);
+        EXPECT_TRUE(cloth.step(kDt, kGravity).ok());
+        EXPECT_EQ(cloth.last_frame_solver().substeps, budget_substep_cap);
+    }
+    return cloth.last_frame_solver().theta;
+}
+
+TEST(CappedSubsteps, PastTheSubstepGammaRunBackwardEulerWhoeverChoseThem) {
+    EXPECT_EQ(theta_of_a_frame(QualityPolicy{}, 0), kDefaultTheta) << "the default's own substeps";
+    QualityPolicy one = policy_on();
+    one.max_substeps = 1;
+    EXPECT_EQ(theta_of_a_frame(one, 0), 1.0f) << "a policy's bound of one substep, no budget";
+    EXPECT_EQ(theta_of_a_frame(policy_on(), 1), 1.0f) << "a budget's cap of one substep";
+}
+
+TEST(CappedSubsteps, GrowStepByStepAndWithTheSpeedNeverBelowTheFloor) {
     const float edge = 0.025f;
     EXPECT_EQ(longest_capped_substep(0.0f, 0.0f, edge), kLongestCappedSubstep) << "a still cloth, no history";
     EXPECT_FLOAT_EQ(longest_capped_substep(1.0f / 60.0f, 0.0f, edge), kCappedSubstepGrowth / 60.0f);
     EXPECT_FLOAT_EQ(longest_capped_substep(0.0f, 2.0f, edge), kCappedSubstepEdges * edge / 2.0f)
         << "three rest edges at the fastest particle's speed";
-    EXPECT_EQ(longest_capped_substep(1.0f / 240.0f, 20.0f, edge), kCappedSubstepAlways)
-        << "never shorter than a 60 Hz frame: the budget keeps its one-substep rungs";
+    EXPECT_EQ(longest_capped_substep(1.0f / 240.0f, 20.0f, edge), kCappedSubstepBoundFloor)
+        << "never below the floor: at 60 Hz the budget keeps its one-substep rungs";
     EXPECT_EQ(longest_capped_substep(1.0f, 0.01f, 0.0f), kLongestCappedSubstep) << "no edges: no speed bound";
 }
 
+// The ladder: iterations down to half the top's, then a substep with the
+// iterations back at the top's, ...; at the fewest substeps down to the
+// minimum; up retraces it rung by rung.
 TEST(QualityLadder, GivesUpIterationsToHalfBeforeEachSubstepAndRetracesItsStepsUp) {
     const QualityLadder ladder{{5, 3}, 1, 1};
     EXPECT_EQ(ladder.floor(), 3u);
