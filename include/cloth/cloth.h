@@ -1393,8 +1393,8 @@ CLOTH_API cloth_result CLOTH_CALL cloth_is_sleeping(cloth_id cloth, bool* out_sl
  * rollback networking). Material, spring settings and feature settings
  * are not in it, nor is what a frame budget decided (a quality policy's
  * caps, and the last substep the caps' growth starts from): a cloth under
- * a budget steps after a restore as the budget then decides. The bytes are native-endian: for this library
- * build and machine.
+ * a budget steps after a restore as the budget then decides. The bytes
+ * are native-endian: for this library build and machine.
  *
  * A snapshot opens with a header: a magic number, the snapshot format
  * version, the version of the library that wrote it, the size of the whole
