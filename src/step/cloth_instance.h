@@ -333,9 +333,6 @@ class ClothInstance {
 
     std::shared_ptr<const Fabric> fabric_;
     float mean_structural_rest_length_ = 0;  // m
-    // The last step's substep (s): a budget's caps lengthen substeps
-    // gradually (longest_capped_substep).
-    float last_substep_ = 0;
     Material material_;
     SolverSettings solver_;
     AeroParams aero_;

@@ -170,7 +170,8 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     // solver_default.h); below it the budget wins and the strain gives, as
     // the strain limit's passes do there (cloth_quality.h).
     if (solver_.default_substep_cap > 0 && !quality_.below_floor()) {
-        const float longest = longest_capped_substep(last_substep_, fastest_free_speed_relative_to_pins(),
+        // frame_.h is still the last step's substep (0 before the first).
+        const float longest = longest_capped_substep(frame_.h, fastest_free_speed_relative_to_pins(),
                                                      mean_structural_rest_length_);
         const auto least = static_cast<uint32_t>(std::min(std::ceil(static_cast<double>(dt) / longest - 1e-4),
                                                           static_cast<double>(frame_.own_substeps)));
@@ -199,7 +200,6 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     // A teleport of the carrier is one of the character the skin is on.
     if (skin_.active()) skin_.begin_frame(contact_.carrier().teleported());
     frame_.h = dt / static_cast<float>(frame_.solver.substeps);
-    last_substep_ = frame_.h;
     frame_.gravity = gravity;
     frame_.converged = true;
     frame_.limit_held = false;
