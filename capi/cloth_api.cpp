@@ -20,6 +20,8 @@ namespace {
 constexpr size_t kStatsSize16 = offsetof(cloth_stats, strain_limit_excess);
 // 1.7 to 1.11 end before the rung the last step ran at.
 constexpr size_t kStatsSize111 = offsetof(cloth_stats, last_max_iterations);
+// cloth_stats as 1.12 had it: up to the strain-limit pass fields.
+constexpr size_t kStatsSize112 = offsetof(cloth_stats, last_strain_passes);
 // The strain limit's promise after every step: within the limit plus this.
 constexpr float kStrainPromiseSlackOfAStep = 0.02f;
 
@@ -215,10 +217,11 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id id, cloth_stats* out) {
         if (!out) return null_error("out_stats");
         // 1.6's struct ends where the strain-limit fields begin.
         const uint32_t size = out->struct_size;
-        if (size != sizeof(cloth_stats) && size != kStatsSize111 && size != kStatsSize16) {
+        if (size != sizeof(cloth_stats) && size != kStatsSize112 && size != kStatsSize111 &&
+            size != kStatsSize16) {
             return Status::error(CLOTH_ERROR_INVALID_DESC,
-                                 "cloth_stats.struct_size is %u, expected %zu (or 1.11's %zu, 1.6's %zu)",
-                                 size, sizeof(cloth_stats), kStatsSize111, kStatsSize16);
+                                 "cloth_stats.struct_size is %u, expected %zu (or 1.12's %zu, 1.11's %zu, 1.6's %zu)",
+                                 size, sizeof(cloth_stats), kStatsSize112, kStatsSize111, kStatsSize16);
         }
         const ClothMeasure m = measure(cloth, world.gravity);
         cloth_stats stats{};
@@ -240,6 +243,8 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id id, cloth_stats* out) {
             const QualityRung ran = cloth.quality().ran_rung();
             stats.last_max_iterations = ran.iterations;
             stats.last_substeps = ran.substeps;
+            stats.last_strain_passes = cloth.last_strain_passes();
+            stats.last_strain_pass_cap_hit = cloth.last_strain_capped() ? 1 : 0;
         }
         std::memcpy(out, &stats, size);
         return {};

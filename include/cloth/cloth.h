@@ -179,9 +179,9 @@ extern "C" {
 #define CLOTH_VERSION_MAJOR 1
 /// Minor version of this header: a library of the same major and at least
 /// this minor version has every function and struct of this header.
-#define CLOTH_VERSION_MINOR 12
+#define CLOTH_VERSION_MINOR 13
 /// Patch version of this header (fixes that change no interface).
-#define CLOTH_VERSION_PATCH 5
+#define CLOTH_VERSION_PATCH 0
 
 /// Library version. A library with another major version than the header a
 /// caller was built with is not compatible with it.
@@ -1004,11 +1004,19 @@ typedef struct cloth_stats {
     uint32_t last_max_iterations;
     /// the substeps of the last step (the same sources). Since 1.12.
     uint32_t last_substeps;
+    /// the strain limit's passes the last step ran, over its substeps (0
+    /// without a strain limit): the effort of holding the limit. Since 1.13.
+    uint32_t last_strain_passes;
+    /// 1 when a substep of the last step stopped its strain-limit passes at
+    /// their cap with a spring still past the limit and its slack (the
+    /// limit was not held there), else 0. Since 1.13.
+    uint8_t last_strain_pass_cap_hit;
 } cloth_stats;
 
 /// Measure the cloth now; the caller sets out_stats->struct_size first
-/// (the sizes of 1.6, without the strain-limit fields, and of 1.7 to 1.11,
-/// without last_max_iterations and last_substeps, are accepted too).
+/// (the sizes of 1.6, without the strain-limit fields, of 1.7 to 1.11,
+/// without last_max_iterations and last_substeps, and of 1.12, without
+/// last_strain_passes and last_strain_pass_cap_hit, are accepted too).
 CLOTH_API cloth_result CLOTH_CALL cloth_get_stats(cloth_id cloth, cloth_stats* out_stats);
 
 /* ------------------------------------------------------------------ */
@@ -1091,6 +1099,14 @@ typedef enum cloth_stage {
     /// (cloth_set_max_distances, cloth_set_backstops). Since 1.8; in
     /// cloth_world_get_stage_profile only.
     CLOTH_STAGE_SKIN_CONSTRAINTS = 17,
+    /// contact between two cloths, once a substep before their strain
+    /// limits, while both cloths wait: both cloths' particles gathered,
+    /// hashed, their contacts found and projected (cloth_set_cloth_contact).
+    /// Since 1.13; in cloth_world_get_stage_profile only.
+    CLOTH_STAGE_CLOTH_CONTACT = 18,
+    /// a cloth's velocities relative to the other cloths of its pairs, after
+    /// its strain limit. Since 1.13; in cloth_world_get_stage_profile only.
+    CLOTH_STAGE_CLOTH_CONTACT_RESPOND = 19,
     /// forces the enum to 32 bits
     CLOTH_STAGE_FORCE_U32 = 0x7FFFFFFF
 } cloth_stage;

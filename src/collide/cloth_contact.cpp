@@ -64,8 +64,15 @@ void ClothContact::begin_step(float dt, const float* pinned, Vec3Soa& x, Vec3Soa
                         attached_body_.empty() ? nullptr : &attached_body_, x, v);
 }
 
+void ClothContact::size_record(uint32_t particle_count) {
+    recorded_collider_.assign(size_t{particle_count} * kRecordedColliders, 0);
+    recorded_count_.assign(particle_count, kEveryCollider);
+}
+
 uint32_t ClothContact::collide(float h, float from, float to, const float* kinematic, uint32_t begin,
-                               uint32_t end, Vec3Soa& x, Vec3Soa& v) const {
+                               uint32_t end, Vec3Soa& x, Vec3Soa& v, Pass pass) {
+    const bool records = !recorded_count_.empty();
+    if (pass == Pass::kRecorded && records) return collide_recorded(h, from, to, kinematic, begin, end, x, v);
     // Culled by bounds before any per-particle work: the range's first (a
     // flag high above a terrain or beside a box needs nothing for it), then
     // each chunk's (a flag beside its pole touches it only near the pole).
@@ -77,16 +84,17 @@ uint32_t ClothContact::collide(float h, float from, float to, const float* kinem
     const auto chunk_end = [&](uint32_t k) {
         return k + 1 == chunk_count ? end : begin + (k + 1) * kCollisionChunk;
     };
+    const bool recording = pass == Pass::kRecord && records;
+    if (recording) std::fill(&recorded_count_[begin], &recorded_count_[begin] + (end - begin), uint8_t{0});
     RangeBounds range;
     bool bounded = false;  // bounds taken (at the first collider)
     uint32_t contacts = 0;
-    for (const auto& slot : world_->colliders()) {
+    const auto& colliders = world_->colliders();
+    for (uint32_t slot_index = 0; slot_index < colliders.size(); ++slot_index) {
+        const auto& slot = colliders[slot_index];
         const Collider& c = slot.object;
         if (!slot.live || !(c.group_bits & collision_.collider_mask)) continue;
-        const bool on_body = c.body != UINT32_MAX;
-        const MovingCollider moving(c.shape.get(), on_body ? body_pose(c.body, from) * c.local : c.local,
-                                    on_body ? body_pose(c.body, to) * c.local : c.local,
-                                    on_body ? &world_->body(c.body).body : nullptr);
+        const MovingCollider moving = moving_collider(c, from, to);
         if (!bounded) {
             range = RangeBounds{};
             for (uint32_t k = 0; k < chunk_count; ++k) {
@@ -95,6 +103,20 @@ uint32_t ClothContact::collide(float h, float from, float to, const float* kinem
             }
             bounded = true;
         }
+        if (recording) {
+            // Every chunk the collider may reach in the rest of the substep:
+            // the thickness grown by twice the longest path, as record() does.
+            CollisionParams reach = collision_;
+            reach.thickness += 2.0f * range.travel;
+            if (!range_is_clear(moving, reach, range)) {
+                for (uint32_t k = 0; k < chunk_count; ++k) {
+                    reach.thickness = collision_.thickness + 2.0f * chunks[k].travel;
+                    if (range_is_clear(moving, reach, chunks[k])) continue;
+                    record(moving, static_cast<uint16_t>(slot_index), h, kinematic, begin + k * kCollisionChunk,
+                           chunk_end(k), x, v);
+                }
+            }
+        }
         if (range_is_clear(moving, collision_, range)) continue;
         for (uint32_t k = 0; k < chunk_count; ++k) {
             if (range_is_clear(moving, collision_, chunks[k])) continue;
@@ -102,6 +124,63 @@ uint32_t ClothContact::collide(float h, float from, float to, const float* kinem
                 moving, collision_, h, kinematic, begin + k * kCollisionChunk, chunk_end(k), x, v);
             if (chunk_contacts > 0) bounded = false;  // particles moved: the next collider takes bounds anew
             contacts += chunk_contacts;
+        }
+    }
+    return contacts;
+}
+
+MovingCollider ClothContact::moving_collider(const Collider& c, float from, float to) const {
+    const bool on_body = c.body != UINT32_MAX;
+    return MovingCollider(c.shape.get(), on_body ? body_pose(c.body, from) * c.local : c.local,
+                          on_body ? body_pose(c.body, to) * c.local : c.local,
+                          on_body ? &world_->body(c.body).body : nullptr);
+}
+
+void ClothContact::record(const MovingCollider& collider, uint16_t slot, float h, const float* kinematic,
+                          uint32_t begin, uint32_t end, const Vec3Soa& x, const Vec3Soa& v) {
+    // Before this collider's own pass moved them: where they end the
+    // substep, in the collider's frame there.
+    for (uint32_t i = begin; i < end; ++i) {
+        if (kinematic[i] != 0.0f) continue;
+        uint8_t& count = recorded_count_[i];
+        if (count == kEveryCollider) continue;
+        const float reach = collision_.thickness + 2.0f * h * v.get(i).norm();
+        const Vec3 local = collider.end.apply_inverse(x.get(i));
+        if (!(query_shape(*collider.shape, local, reach).distance < reach)) continue;
+        if (count == kRecordedColliders) {
+            count = kEveryCollider;
+            continue;
+        }
+        recorded_collider_[size_t{i} * kRecordedColliders + count++] = slot;
+    }
+}
+
+uint32_t ClothContact::collide_recorded(float h, float from, float to, const float* kinematic, uint32_t begin,
+                                        uint32_t end, Vec3Soa& x, Vec3Soa& v) {
+    // The group's recorded colliders over this substep, each taken once.
+    constexpr uint32_t kMost = 16;
+    uint16_t slots[kMost];
+    MovingCollider moving[kMost];
+    uint32_t distinct = 0;
+    for (uint32_t i = begin; i < end; ++i) {
+        const uint8_t count = recorded_count_[i];
+        if (count == 0) continue;
+        if (count == kEveryCollider) return collide(h, from, to, kinematic, begin, end, x, v);
+        for (uint32_t c = 0; c < count; ++c) {
+            const uint16_t slot = recorded_collider_[size_t{i} * kRecordedColliders + c];
+            if (std::find(slots, slots + distinct, slot) != slots + distinct) continue;
+            if (distinct == kMost) return collide(h, from, to, kinematic, begin, end, x, v);
+            slots[distinct] = slot;
+            moving[distinct++] = moving_collider(world_->colliders()[slot].object, from, to);
+        }
+    }
+    uint32_t contacts = 0;
+    for (uint32_t i = begin; i < end; ++i) {
+        const uint8_t count = recorded_count_[i];
+        for (uint32_t c = 0; c < count; ++c) {
+            const uint16_t slot = recorded_collider_[size_t{i} * kRecordedColliders + c];
+            const uint32_t k = static_cast<uint32_t>(std::find(slots, slots + distinct, slot) - slots);
+            contacts += collide_particles(moving[k], collision_, h, kinematic, i, i + 1, x, v);
         }
     }
     return contacts;

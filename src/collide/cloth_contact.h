@@ -25,7 +25,11 @@ namespace cloth {
 class ClothContact {
   public:
     explicit ClothContact(const HostMemory* memory)
-        : attached_body_(HostAllocator<uint32_t>(memory)), attached_offset_(memory), carrier_(memory) {}
+        : attached_body_(HostAllocator<uint32_t>(memory)),
+          attached_offset_(memory),
+          carrier_(memory),
+          recorded_collider_(HostAllocator<uint16_t>(memory)),
+          recorded_count_(HostAllocator<uint8_t>(memory)) {}
 
     void bind(const ContactWorld* world) { world_ = world; }
     const ContactWorld* world() const { return world_; }
@@ -69,14 +73,34 @@ class ClothContact {
     // motion and teleports are seen frame by frame, so such a cloth steps
     // at update rate 1 (update_rate.h).
     bool rides_bodies() const { return !attached_body_.empty() || carrier_.active(); }
-    // The collision stage over particles [begin, end) of a substep from
-    // fraction `from` to `to` of the frame, of length h. Returns the number
-    // of particle-collider contacts.
+    // Which colliders a collision pass tests. The substep's collision
+    // stage tests every one and records, per particle, those it is within
+    // reach of: nearer than the thickness plus twice the path it took in
+    // the substep (the strain limiter's passes after it move a particle
+    // about as far as that at most). The rounds between the passes test
+    // each particle against its record only, so a particle far from every
+    // collider costs nothing there; the round after the last pass tests
+    // every one again, so the substep ends out of every collider whatever
+    // a record missed.
+    enum class Pass : uint8_t { kRecord, kRecorded, kEvery };
+    // Sizes the record for the cloth's particles (at its creation).
+    void size_record(uint32_t particle_count);
+    // The collision stage over particles [begin, end) (a particle group) of
+    // a substep from fraction `from` to `to` of the frame, of length h.
+    // Returns the number of particle-collider contacts.
     uint32_t collide(float h, float from, float to, const float* kinematic, uint32_t begin, uint32_t end,
-                     Vec3Soa& x, Vec3Soa& v) const;
+                     Vec3Soa& x, Vec3Soa& v, Pass pass = Pass::kEvery);
 
   private:
     Pose body_pose(uint32_t body_slot, float fraction) const;
+    MovingCollider moving_collider(const Collider& collider, float from, float to) const;
+    // Records which colliders each free particle of [begin, end) is within reach of.
+    void record(const MovingCollider& collider, uint16_t slot, float h, const float* kinematic, uint32_t begin,
+                uint32_t end, const Vec3Soa& x, const Vec3Soa& v);
+    // The rounds between the strain limiter's passes: each particle of
+    // [begin, end) against the colliders of its record.
+    uint32_t collide_recorded(float h, float from, float to, const float* kinematic, uint32_t begin,
+                              uint32_t end, Vec3Soa& x, Vec3Soa& v);
 
     const ContactWorld* world_ = nullptr;
     CollisionParams collision_;
@@ -87,6 +111,13 @@ class ClothContact {
     uint16_t slept_generation_ = 0;      // its generation (the slot may be reused)
     Pose slept_at_;                      // and the carrier's pose then
     uint32_t catch_up_on_ = UINT32_MAX;  // woken: the next begin_step jumps from slept_at_ on this carrier
+    // The record of Pass::kRecord: per particle, up to kRecordedColliders
+    // collider slots (particle i's from entry i * kRecordedColliders) and
+    // their count, kEveryCollider when there were more.
+    static constexpr uint32_t kRecordedColliders = 4;
+    static constexpr uint8_t kEveryCollider = 0xFF;
+    HostVector<uint16_t> recorded_collider_;
+    HostVector<uint8_t> recorded_count_;
 };
 
 }  // namespace cloth

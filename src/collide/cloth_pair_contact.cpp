@@ -7,7 +7,6 @@
 #include "collide/contact_response.h"
 #include "collide/self_collision.h"
 #include "forces/aerodynamics.h"
-#include "step/cloth_instance.h"
 
 namespace cloth {
 
@@ -25,12 +24,16 @@ struct Bounds {
     Vec3 high = Vec3::Constant(-std::numeric_limits<float>::infinity());
 };
 
-Bounds bounds_of(const Vec3Soa& x) {
+// The particles now and `dt` later at their velocities (of a cloth that steps).
+Bounds bounds_of(const ParticleView& cloth, float dt) {
     Bounds b;
+    const Vec3Soa& x = *cloth.x;
+    const Vec3Soa& v = *cloth.v;
+    const float ahead = cloth.steps ? dt : 0.0f;
     for (size_t i = 0; i < x.size(); ++i) {
-        const Vec3 p = x.get(i);
-        b.low = b.low.cwiseMin(p);
-        b.high = b.high.cwiseMax(p);
+        const Vec3 p = x.get(i), q = p + v.get(i) * ahead;
+        b.low = b.low.cwiseMin(p).cwiseMin(q);
+        b.high = b.high.cwiseMax(p).cwiseMax(q);
     }
     return b;
 }
@@ -49,7 +52,6 @@ ClothPairContact::ClothPairContact(const HostMemory* memory, const Fabric& a, co
       v_(memory),
       normal_(memory),
       next_x_(memory),
-      next_v_(memory),
       start_(memory),
       inverse_mass_(HostAllocator<float>(memory)),
       contact_other_(HostAllocator<uint32_t>(memory)),
@@ -61,7 +63,7 @@ ClothPairContact::ClothPairContact(const HostMemory* memory, const Fabric& a, co
     const uint32_t n = count();
     hash_a_.reserve(count_a_);
     hash_b_.reserve(count_b_);
-    for (Vec3Soa* v : {&x_, &v_, &normal_, &next_x_, &next_v_, &start_}) v->resize(n);
+    for (Vec3Soa* v : {&x_, &v_, &normal_, &next_x_, &start_}) v->resize(n);
     inverse_mass_.resize(n);
     contact_other_.resize(size_t{n} * kMaxContacts);
     contact_distance2_.resize(size_t{n} * kMaxContacts);
@@ -71,21 +73,80 @@ ClothPairContact::ClothPairContact(const HostMemory* memory, const Fabric& a, co
     overlapping_.assign(n, 0);
 }
 
-bool ClothPairContact::near(const ClothInstance& a, const ClothInstance& b) const {
-    const Bounds ba = bounds_of(a.positions()), bb = bounds_of(b.positions());
+bool ClothPairContact::near(const ParticleView& a, const ParticleView& b, float dt) const {
+    const Bounds ba = bounds_of(a, dt), bb = bounds_of(b, dt);
     const float r = radius_;
     return (ba.low.array() - r <= bb.high.array()).all() && (bb.low.array() - r <= ba.high.array()).all();
 }
 
-void ClothPairContact::gather(const ClothInstance& a, const ClothInstance& b, uint32_t begin, uint32_t end) {
+void ClothPairContact::begin(const ParticleView& a, const ParticleView& b) {
+    a_ = a;
+    b_ = b;
+    round_ = Round::kGather;
+}
+
+void ClothPairContact::run(const GroupTask& task) {
+    switch (round_) {
+        case Round::kGather:
+            gather(task.begin, task.end);
+            return;
+        case Round::kSort:
+            hash_a_.sort_into_buckets(x_);
+            hash_b_.sort_into_buckets(x_, count_a_);
+            return;
+        case Round::kContacts:
+            find_contacts(task.begin, task.end);
+            return;
+        case Round::kProject:
+            project(task.begin, task.end);
+            return;
+        case Round::kScatter:
+            scatter(task.begin, task.end);
+            return;
+        case Round::kDone:
+            return;
+    }
+}
+
+void ClothPairContact::finish_round() {
+    switch (round_) {
+        case Round::kGather:
+            round_ = Round::kSort;
+            return;
+        case Round::kSort:
+            found_ = true;
+            round_ = Round::kContacts;
+            return;
+        case Round::kContacts:
+            passes_ = 0;
+            round_ = Round::kProject;
+            return;
+        case Round::kProject: {
+            x_.swap_buffers(next_x_);
+            ++passes_;
+            uint8_t any = 0;
+            for (uint8_t flag : overlapping_) any |= flag;
+            if (any == 0 || passes_ >= settings_.passes) round_ = Round::kScatter;
+            return;
+        }
+        case Round::kScatter:
+            started_ = true;
+            round_ = Round::kDone;
+            return;
+        case Round::kDone:
+            return;
+    }
+}
+
+void ClothPairContact::gather(uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; ++i) {
-        const ClothInstance& cloth = side_b(i) ? b : a;
+        const ParticleView& cloth = side_b(i) ? b_ : a_;
         const uint32_t p = side_b(i) ? i - count_a_ : i;
-        x_.set(i, cloth.positions().get(p));
+        x_.set(i, cloth.x->get(p));
         if (!started_) start_.set(i, x_.get(i));
-        v_.set(i, cloth.velocities().get(p));
-        normal_.set(i, vertex_normal(cloth.fabric(), cloth.positions(), p));
-        inverse_mass_[i] = cloth.is_pinned(p) ? 0.0f : 1.0f / cloth.masses()[p];
+        v_.set(i, cloth.v->get(p));
+        normal_.set(i, vertex_normal(*cloth.fabric, *cloth.x, p));
+        inverse_mass_[i] = !cloth.steps || cloth.pinned[p] != 0.0f ? 0.0f : 1.0f / cloth.mass[p];
     }
     if (begin < count_a_) hash_a_.compute_keys(x_, radius_, begin, std::min(end, count_a_));
     if (end > count_a_)
@@ -114,14 +175,16 @@ void ClothPairContact::find_contacts(uint32_t begin, uint32_t end) {
                 const Vec3 d = xi - Vec3(xj, yj, zj);
                 const float d2 = d.squaredNorm();
                 if (!(d2 < radius2)) return;
-                // j's plane, turned towards the side i started the frame on.
+                // j's plane, turned towards the side i was on when the contact last looked.
                 const Vec3 nj = normal_.get(j);
                 const float side = (start_i - start_.get(j)).dot(nj);
                 const Vec3 n = (side > 0.0f || (side == 0.0f && !b)) ? nj : Vec3(-nj);
                 const float along = d.dot(n);
-                // Over j's part of the surface, and not so far behind it that
-                // it is another part of the cloth.
-                if (!((d - n * along).squaredNorm() < tangential2) || !(along > -radius_)) return;
+                // Over j's part of the surface, and at most a thickness behind
+                // it: a particle meets the other cloth within a substep, so
+                // one deeper is past another part of it (a hem it hangs
+                // below), and pushing it through that part tears the cloth.
+                if (!((d - n * along).squaredNorm() < tangential2) || !(along > -theta)) return;
                 touching = touching || along < theta;
                 uint32_t slot = count;
                 if (count < kMaxContacts) {
@@ -158,8 +221,9 @@ void ClothPairContact::project(uint32_t begin, uint32_t end) {
                 const float along = (xi - x_.get(j)).dot(n);
                 if (!(along < theta)) continue;
                 overlapping = overlapping || along < theta - tolerance;
-                // Each end moves by its share of the depth (its inverse
-                // mass over the pair's); pinned particles do not move.
+                // Each end moves by its share of the depth (its inverse mass
+                // over the pair's); pinned particles and a cloth that does
+                // not step do not move.
                 const float share = wi / (wi + inverse_mass_[j]);
                 push += n * (share * (theta - along));
                 ++pushes;
@@ -170,47 +234,41 @@ void ClothPairContact::project(uint32_t begin, uint32_t end) {
     }
 }
 
-bool ClothPairContact::apply_positions() {
-    x_.swap_buffers(next_x_);
-    ++passes_;
-    uint8_t any = 0;
-    for (uint8_t flag : overlapping_) any |= flag;
-    return any != 0 && passes_ < settings_.passes;
-}
-
-void ClothPairContact::respond(uint32_t begin, uint32_t end) {
-    // Contacts within the thickness plus the convergence tolerance count
-    // as touching after the projection left them at the thickness.
-    const float reach = settings_.thickness * (1.0f + kConvergence), friction = settings_.friction;
-    for (uint32_t i = begin; i < end; ++i) {
-        const Vec3 xi = x_.get(i), vi = v_.get(i);
-        Vec3 change = Vec3::Zero();
-        uint32_t changes = 0;
-        const float wi = inverse_mass_[i];
-        if (wi > 0) {
-            for (uint32_t k = 0; k < contact_count_[i]; ++k) {
-                const size_t slot = size_t{i} * kMaxContacts + k;
-                const uint32_t j = contact_other_[slot];
-                const Vec3 n = contact_normal_.get(slot);
-                if (!((xi - x_.get(j)).dot(n) < reach)) continue;
-                const Vec3 relative = vi - v_.get(j);
-                const float approach = relative.dot(n);
-                if (!(approach < 0)) continue;
-                const float share = wi / (wi + inverse_mass_[j]);
-                change += contact_velocity_change(relative, n, approach, share, friction);
-                ++changes;
-            }
-        }
-        next_v_.set(i, changes ? Vec3(vi + change / static_cast<float>(changes)) : vi);
-    }
-}
-
-void ClothPairContact::scatter(ClothInstance& a, ClothInstance& b, uint32_t begin, uint32_t end) {
+void ClothPairContact::scatter(uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; ++i) {
         start_.set(i, x_.get(i));
         if (contact_count_[i] == 0 || inverse_mass_[i] == 0.0f) continue;
-        ClothInstance& cloth = side_b(i) ? b : a;
-        cloth.set_particle_state(side_b(i) ? i - count_a_ : i, x_.get(i), v_.get(i));
+        const ParticleView& cloth = side_b(i) ? b_ : a_;
+        cloth.x->set(side_b(i) ? i - count_a_ : i, x_.get(i));
+    }
+}
+
+void ClothPairContact::respond_side(uint32_t side, const Vec3Soa& x, Vec3Soa& v, uint32_t begin,
+                                    uint32_t end) const {
+    // Contacts within the thickness plus the convergence tolerance count
+    // as touching after the projection left them at the thickness.
+    const float reach = settings_.thickness * (1.0f + kConvergence), friction = settings_.friction;
+    const uint32_t first = first_of(side);
+    for (uint32_t p = begin; p < end; ++p) {
+        const uint32_t i = first + p;
+        const float wi = inverse_mass_[i];
+        if (contact_count_[i] == 0 || !(wi > 0)) continue;
+        const Vec3 xi = x.get(p), vi = v.get(p);
+        Vec3 change = Vec3::Zero();
+        uint32_t changes = 0;
+        for (uint32_t k = 0; k < contact_count_[i]; ++k) {
+            const size_t slot = size_t{i} * kMaxContacts + k;
+            const uint32_t j = contact_other_[slot];
+            const Vec3 n = contact_normal_.get(slot);
+            if (!((xi - x_.get(j)).dot(n) < reach)) continue;
+            const Vec3 relative = vi - v_.get(j);
+            const float approach = relative.dot(n);
+            if (!(approach < 0)) continue;
+            const float share = wi / (wi + inverse_mass_[j]);
+            change += contact_velocity_change(relative, n, approach, share, friction);
+            ++changes;
+        }
+        if (changes) v.set(p, Vec3(vi + change / static_cast<float>(changes)));
     }
 }
 

@@ -155,17 +155,18 @@ struct Collider {
 // every range and particle test of the substep needs from its pose taken
 // once (per collider and pass, not per chunk and particle).
 struct MovingCollider {
+    MovingCollider() = default;
     MovingCollider(const Shape* shape, const Pose& start, const Pose& end, const Body* body = nullptr);
 
-    const Shape* shape;
-    Pose start, end;   // world poses at the substep's start and end
-    const Body* body;  // for the surface velocity (friction); null if static
+    const Shape* shape = nullptr;
+    Pose start, end;             // world poses at the substep's start and end
+    const Body* body = nullptr;  // for the surface velocity (friction); null if static
     // The shape's bounding sphere's centre at the start and end, and half
     // the chord between them: the centre's path under slerp is an arc, and
     // half its chord bounds how far the arc strays from the chord.
-    Vec3 bound_start, bound_end;
-    float bound_half_chord;
-    bool is_static;  // the same pose at start and end
+    Vec3 bound_start = Vec3::Zero(), bound_end = Vec3::Zero();
+    float bound_half_chord = 0;
+    bool is_static = true;  // the same pose at start and end
 };
 
 struct CollisionParams {

@@ -177,7 +177,7 @@ void StrainLimiter::begin(const StrainLimitPass& pass, uint32_t iterations, floa
     pass_ = pass;
     asked_strain_ = pass.max_strain;
     iterations_ = asked_ = iterations;
-    past_promise_ = held_ = false;
+    past_promise_ = held_ = capped_ = false;
     round_ = 0;
     h_ = h;
     x_ = &x;
@@ -240,6 +240,8 @@ void StrainLimiter::finish_round() {
                 iterations_ = pass + 1;  // this pass applies nothing, nor would any after it
             } else if (over_promise > 0 && pass + 1 == iterations_ && iterations_ < max_iterations_) {
                 ++iterations_;
+            } else if (over_promise > 0 && pass + 1 == iterations_) {
+                capped_ = true;
             }
         }
         // ...and the weight its application round moves by. The last pass

@@ -170,6 +170,10 @@ class StrainLimiter final : public StagedAlgorithm {
     // The first pass found a spring longer than the limit (with `counts`):
     // the limiter held the cloth. False until that pass.
     bool held() const { return held_; }
+    // The last pass found a spring longer than the limit plus the slack
+    // and no more passes were allowed (with `counts`): the passes stopped
+    // at their cap, not where the cloth was held.
+    bool capped() const { return capped_; }
     // Particles [begin, end) moved between two passes by something else
     // (`from` -> `to`, a self-collision projection): the next accelerated
     // pass carries the move over as it is, not as part of its momentum.
@@ -192,6 +196,7 @@ class StrainLimiter final : public StagedAlgorithm {
     uint32_t iterations_ = 0, max_iterations_ = 0, asked_ = 0, round_ = 0, first_pass_round_ = 0;
     bool past_promise_ = false;
     bool held_ = false;
+    bool capped_ = false;
     StretchCount* counts_ = nullptr;  // per group, written by the corrections or terms round
     float h_ = 0;
     Vec3Soa* x_ = nullptr;

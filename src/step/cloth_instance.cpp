@@ -61,6 +61,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     solver_work_.resize(n);
     group_count_ = (n + kGroupSize - 1) / kGroupSize;
     frame_.resize(n, group_count_);
+    contact_.size_record(n);
     stretch_counts_.assign(group_count_, StretchCount{});
     strain_maybe_over_.assign(n, 0);
     strain_pull_.assign(n, 0.0f);

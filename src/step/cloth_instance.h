@@ -137,6 +137,10 @@ class ClothInstance {
     void set_quality_policy(const QualityPolicy& policy);
     ClothQuality& quality() { return quality_; }
     const ClothQuality& quality() const { return quality_; }
+    // The strain limiter's passes over the last step's substeps, and
+    // whether a substep's passes stopped at their cap.
+    uint32_t last_strain_passes() const { return frame_.strain_passes; }
+    bool last_strain_capped() const { return frame_.strain_capped; }
     // Whether a step has run (frame_ holds its settings).
     bool last_step_ran() const { return frame_.h > 0; }
     // The strain limit the last step ran with (0: none).
@@ -203,16 +207,19 @@ class ClothInstance {
     void set_position(uint32_t particle, const Vec3& x);
 
     const Vec3Soa& positions() const { return x_; }
-    // Contact with another cloth (collide/cloth_pair_contact.h) moves a
-    // particle after the frame: its new position and velocity.
-    void set_particle_state(uint32_t particle, const Vec3& x, const Vec3& v) {
-        x_.set(particle, x);
-        v_.set(particle, v);
+    // The cloth's particles as contact with another cloth sees them
+    // (collide/cloth_pair_contact.h); `steps`: it steps this frame.
+    ParticleView particle_view(bool steps) {
+        return ParticleView{fabric_.get(), &x_, &v_, mass_.data(), pinned_.data(), steps};
     }
-    // After contact moved some particles: the strain limiter's passes and
-    // the skin's constraints once more, serially, as at the end of the
-    // frame's last substep (so the skin still wins).
-    void settle_after_contact();
+    // Contact with other cloths this frame (World::step, between
+    // begin_frame and the first round): the substeps the cloth shares with
+    // them (raised, never lowered), and its side of each pair, in the
+    // world's pair order (step/pair_rounds.h).
+    void take_substeps(uint32_t substeps);
+    void join_pair(PairRounds::Side* side);
+    uint32_t frame_substeps() const { return frame_.solver.substeps; }
+    float frame_dt() const { return frame_.dt; }
     const Vec3Soa& velocities() const { return v_; }
     const HostVector<float>& masses() const { return mass_; }
     // Unit area-weighted vertex normals of the reported positions.
@@ -290,7 +297,7 @@ class ClothInstance {
     /// this substep, and whether any touched one (frame_.group_contacts).
     void collide_stage(const GroupTask& task);
     void note_contacts();
-    void collide(const GroupTask& task, uint32_t* contacts = nullptr);
+    void collide(const GroupTask& task, ClothContact::Pass pass, uint32_t* contacts = nullptr);
     /// One round of strain limiting, or of what runs between its passes: the
     /// self-collision's projection or response, the colliders (limit_rounds.h).
     void limit_strain(const GroupTask& task);
@@ -299,6 +306,15 @@ class ClothInstance {
     void self_between_passes(LimitRounds::Round round, StrainLimiter& limiter, const GroupTask& task);
     /// After the strain limiter's last round: whether it ended past its promise.
     void note_strain();
+    /// Contact with other cloths: a round of a pair's projections (a task
+    /// over both cloths' particles, pair_rounds.h), and this cloth's
+    /// velocities after them.
+    void run_pair_contact(const GroupTask& task);
+    void respond_to_pairs(const GroupTask& task);
+    bool pair_stage() const;
+    PairRounds::Side& planned_pair() const;
+    // Substeps past the substep gamma run backward Euler (begin_frame, take_substeps).
+    void hold_theta_within_gamma();
     /// Free particles into their max distances, out of their backstops
     /// (after the colliders, so the skin wins; also after each strain-limit pass).
     void constrain_to_skin(const GroupTask& task);

@@ -197,49 +197,13 @@ void ClothInstance::hold_to_skin(const GroupTask& task, bool prepared) {
     skin_.constrain(task.begin, task.end, substep_end_fraction(), frame_.h, pinned_.data(), x_, v_, prepared);
 }
 
-void ClothInstance::settle_after_contact() {
-    // What they move becomes velocity over the frame, the time the contact's push stands for.
-    const float frame = frame_.h * static_cast<float>(frame_.solver.substeps);
-    if (limits_strain()) {
-        const StrainLimitPass pass{fabric_.get(),
-                                   mass_.data(),
-                                   pinned_.data(),
-                                   frame_.solver.strain_limit.max_strain,
-                                   strain_maybe_over_.data(),
-                                   strain_pull_.data(),
-                                   holds_compression()};
-        // As many passes as a substep's limiter may run: a push of the
-        // thickness is several times a fine fabric's edge.
-        const uint32_t passes = frame_.solver.strain_limit.iterations * kStrainLimitMorePasses;
-        StrainLimiter limiter;
-        limiter.begin(pass, passes, frame, x_, v_, solver_work_.r, solver_work_.z, true);
-        // With self-collision its last substep's contacts are projected
-        // between the passes, as in the substep (limit_rounds.h).
-        LimitRounds rounds;
-        rounds.begin(&limiter, false, nullptr, self_collision_.get(), &x_, &v_);
-        while (!rounds.done()) {
-            for (uint32_t g = 0; g < group_count_; ++g) {
-                const GroupTask task = GroupTask::of(g, group_count_, particle_count());
-                if (rounds.round() == LimitRounds::Round::kPass) {
-                    limiter.run(task);
-                } else {
-                    self_between_passes(rounds.round(), limiter, task);
-                }
-            }
-            rounds.finish_round();
-        }
-    }
-    if (skin_.active() && skin_.constrains())
-        skin_.constrain(0, particle_count(), 1.0f, frame, pinned_.data(), x_, v_);
-}
-
 float ClothInstance::substep_end_fraction() const {
     return static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.solver.substeps);
 }
 
 void ClothInstance::collide_stage(const GroupTask& task) {
     expect_stage(Stage::kCollisions);
-    collide(task, &frame_.group_contacts[task.group]);
+    collide(task, ClothContact::Pass::kRecord, &frame_.group_contacts[task.group]);
 }
 
 void ClothInstance::note_contacts() {
@@ -247,11 +211,12 @@ void ClothInstance::note_contacts() {
                                   [](uint32_t n) { return n > 0; });
 }
 
-void ClothInstance::collide(const GroupTask& task, uint32_t* contacts) {
+void ClothInstance::collide(const GroupTask& task, ClothContact::Pass pass, uint32_t* contacts) {
     // Particles against the world's colliders over this substep (colliders.h).
     const float from = static_cast<float>(frame_.substep) / static_cast<float>(frame_.solver.substeps);
     const float to = substep_end_fraction();
-    const uint32_t found = contact_.collide(frame_.h, from, to, pinned_.data(), task.begin, task.end, x_, v_);
+    const uint32_t found =
+        contact_.collide(frame_.h, from, to, pinned_.data(), task.begin, task.end, x_, v_, pass);
     if (contacts) *contacts = found;
 }
 
@@ -259,7 +224,9 @@ void ClothInstance::limit_strain(const GroupTask& task) {
     expect_stage(Stage::kStrainLimit);
     switch (frame_.limit_rounds.round()) {  // limit_rounds.h: what runs between the passes, and why
         case LimitRounds::Round::kColliders:
-            collide(task);
+            // Between the passes the colliders the collision stage found
+            // within reach; after the last, every one (cloth_contact.h).
+            collide(task, frame_.strain_limiter.done() ? ClothContact::Pass::kEvery : ClothContact::Pass::kRecorded);
             return;
         case LimitRounds::Round::kProject:
         case LimitRounds::Round::kRespond:
@@ -294,10 +261,22 @@ void ClothInstance::self_between_passes(LimitRounds::Round round, StrainLimiter&
     }
 }
 
+void ClothInstance::run_pair_contact(const GroupTask& task) { planned_pair().run(task); }
+
+void ClothInstance::respond_to_pairs(const GroupTask& task) {
+    expect_stage(Stage::kClothContactRespond);
+    for (uint32_t k = 0; k < frame_.pair_count; ++k) {
+        const PairRounds::Side& side = *frame_.pairs[k];
+        side.pair().contact().respond_side(side.side(), x_, v_, task.begin, task.end);
+    }
+}
+
 void ClothInstance::note_strain() {
     if (!frame_.strain_limiter.done()) return;
     frame_.strained = frame_.strain_limiter.past_promise();
     frame_.limit_held |= frame_.strain_limiter.held();
+    frame_.strain_passes += frame_.strain_limiter.passes();
+    frame_.strain_capped |= frame_.strain_limiter.capped();
 }
 
 void ClothInstance::resolve_self_contacts(const GroupTask& task) {

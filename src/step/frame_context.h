@@ -16,6 +16,7 @@
 #include "solve/solver_settings.h"
 #include "solve/strain_limit.h"
 #include "step/limit_rounds.h"
+#include "step/pair_rounds.h"
 #include "step/step_stage.h"
 
 namespace cloth {
@@ -47,7 +48,9 @@ struct PlannedStage {
 };
 
 struct FrameContext {
-    static constexpr uint32_t kMaxPlannedStages = 12;
+    static constexpr uint32_t kMaxPlannedStages = 16;
+    // The most cloths one cloth is in contact with (World::set_cloth_contact).
+    static constexpr uint32_t kMaxPairs = 4;
 
     explicit FrameContext(const HostMemory* memory)
         : pin_start(memory),
@@ -75,6 +78,10 @@ struct FrameContext {
     uint32_t capped_substeps = 0;
 
     float h = 0;  // substep length, s
+    float dt = 0;  // frame length, s
+    // The material's stiffness over the lightest free mass, which the
+    // default's substep rule reads (solver_default.h).
+    float stiffness_per_mass = 0;
     // The lightest free particle's mass, kg, when the solve stops in
     // physical units (SolverSettings::velocity_tolerance); else 0.
     float lightest_free_mass = 0;
@@ -85,6 +92,8 @@ struct FrameContext {
     float strain_pins_demand = 0;
     bool strained = false;      // a substep of this frame ended past the strain limit's promise
     bool limit_held = false;    // a substep's strain limiter found a spring past the limit
+    uint32_t strain_passes = 0;  // the strain limiter's passes, over the frame's substeps
+    bool strain_capped = false;  // a substep's passes stopped at their cap (StrainLimiter::capped)
     bool started_slow = false;  // no free particle faster than kDefaultQuietSpeed at its start
     bool collides = false;      // this frame runs the collision stage
     bool touching = false;      // this substep's collision stage found a contact
@@ -107,6 +116,10 @@ struct FrameContext {
     IterativeSolve iterative;  // JACOBI, PCG, CHEBYSHEV
     StrainLimiter strain_limiter;
     LimitRounds limit_rounds;  // the limiter's passes with the colliders between them
+    // This frame's contact with other cloths: the cloth's side of each
+    // pair, in the world's pair order (pair_rounds.h).
+    PairRounds::Side* pairs[kMaxPairs] = {};
+    uint32_t pair_count = 0;
 
     // The plan of the current substep, and where the frame is in it.
     PlannedStage plan[kMaxPlannedStages] = {};

@@ -68,7 +68,15 @@ void ClothInstance::plan_substep() {
         self_collision_->begin(x_, v_, mass_.data(), pinned_.data(), !limits_strain());
         plan(Stage::kSelfCollision, &C::resolve_self_contacts, nullptr, self_collision_.get());
     }
+    // Contact with other cloths, where both cloths wait (pair_rounds.h),
+    // before the strain limiter, whose passes take back the stretch its
+    // pushes make; each cloth's response after them (projected again
+    // after the passes, the contacts' pushes leave the cloth stretched:
+    // docs/measurements.md, "Contact between cloths inside the substeps").
+    for (uint32_t k = 0; k < frame_.pair_count; ++k)
+        plan(Stage::kClothContact, &C::run_pair_contact, nullptr, frame_.pairs[k]);
     if (limits_strain()) plan(Stage::kStrainLimit, &C::limit_strain, &C::note_strain, begin_strain_limit());
+    if (frame_.pair_count > 0) plan(Stage::kClothContactRespond, &C::respond_to_pairs);
     // Last: max distance and backstop are promises after every substep.
     if (skin_.active() && skin_.constrains()) plan(Stage::kSkinConstraints, &C::constrain_to_skin);
 }
@@ -135,6 +143,9 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
                                ? lightest_free_mass(mass_.data(), pinned_.data(), particle_count())
                                : 0.0f;
     const float stiffness_per_mass = stiffness_over_mass(material_, lightest);
+    frame_.dt = dt;
+    frame_.stiffness_per_mass = stiffness_per_mass;
+    frame_.pair_count = 0;
     frame_.solver = resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty());
     frame_.lightest_free_mass = frame_.solver.velocity_tolerance > 0 ? lightest : 0.0f;
     frame_.strained = strained_;
@@ -177,11 +188,7 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
                                                           static_cast<double>(frame_.own_substeps)));
         frame_.solver.substeps = std::max(frame_.solver.substeps, least);
     }
-    // Substeps past the substep gamma run backward Euler, whether the
-    // default's most substeps or a cap put them there (resolve_solver).
-    if (solver_.kind == CLOTH_SOLVER_DEFAULT &&
-        !within_substep_gamma(dt, stiffness_per_mass, frame_.solver.substeps, !multigrid_.empty()))
-        frame_.solver.theta = 1.0f;
+    hold_theta_within_gamma();
     if (contact_.carrier().active() || frame_.solver.kind == CLOTH_SOLVER_EXPLICIT) {
         frame_.backup = FrameBackup::kCopied;
         frame_.backup_x = x_;
@@ -203,11 +210,36 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     frame_.gravity = gravity;
     frame_.converged = true;
     frame_.limit_held = false;
+    frame_.strain_passes = 0;
+    frame_.strain_capped = false;
     frame_.out_of_memory = false;
     std::fill(frame_.group_finite.begin(), frame_.group_finite.end(), uint8_t{1});
     frame_.substep = frame_.entry = frame_.round = 0;
     plan_substep();
     frame_.done = false;
+}
+
+void ClothInstance::hold_theta_within_gamma() {
+    // Substeps past the substep gamma run backward Euler, whether the
+    // default's most substeps, a cap or a partner in contact put them
+    // there (resolve_solver).
+    if (solver_.kind == CLOTH_SOLVER_DEFAULT &&
+        !within_substep_gamma(frame_.dt, frame_.stiffness_per_mass, frame_.solver.substeps, !multigrid_.empty()))
+        frame_.solver.theta = 1.0f;
+}
+
+void ClothInstance::take_substeps(uint32_t substeps) {
+    if (substeps <= frame_.solver.substeps) return;
+    frame_.solver.substeps = substeps;
+    hold_theta_within_gamma();
+    frame_.h = frame_.dt / static_cast<float>(substeps);
+    plan_substep();
+}
+
+void ClothInstance::join_pair(PairRounds::Side* side) {
+    assert(frame_.pair_count < FrameContext::kMaxPairs && frame_.substep == 0 && frame_.entry == 0);
+    frame_.pairs[frame_.pair_count++] = side;
+    plan_substep();
 }
 
 float ClothInstance::fastest_free_speed_relative_to_pins() const {
@@ -273,14 +305,23 @@ Stage ClothInstance::stage() const {
     }
 }
 
+bool ClothInstance::pair_stage() const { return planned().stage == Stage::kClothContact; }
+
+PairRounds::Side& ClothInstance::planned_pair() const {
+    assert(pair_stage());
+    return *static_cast<PairRounds::Side*>(planned().rounds);
+}
+
 void ClothInstance::prepare_stage() {
     if (frame_.entry == frame_.pins_move_at && frame_.round == 0) move_pins();
+    if (pair_stage() && frame_.round == 0) planned_pair().arrive();
     if (planned().stage == Stage::kStrainLimit && frame_.round == 0)
         frame_.strain_limiter.hold_at_least(frame_.strain_pins_demand);
 }
 
 uint32_t ClothInstance::task_count() const {
     const PlannedStage& s = planned();
+    if (pair_stage()) return planned_pair().task_count();
     const bool one_task = s.stage == Stage::kSerialSolve || (s.rounds && s.rounds->single_task());
     return one_task ? 1 : group_count_;
 }
@@ -301,6 +342,14 @@ void ClothInstance::expect_stage(Stage stage) const {
 }
 
 void ClothInstance::run_task(uint32_t task, uint32_t) {
+    if (pair_stage()) {
+        // A task over both cloths' particles (pair_rounds.h).
+        ClothPairContact& contact = planned_pair().pair().contact();
+        const uint32_t tasks = contact.task_count();
+        run_pair_contact(tasks == 1 ? GroupTask{0, 1, 0, contact.count()}
+                                    : GroupTask::of(task, tasks, contact.count()));
+        return;
+    }
     (this->*planned().run)(group_task(task));
     // The last round of the frame checks its group for NaN and Inf.
     if (final_round()) check_finite(task);

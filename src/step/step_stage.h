@@ -28,6 +28,8 @@ enum class Stage : uint8_t {
     kLimitCollisions,
     kSkinning,
     kSkinConstraints,
+    kClothContact,
+    kClothContactRespond,
     kCount
 };
 
@@ -78,6 +80,10 @@ inline const char* stage_name(Stage stage) {
             return "self_project";
         case Stage::kSelfRespond:
             return "self_respond";
+        case Stage::kClothContact:
+            return "cloth_contact";
+        case Stage::kClothContactRespond:
+            return "cloth_contact_respond";
         case Stage::kCount:
             break;
     }

@@ -22,6 +22,10 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       pool_(desc.enqueue_task ? 1 : desc.worker_count),
       stepping_(HostAllocator<uint32_t>(&memory_)),
       stepping_cloths_(HostAllocator<ClothInstance*>(&memory_)),
+      unit_parent_(HostAllocator<uint32_t>(&memory_)),
+      units_(HostAllocator<uint32_t>(&memory_)),
+      unit_begin_(HostAllocator<uint32_t>(&memory_)),
+      unit_cloths_(HostAllocator<ClothInstance*>(&memory_)),
       round_(HostAllocator<RoundTask>(&memory_)),
       round_times_(HostAllocator<TaskTime>(&memory_)),
       cloth_cost_ns_(HostAllocator<int64_t>(&memory_)),
@@ -35,6 +39,10 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
     cloths_.make_all_slots();
     stepping_.reserve(desc.max_cloths);
     stepping_cloths_.reserve(desc.max_cloths);
+    unit_parent_.reserve(desc.max_cloths);
+    units_.reserve(desc.max_cloths);
+    unit_begin_.reserve(size_t{desc.max_cloths} + 1);
+    unit_cloths_.reserve(desc.max_cloths);
     cloth_cost_ns_.assign(desc.max_cloths, 0);
     cloth_solve_ns_.assign(desc.max_cloths, 0);
     budget_cloths_.reserve(desc.max_cloths);
@@ -257,6 +265,8 @@ Status World::step(float dt) {
         stepping_cloths_.push_back(cloth);
     }
     profile_.awake_cloths = static_cast<uint32_t>(stepping_.size());
+    begin_cloth_pairs();
+    group_units();
     if (steps_whole_cloths()) {
         step_whole_cloths(timed);
     } else {
@@ -293,7 +303,7 @@ Status World::step(float dt) {
             first_failure = Status::error(status.code, "cloth slot %u: %.360s", s + 1, status.message);
         }
     }
-    resolve_cloth_pairs();
+    end_cloth_pairs();
     contact_.end_step();  // bodies start the next step where they are now
     profile_.end_ns = now_ns();
     if (budget_ms_ > 0) {

@@ -23,6 +23,7 @@
 #include "step/budget_policy.h"
 #include "step/cloth_instance.h"
 #include "step/frame_profile.h"
+#include "step/pair_rounds.h"
 
 namespace cloth {
 
@@ -100,9 +101,10 @@ class World {
     float relevance(const ClothInstance& cloth) const;
 
     // Contact between two of the world's cloths (cloth_pair_contact.h;
-    // world_cloth_pairs.cpp), resolved after every cloth's frame in the
-    // order the pairs were turned on. settings null: off. Turning a pair
-    // on allocates; an allocation failure changes nothing.
+    // world_cloth_pairs.cpp), resolved inside both cloths' substeps
+    // (pair_rounds.h). settings null: off. Turning a pair on allocates;
+    // an allocation failure changes nothing; a cloth is in at most
+    // FrameContext::kMaxPairs pairs (CLOTH_ERROR_CAPACITY).
     Status set_cloth_contact(cloth_id a, cloth_id b, const ClothPairSettings* settings);
     // The pair's contact, or null while it is off.
     const ClothPairContact* cloth_contact(cloth_id a, cloth_id b) const;
@@ -126,8 +128,14 @@ class World {
     // per-worker times folded into the profile after it.
     bool steps_whole_cloths() const;
     void step_whole_cloths(bool timed);
-    void run_whole_cloth(uint32_t index, uint32_t worker, bool timed);
+    void run_whole_unit(uint32_t unit, uint32_t worker, bool timed);
     void account_whole_cloths();
+    // Cloths in contact step as one unit: units_ lists the stepping
+    // cloths' indices unit by unit (each unit's in stepping order, units by
+    // their first), unit_begin_ where each unit starts, unit_cloths_ the
+    // cloths in that order (world_whole_cloths.cpp).
+    void group_units();
+    uint32_t unit_count() const { return static_cast<uint32_t>(unit_begin_.size()) - 1; }
     // What one worker timed while it ran whole cloths.
     struct WorkerTally {
         int64_t stage_ns[kStageCount] = {};
@@ -156,10 +164,16 @@ class World {
     struct ClothPair {
         uint32_t slot_a, slot_b;  // slot_a < slot_b
         std::shared_ptr<ClothPairContact> contact;
+        std::shared_ptr<PairRounds> rounds;  // where the two frames meet (pair_rounds.h)
+        bool active = false;                 // in this frame's substeps
     };
     // The pair of a and b's slots in cloth_pairs_, or its size.
     size_t find_cloth_pair(uint32_t slot_a, uint32_t slot_b) const;
-    void resolve_cloth_pairs();
+    // After every stepping cloth's begin_frame: the pairs whose cloths can
+    // meet this frame join both frames, with the substeps they share.
+    void begin_cloth_pairs();
+    // After the frame: a sleeping cloth another one touched wakes.
+    void end_cloth_pairs();
     void drop_cloth_pairs(uint32_t slot);
     TaskSystem* tasks_ = nullptr;  // never null after construction: one of the three below
     SerialTasks serial_tasks_;
@@ -167,6 +181,9 @@ class World {
     ThreadPool pool_;  // starts no thread unless the world asked for workers and has no host callbacks
     HostVector<uint32_t> stepping_;               // slots of the cloths of the frame in progress
     HostVector<ClothInstance*> stepping_cloths_;  // and those cloths, in the same order
+    HostVector<uint32_t> unit_parent_;            // per stepping index: union-find over active pairs
+    HostVector<uint32_t> units_, unit_begin_;     // group_units()
+    HostVector<ClothInstance*> unit_cloths_;
     HostVector<RoundTask> round_;                 // sized for every group of every cloth
     HostVector<TaskTime> round_times_;            // one slot per task of the round, written by its worker
     HostVector<int64_t> cloth_cost_ns_;           // per cloth slot: task time of the last frame

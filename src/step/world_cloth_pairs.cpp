@@ -1,18 +1,11 @@
 // The world's pairs of cloths in contact (collide/cloth_pair_contact.h):
-// turned on and off by the host, resolved after every cloth's frame.
+// turned on and off by the host; each frame, the pairs whose cloths can
+// meet join both cloths' frames (step/pair_rounds.h).
 #include <algorithm>
 
 #include "step/world.h"
 
 namespace cloth {
-
-namespace {
-
-// Particles per task of a contact round: a round's work per particle is
-// a few dozen flops, so smaller ranges cost more to hand out than to run.
-constexpr uint32_t kMinParticlesPerRange = 256;
-
-}  // namespace
 
 size_t World::find_cloth_pair(uint32_t slot_a, uint32_t slot_b) const {
     for (size_t k = 0; k < cloth_pairs_.size(); ++k) {
@@ -37,14 +30,27 @@ Status World::set_cloth_contact(cloth_id a, cloth_id b, const ClothPairSettings*
         if (k < cloth_pairs_.size()) cloth_pairs_.erase(cloth_pairs_.begin() + static_cast<ptrdiff_t>(k));
         return {};
     }
+    if (k == cloth_pairs_.size()) {
+        for (uint32_t slot : {slot_a, slot_b}) {
+            const auto pairs = std::count_if(cloth_pairs_.begin(), cloth_pairs_.end(), [slot](const ClothPair& p) {
+                return p.slot_a == slot || p.slot_b == slot;
+            });
+            if (pairs >= static_cast<ptrdiff_t>(FrameContext::kMaxPairs)) {
+                return Status::error(CLOTH_ERROR_CAPACITY, "cloth slot %u is in contact with %u cloths already, the most",
+                                     slot + 1, FrameContext::kMaxPairs);
+            }
+        }
+    }
     // Built before anything changes, so an allocation failure changes nothing.
     auto contact = std::allocate_shared<ClothPairContact>(HostAllocator<ClothPairContact>(&memory_), &memory_,
                                                           cloths_[slot_a].object->fabric(),
                                                           cloths_[slot_b].object->fabric(), *settings);
+    auto rounds = std::allocate_shared<PairRounds>(HostAllocator<PairRounds>(&memory_), contact.get());
     if (k < cloth_pairs_.size()) {
         cloth_pairs_[k].contact = std::move(contact);
+        cloth_pairs_[k].rounds = std::move(rounds);
     } else {
-        cloth_pairs_.push_back(ClothPair{slot_a, slot_b, std::move(contact)});
+        cloth_pairs_.push_back(ClothPair{slot_a, slot_b, std::move(contact), std::move(rounds)});
     }
     cloths_[slot_a].object->wake();
     cloths_[slot_b].object->wake();
@@ -66,53 +72,54 @@ void World::drop_cloth_pairs(uint32_t slot) {
         cloth_pairs_.end());
 }
 
-namespace {
-
-// Whether contact between two cloths runs after this frame: each stepped
-// in it or sleeps, and the awake ones' states end at the same frame
-// (update_rate.h: cloths of one rate in contact share a phase).
-bool in_step(const ClothInstance& a, const ClothInstance& b, uint64_t frame) {
-    auto stepped = [frame](const ClothInstance& c) { return c.update_rate().stepped_in(frame); };
-    if (a.sleeping() || b.sleeping()) return a.sleeping() ? stepped(b) : stepped(a);
-    return stepped(a) && stepped(b) && a.update_rate().state_frame() == b.update_rate().state_frame();
-}
-
-}  // namespace
-
-void World::resolve_cloth_pairs() {
+void World::begin_cloth_pairs() {
     for (ClothPair& pair : cloth_pairs_) {
         ClothInstance& a = *cloths_[pair.slot_a].object;
         ClothInstance& b = *cloths_[pair.slot_b].object;
-        ClothPairContact& contact = *pair.contact;
-        if ((a.sleeping() && b.sleeping()) || !in_step(a, b, frame_) || !contact.near(a, b)) {
-            contact.clear();
+        // A cloth steps this frame when begin_frame began one (World::step).
+        const bool a_steps = !a.frame_done(), b_steps = !b.frame_done();
+        // Both step to the same frame (update_rate.h: cloths of one rate
+        // in contact share a phase), or one steps beside the other asleep.
+        const bool together = a_steps && b_steps && a.update_rate().state_frame() == b.update_rate().state_frame();
+        const bool beside_sleeper = (a_steps && !b_steps && b.sleeping()) || (b_steps && !a_steps && a.sleeping());
+        const ParticleView va = a.particle_view(a_steps), vb = b.particle_view(b_steps);
+        pair.active = (together || beside_sleeper) &&
+                      pair.contact->near(va, vb, a_steps ? a.frame_dt() : b.frame_dt());
+        if (!pair.active) {
+            pair.contact->clear();
             continue;
         }
-        const uint32_t n = contact.count();
-        auto gather = [&](uint32_t begin, uint32_t end, uint32_t) { contact.gather(a, b, begin, end); };
-        parallel_for(*tasks_, n, kMinParticlesPerRange, gather);
-        contact.sort();
-        auto find = [&](uint32_t begin, uint32_t end, uint32_t) { contact.find_contacts(begin, end); };
-        parallel_for(*tasks_, n, kMinParticlesPerRange, find);
-        auto project = [&](uint32_t begin, uint32_t end, uint32_t) { contact.project(begin, end); };
-        do {
-            parallel_for(*tasks_, n, kMinParticlesPerRange, project);
-        } while (contact.apply_positions());
-        auto respond = [&](uint32_t begin, uint32_t end, uint32_t) { contact.respond(begin, end); };
-        parallel_for(*tasks_, n, kMinParticlesPerRange, respond);
-        contact.apply_velocities();
-        auto scatter = [&](uint32_t begin, uint32_t end, uint32_t) { contact.scatter(a, b, begin, end); };
-        parallel_for(*tasks_, n, kMinParticlesPerRange, scatter);
-        contact.finish_frame();
-        if (contact.contacts() == 0) continue;
-        for (ClothInstance* cloth : {&a, &b}) {
-            // A sleeping cloth that was touched moves again; an awake one
-            // has its strain limit and skin held again.
-            if (cloth->sleeping()) {
-                cloth->wake();
-            } else {
-                cloth->settle_after_contact();
-            }
+        pair.rounds->begin_frame(va, vb);
+    }
+    // The cloths of a pair share their substeps: the most of any cloth they
+    // are in contact with, directly or through others.
+    for (bool raised = true; raised;) {
+        raised = false;
+        for (const ClothPair& pair : cloth_pairs_) {
+            ClothInstance& a = *cloths_[pair.slot_a].object;
+            ClothInstance& b = *cloths_[pair.slot_b].object;
+            if (!pair.active || a.frame_done() || b.frame_done()) continue;
+            const uint32_t most = std::max(a.frame_substeps(), b.frame_substeps());
+            raised = raised || a.frame_substeps() != b.frame_substeps();
+            a.take_substeps(most);
+            b.take_substeps(most);
+        }
+    }
+    for (ClothPair& pair : cloth_pairs_) {
+        if (!pair.active) continue;
+        ClothInstance& a = *cloths_[pair.slot_a].object;
+        ClothInstance& b = *cloths_[pair.slot_b].object;
+        if (!a.frame_done()) a.join_pair(&pair.rounds->side(0));
+        if (!b.frame_done()) b.join_pair(&pair.rounds->side(1));
+    }
+}
+
+void World::end_cloth_pairs() {
+    for (ClothPair& pair : cloth_pairs_) {
+        if (!pair.active || pair.contact->contacts() == 0) continue;
+        for (uint32_t slot : {pair.slot_a, pair.slot_b}) {
+            ClothInstance& cloth = *cloths_[slot].object;
+            if (cloth.sleeping()) cloth.wake();  // touched by a cloth that stepped
         }
     }
 }

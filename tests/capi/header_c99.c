@@ -90,12 +90,14 @@ CLOTH_HEADER_CHECK(spring_params_layout, sizeof(cloth_spring_params) == 8);
 CLOTH_HEADER_CHECK(desc_layout, sizeof(cloth_desc) == 120 && offsetof(cloth_desc, initial_positions) == 24 &&
                                     offsetof(cloth_desc, solver) == 56 && offsetof(cloth_desc, aero) == 84 &&
                                     offsetof(cloth_desc, internal_cookie) == 112);
-CLOTH_HEADER_CHECK(stats_layout, sizeof(cloth_stats) == 72 && offsetof(cloth_stats, kinetic_energy) == 8 &&
+CLOTH_HEADER_CHECK(stats_layout, sizeof(cloth_stats) == 80 && offsetof(cloth_stats, kinetic_energy) == 8 &&
                                      offsetof(cloth_stats, last_step_result) == 52 &&
                                      offsetof(cloth_stats, strain_limit_excess) == 56 &&
                                      offsetof(cloth_stats, strain_limit_unmet) == 60 &&
                                      offsetof(cloth_stats, last_max_iterations) == 64 &&
-                                     offsetof(cloth_stats, last_substeps) == 68);
+                                     offsetof(cloth_stats, last_substeps) == 68 &&
+                                     offsetof(cloth_stats, last_strain_passes) == 72 &&
+                                     offsetof(cloth_stats, last_strain_pass_cap_hit) == 76);
 #endif
 
 /* Callbacks of exactly the documented types. */

@@ -100,7 +100,7 @@ static_assert(offsetof(cloth_desc, initial_positions) == 24, "");
 static_assert(offsetof(cloth_desc, solver) == 56, "");
 static_assert(offsetof(cloth_desc, aero) == 84, "");
 static_assert(offsetof(cloth_desc, internal_cookie) == 112, "");
-static_assert(sizeof(cloth_stats) == 72, "");
+static_assert(sizeof(cloth_stats) == 80, "");
 static_assert(offsetof(cloth_stats, kinetic_energy) == 8, "");
 static_assert(offsetof(cloth_stats, last_step_result) == 52, "");
 #endif
@@ -233,7 +233,7 @@ std::uint32_t cloth_header_cxx_uses_every_type() {
     const cloth_desc desc{
         sizeof(cloth_desc), fabric, 0.2f, 0.0f, nullptr, spring, spring, spring, solver, aero, 0};
     const cloth_stats stats{
-        sizeof(cloth_stats), 0.0, 0.0, 0.0, 0.0f, 0.0f, 0.0f, 0, 0.0f, CLOTH_OK, 0.0f, 0, 0, 0};
+        sizeof(cloth_stats), 0.0, 0.0, 0.0, 0.0f, 0.0f, 0.0f, 0, 0.0f, CLOTH_OK, 0.0f, 0, 0, 0, 0, 0};
 
     std::uint32_t sum = version.major + version.minor + version.patch;
     for (cloth_result r : results) sum += static_cast<std::uint32_t>(r);
