@@ -219,9 +219,10 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id id, cloth_stats* out) {
         const uint32_t size = out->struct_size;
         if (size != sizeof(cloth_stats) && size != kStatsSize112 && size != kStatsSize111 &&
             size != kStatsSize16) {
-            return Status::error(CLOTH_ERROR_INVALID_DESC,
-                                 "cloth_stats.struct_size is %u, expected %zu (or 1.12's %zu, 1.11's %zu, 1.6's %zu)",
-                                 size, sizeof(cloth_stats), kStatsSize112, kStatsSize111, kStatsSize16);
+            return Status::error(
+                CLOTH_ERROR_INVALID_DESC,
+                "cloth_stats.struct_size is %u, expected %zu (or 1.12's %zu, 1.11's %zu, 1.6's %zu)", size,
+                sizeof(cloth_stats), kStatsSize112, kStatsSize111, kStatsSize16);
         }
         const ClothMeasure m = measure(cloth, world.gravity);
         cloth_stats stats{};

@@ -11,16 +11,15 @@
 using namespace cloth;
 using namespace cloth::api;
 
-static_assert(static_cast<int>(CLOTH_STAGE_AIR) == static_cast<int>(Stage::kAir) &&
-                  static_cast<int>(CLOTH_STAGE_SELF_COLLISION) == static_cast<int>(Stage::kSelfCollision) &&
-                  static_cast<int>(CLOTH_STAGE_SELF_RESPOND) == static_cast<int>(Stage::kSelfRespond) &&
-                  static_cast<int>(CLOTH_STAGE_LIMIT_COLLISIONS) ==
-                      static_cast<int>(Stage::kLimitCollisions) &&
-                  static_cast<int>(CLOTH_STAGE_SKINNING) == static_cast<int>(Stage::kSkinning) &&
-                  static_cast<int>(CLOTH_STAGE_SKIN_CONSTRAINTS) == static_cast<int>(Stage::kSkinConstraints) &&
-                  static_cast<int>(CLOTH_STAGE_CLOTH_CONTACT_RESPOND) ==
-                      static_cast<int>(Stage::kClothContactRespond),
-              "cloth_stage mirrors cloth::Stage");
+static_assert(
+    static_cast<int>(CLOTH_STAGE_AIR) == static_cast<int>(Stage::kAir) &&
+        static_cast<int>(CLOTH_STAGE_SELF_COLLISION) == static_cast<int>(Stage::kSelfCollision) &&
+        static_cast<int>(CLOTH_STAGE_SELF_RESPOND) == static_cast<int>(Stage::kSelfRespond) &&
+        static_cast<int>(CLOTH_STAGE_LIMIT_COLLISIONS) == static_cast<int>(Stage::kLimitCollisions) &&
+        static_cast<int>(CLOTH_STAGE_SKINNING) == static_cast<int>(Stage::kSkinning) &&
+        static_cast<int>(CLOTH_STAGE_SKIN_CONSTRAINTS) == static_cast<int>(Stage::kSkinConstraints) &&
+        static_cast<int>(CLOTH_STAGE_CLOTH_CONTACT_RESPOND) == static_cast<int>(Stage::kClothContactRespond),
+    "cloth_stage mirrors cloth::Stage");
 // cloth_frame_profile's arrays hold the first CLOTH_MAX_STAGES stages;
 // cloth_world_get_stage_profile reads every one.
 static_assert(kStageCount >= CLOTH_MAX_STAGES, "the profile's arrays are filled");

@@ -112,8 +112,8 @@ uint32_t ClothContact::collide(float h, float from, float to, const float* kinem
                 for (uint32_t k = 0; k < chunk_count; ++k) {
                     reach.thickness = collision_.thickness + 2.0f * chunks[k].travel;
                     if (range_is_clear(moving, reach, chunks[k])) continue;
-                    record(moving, static_cast<uint16_t>(slot_index), h, kinematic, begin + k * kCollisionChunk,
-                           chunk_end(k), x, v);
+                    record(moving, static_cast<uint16_t>(slot_index), h, kinematic,
+                           begin + k * kCollisionChunk, chunk_end(k), x, v);
                 }
             }
         }

@@ -95,8 +95,8 @@ class ClothContact {
     Pose body_pose(uint32_t body_slot, float fraction) const;
     MovingCollider moving_collider(const Collider& collider, float from, float to) const;
     // Records which colliders each free particle of [begin, end) is within reach of.
-    void record(const MovingCollider& collider, uint16_t slot, float h, const float* kinematic, uint32_t begin,
-                uint32_t end, const Vec3Soa& x, const Vec3Soa& v);
+    void record(const MovingCollider& collider, uint16_t slot, float h, const float* kinematic,
+                uint32_t begin, uint32_t end, const Vec3Soa& x, const Vec3Soa& v);
     // The rounds between the strain limiter's passes: each particle of
     // [begin, end) against the colliders of its record.
     uint32_t collide_recorded(float h, float from, float to, const float* kinematic, uint32_t begin,

@@ -226,7 +226,8 @@ void ClothInstance::limit_strain(const GroupTask& task) {
         case LimitRounds::Round::kColliders:
             // Between the passes the colliders the collision stage found
             // within reach; after the last, every one (cloth_contact.h).
-            collide(task, frame_.strain_limiter.done() ? ClothContact::Pass::kEvery : ClothContact::Pass::kRecorded);
+            collide(task, frame_.strain_limiter.done() ? ClothContact::Pass::kEvery
+                                                       : ClothContact::Pass::kRecorded);
             return;
         case LimitRounds::Round::kProject:
         case LimitRounds::Round::kRespond:

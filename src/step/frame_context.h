@@ -77,7 +77,7 @@ struct FrameContext {
     // (frame_plan.cpp) added any: the rung the budget put the cloth on.
     uint32_t capped_substeps = 0;
 
-    float h = 0;  // substep length, s
+    float h = 0;   // substep length, s
     float dt = 0;  // frame length, s
     // The material's stiffness over the lightest free mass, which the
     // default's substep rule reads (solver_default.h).
@@ -90,13 +90,13 @@ struct FrameContext {
     // The strain the pins ask of this substep (Tethers::strain_pins_demand):
     // past the limit, the limit gives way to it in the solve and the passes.
     float strain_pins_demand = 0;
-    bool strained = false;      // a substep of this frame ended past the strain limit's promise
-    bool limit_held = false;    // a substep's strain limiter found a spring past the limit
+    bool strained = false;       // a substep of this frame ended past the strain limit's promise
+    bool limit_held = false;     // a substep's strain limiter found a spring past the limit
     uint32_t strain_passes = 0;  // the strain limiter's passes, over the frame's substeps
     bool strain_capped = false;  // a substep's passes stopped at their cap (StrainLimiter::capped)
-    bool started_slow = false;  // no free particle faster than kDefaultQuietSpeed at its start
-    bool collides = false;      // this frame runs the collision stage
-    bool touching = false;      // this substep's collision stage found a contact
+    bool started_slow = false;   // no free particle faster than kDefaultQuietSpeed at its start
+    bool collides = false;       // this frame runs the collision stage
+    bool touching = false;       // this substep's collision stage found a contact
     bool converged = true;
     bool out_of_memory = false;  // set by the serial solve task
     FrameBackup backup = FrameBackup::kCopied;

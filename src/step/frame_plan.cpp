@@ -224,7 +224,8 @@ void ClothInstance::hold_theta_within_gamma() {
     // default's most substeps, a cap or a partner in contact put them
     // there (resolve_solver).
     if (solver_.kind == CLOTH_SOLVER_DEFAULT &&
-        !within_substep_gamma(frame_.dt, frame_.stiffness_per_mass, frame_.solver.substeps, !multigrid_.empty()))
+        !within_substep_gamma(frame_.dt, frame_.stiffness_per_mass, frame_.solver.substeps,
+                              !multigrid_.empty()))
         frame_.solver.theta = 1.0f;
 }
 

@@ -184,11 +184,11 @@ class World {
     HostVector<uint32_t> unit_parent_;            // per stepping index: union-find over active pairs
     HostVector<uint32_t> units_, unit_begin_;     // group_units()
     HostVector<ClothInstance*> unit_cloths_;
-    HostVector<RoundTask> round_;                 // sized for every group of every cloth
-    HostVector<TaskTime> round_times_;            // one slot per task of the round, written by its worker
-    HostVector<int64_t> cloth_cost_ns_;           // per cloth slot: task time of the last frame
-    HostVector<int64_t> cloth_solve_ns_;          // per cloth slot: the part of it in solve stages
-    HostVector<WorkerTally> worker_tally_;        // per worker (whole cloths as tasks)
+    HostVector<RoundTask> round_;           // sized for every group of every cloth
+    HostVector<TaskTime> round_times_;      // one slot per task of the round, written by its worker
+    HostVector<int64_t> cloth_cost_ns_;     // per cloth slot: task time of the last frame
+    HostVector<int64_t> cloth_solve_ns_;    // per cloth slot: the part of it in solve stages
+    HostVector<WorkerTally> worker_tally_;  // per worker (whole cloths as tasks)
     // Task records of whole cloths as tasks, in the order the workers
     // claimed their slots (whole_record_count_: claims this frame).
     HostVector<TaskRecord> whole_records_;

@@ -32,12 +32,13 @@ Status World::set_cloth_contact(cloth_id a, cloth_id b, const ClothPairSettings*
     }
     if (k == cloth_pairs_.size()) {
         for (uint32_t slot : {slot_a, slot_b}) {
-            const auto pairs = std::count_if(cloth_pairs_.begin(), cloth_pairs_.end(), [slot](const ClothPair& p) {
-                return p.slot_a == slot || p.slot_b == slot;
-            });
+            const auto pairs =
+                std::count_if(cloth_pairs_.begin(), cloth_pairs_.end(),
+                              [slot](const ClothPair& p) { return p.slot_a == slot || p.slot_b == slot; });
             if (pairs >= static_cast<ptrdiff_t>(FrameContext::kMaxPairs)) {
-                return Status::error(CLOTH_ERROR_CAPACITY, "cloth slot %u is in contact with %u cloths already, the most",
-                                     slot + 1, FrameContext::kMaxPairs);
+                return Status::error(CLOTH_ERROR_CAPACITY,
+                                     "cloth slot %u is in contact with %u cloths already, the most", slot + 1,
+                                     FrameContext::kMaxPairs);
             }
         }
     }
@@ -80,11 +81,13 @@ void World::begin_cloth_pairs() {
         const bool a_steps = !a.frame_done(), b_steps = !b.frame_done();
         // Both step to the same frame (update_rate.h: cloths of one rate
         // in contact share a phase), or one steps beside the other asleep.
-        const bool together = a_steps && b_steps && a.update_rate().state_frame() == b.update_rate().state_frame();
-        const bool beside_sleeper = (a_steps && !b_steps && b.sleeping()) || (b_steps && !a_steps && a.sleeping());
+        const bool together =
+            a_steps && b_steps && a.update_rate().state_frame() == b.update_rate().state_frame();
+        const bool beside_sleeper =
+            (a_steps && !b_steps && b.sleeping()) || (b_steps && !a_steps && a.sleeping());
         const ParticleView va = a.particle_view(a_steps), vb = b.particle_view(b_steps);
-        pair.active = (together || beside_sleeper) &&
-                      pair.contact->near(va, vb, a_steps ? a.frame_dt() : b.frame_dt());
+        pair.active =
+            (together || beside_sleeper) && pair.contact->near(va, vb, a_steps ? a.frame_dt() : b.frame_dt());
         if (!pair.active) {
             pair.contact->clear();
             continue;

@@ -108,8 +108,8 @@ void World::run_whole_unit(uint32_t unit, uint32_t worker, bool timed) {
                     if (!whole_records_.empty()) {
                         const uint32_t at = whole_record_count_.fetch_add(1, std::memory_order_relaxed);
                         if (at < whole_records_.size())
-                            whole_records_[at] =
-                                TaskRecord{slot, cloths_[slot].generation, stage, t, worker, substep, start, end};
+                            whole_records_[at] = TaskRecord{
+                                slot, cloths_[slot].generation, stage, t, worker, substep, start, end};
                     }
                 }
                 start = end;
