@@ -126,7 +126,9 @@ struct Pair {
 
 // Two 1 m x 1 m sheets hanging from their pinned top rows, parallel, one
 // contact thickness apart along z; the wind (along +z) blows on the front
-// one (`a`) only, the back one (`b`) in its lee.
+// one (`a`) only, the back one (`b`) in its lee, so that the front one is
+// driven into the back one (with the same wind on both they move together,
+// and no particle crosses at any of the speeds).
 struct HangingPair : Pair {
     HangingPair(float wind_speed, uint32_t workers) : Pair(workers) {
         const float u[3] = {1.0f, 0.0f, 0.0f}, v[3] = {0.0f, -1.0f, 0.0f};
