@@ -25,6 +25,7 @@
 #include "flag_trailing.h"
 #include "render_png.h"
 #include "scene_render.h"
+#include "solver_options.h"
 #include "timing_table.h"
 #include "trace_writer.h"
 #include "video_writer.h"
@@ -65,16 +66,13 @@ constexpr uint32_t kProfileTasks = 8192;    // task records per frame, for the s
 struct Options {
     int frames = 0;  // 0: the whole course
     uint32_t columns = 48, rows = 32;
-    std::string solver = "default";
-    uint32_t iterations = 0;  // 0: the solver kind's own (see solver_plan)
-    uint32_t substeps = 0;    // 0: what the solver kind needs at these settings (see solver_plan)
+    // --solver, --iterations, --substeps (0: see solver_plan), --quality-policy, --policy-max-substeps
+    cloth_samples::SolverOptions solving;
     // The default solver's own limit (8 %), set for every kind.
     float strain_limit = 0.08f;
     float stiffness = 1000.0f;
     float damping = -1.0f;  // < 0: the solver kind's own (see solver_plan)
     double budget_ms = 2.0;
-    bool quality_policy = false;       // hand the budget to the library (cloth_set_quality_policy)
-    uint32_t policy_max_substeps = 0;  // 0: the policy's default
     uint32_t threads = 1;
     std::string trace;
     std::string trace_frames;  // "FIRST:LAST"; empty: the second around the jump
@@ -137,15 +135,6 @@ void record_profile(cloth_world_id world, double world_zero_us, Timings* timings
     }
 }
 
-cloth_solver_kind solver_kind(const std::string& name) {
-    if (name == "jacobi") return CLOTH_SOLVER_JACOBI;
-    if (name == "cg") return CLOTH_SOLVER_CG;
-    if (name == "explicit") return CLOTH_SOLVER_EXPLICIT;
-    if (name == "pcg") return CLOTH_SOLVER_PCG;
-    if (name == "chebyshev") return CLOTH_SOLVER_CHEBYSHEV;
-    return CLOTH_SOLVER_DEFAULT;
-}
-
 // Iterations and substeps per solver kind when not given: what each needs
 // to hold the course at 60 Hz with the sample's stiffness, and why.
 struct SolverPlan {
@@ -196,14 +185,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0, 1000000));
     app.add_option("--columns", o.columns, "flag particles along the flag")->check(CLI::Range(2, 1024));
     app.add_option("--rows", o.rows, "flag particles up the pole")->check(CLI::Range(2, 1024));
-    app.add_option("--solver", o.solver, "jacobi, cg, explicit, pcg, chebyshev or default")
-        ->check(CLI::IsMember({"jacobi", "cg", "explicit", "pcg", "chebyshev", "default"}));
-    app.add_option("--iterations", o.iterations,
-                   "solver iterations per substep (0: the solver kind's own, printed)")
-        ->check(CLI::Range(0, 256));
-    app.add_option("--substeps", o.substeps,
-                   "cloth substeps per frame (0: what the solver kind needs, printed)")
-        ->check(CLI::Range(0, 64));
+    cloth_samples::add_solver_options(app, &o.solving);
     app.add_option("--strain-limit", o.strain_limit, "strain limiting after each substep (0: off)")
         ->check(CLI::Range(0.0f, 10.0f));
     app.add_option("--stiffness", o.stiffness, "structural stiffness, N/m")->check(CLI::PositiveNumber);
@@ -212,12 +194,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0.0f, 100.0f));
     app.add_option("--budget", o.budget_ms, "frame budget for the cloth step, ms (counts overruns)")
         ->check(CLI::PositiveNumber);
-    app.add_flag("--quality-policy", o.quality_policy,
-                 "give the budget to the cloth world with the flag's quality policy on: the library lowers "
-                 "iterations and substeps in frames over it");
-    app.add_option("--policy-max-substeps", o.policy_max_substeps,
-                   "the quality policy's most substeps (0: its default)")
-        ->check(CLI::Range(0, 64));
+    cloth_samples::add_quality_policy_options(app, &o.solving, "the flag's");
     app.add_option("--threads", o.threads, "cloth worker threads (1: the calling thread only)")
         ->check(CLI::Range(1, 256));
     app.add_option("--trace", o.trace, "Chrome trace-event JSON of a window of the run (empty: none)")
@@ -252,11 +229,11 @@ int main(int argc, char** argv) {
     flag_settings.rows = o.rows;
     flag_settings.stiffness = o.stiffness;
     flag_settings.max_strain = o.strain_limit;
-    const cloth_solver_kind kind = solver_kind(o.solver);
+    const cloth_solver_kind kind = cloth_samples::solver_kind(o.solving.solver);
     const SolverPlan plan = solver_plan(kind);
     flag_settings.damping = o.damping >= 0 ? o.damping : plan.damping;
-    const uint32_t iterations = o.iterations > 0 ? o.iterations : plan.iterations;
-    const uint32_t substeps = o.substeps > 0 ? o.substeps : plan.substeps;
+    const uint32_t iterations = o.solving.iterations > 0 ? o.solving.iterations : plan.iterations;
+    const uint32_t substeps = o.solving.substeps > 0 ? o.solving.substeps : plan.substeps;
     flag_settings.solver.kind = kind;
     flag_settings.solver.iterations = iterations;
     flag_settings.solver.substeps = substeps;
@@ -270,10 +247,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s\n", flag.error().c_str());
         return 1;
     }
-    if (o.quality_policy) {
-        cloth_quality_policy policy = cloth_default_quality_policy();
-        policy.enabled = 1;
-        if (o.policy_max_substeps > 0) policy.max_substeps = o.policy_max_substeps;
+    if (o.solving.quality_policy) {
+        const cloth_quality_policy policy = cloth_samples::quality_policy(o.solving);
         if (cloth_world_set_frame_budget(flag.world(), static_cast<float>(o.budget_ms)) != CLOTH_OK ||
             cloth_set_quality_policy(flag.cloth(), &policy) != CLOTH_OK) {
             std::fprintf(stderr, "quality policy: %s\n", cloth_get_last_error());
@@ -286,9 +261,9 @@ int main(int argc, char** argv) {
     std::printf(
         "vehicle_flag: flag %ux%u (%u particles), solver %s, iterations %u, substeps %u%s%s%s, k %.0f N/m, "
         "damping %.2g N s/m, strain limit %.2g\n",
-        o.columns, o.rows, flag.particle_count(), o.solver.c_str(), iterations, substeps,
-        o.substeps > 0 ? "" : " (", o.substeps > 0 ? "" : plan.why, o.substeps > 0 ? "" : ")", o.stiffness,
-        flag_settings.damping, o.strain_limit);
+        o.columns, o.rows, flag.particle_count(), o.solving.solver.c_str(), iterations, substeps,
+        o.solving.substeps > 0 ? "" : " (", o.solving.substeps > 0 ? "" : plan.why,
+        o.solving.substeps > 0 ? "" : ")", o.stiffness, flag_settings.damping, o.strain_limit);
     std::printf(
         "cloth_bullet: chassis mirrored as a cloth body, %zu colliders (chassis box, pole capsule, "
         "terrain height field), %zu particles attached, chassis is the carrier\n",
