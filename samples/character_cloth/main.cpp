@@ -40,7 +40,7 @@ namespace {
 
 constexpr float kDt = 1.0f / 60.0f;
 constexpr uint32_t kProfileTasks = 8192;
-constexpr int kStages = CLOTH_STAGE_SKIN_CONSTRAINTS + 1;
+constexpr int kStages = CLOTH_STAGE_CLOTH_CONTACT_RESPOND + 1;
 
 struct Options {
     int frames = 0;  // 0: the whole clip

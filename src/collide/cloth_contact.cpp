@@ -1,6 +1,7 @@
 #include "collide/cloth_contact.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "base/staged.h"
 
@@ -85,9 +86,9 @@ uint32_t ClothContact::collide(float h, float from, float to, const float* kinem
         return k + 1 == chunk_count ? end : begin + (k + 1) * kCollisionChunk;
     };
     const bool recording = pass == Pass::kRecord && records;
-    if (recording) std::fill(&recorded_count_[begin], &recorded_count_[begin] + (end - begin), uint8_t{0});
     RangeBounds range;
     bool bounded = false;  // bounds taken (at the first collider)
+    if (recording) std::fill(&recorded_count_[begin], &recorded_count_[begin] + (end - begin), uint8_t{0});
     uint32_t contacts = 0;
     const auto& colliders = world_->colliders();
     for (uint32_t slot_index = 0; slot_index < colliders.size(); ++slot_index) {
@@ -104,13 +105,12 @@ uint32_t ClothContact::collide(float h, float from, float to, const float* kinem
             bounded = true;
         }
         if (recording) {
-            // Every chunk the collider may reach in the rest of the substep:
-            // the thickness grown by twice the longest path, as record() does.
+            // Every chunk the collider may reach in the rest of the substep,
+            // with at least the margin record() takes.
             CollisionParams reach = collision_;
             reach.thickness += 2.0f * range.travel;
             if (!range_is_clear(moving, reach, range)) {
                 for (uint32_t k = 0; k < chunk_count; ++k) {
-                    reach.thickness = collision_.thickness + 2.0f * chunks[k].travel;
                     if (range_is_clear(moving, reach, chunks[k])) continue;
                     record(moving, static_cast<uint16_t>(slot_index), h, kinematic,
                            begin + k * kCollisionChunk, chunk_end(k), x, v);
@@ -138,15 +138,19 @@ MovingCollider ClothContact::moving_collider(const Collider& c, float from, floa
 
 void ClothContact::record(const MovingCollider& collider, uint16_t slot, float h, const float* kinematic,
                           uint32_t begin, uint32_t end, const Vec3Soa& x, const Vec3Soa& v) {
-    // Before this collider's own pass moved them: where they end the
-    // substep, in the collider's frame there.
+    // Before this collider's own pass moved them. A particle's path over
+    // the substep, in the collider's moving frame, touches the collider
+    // only if its end is within the thickness plus the path's length of
+    // it; the passes after it may take it about twice its own path further.
     for (uint32_t i = begin; i < end; ++i) {
         if (kinematic[i] != 0.0f) continue;
         uint8_t& count = recorded_count_[i];
         if (count == kEveryCollider) continue;
-        const float reach = collision_.thickness + 2.0f * h * v.get(i).norm();
-        const Vec3 local = collider.end.apply_inverse(x.get(i));
-        if (!(query_shape(*collider.shape, local, reach).distance < reach)) continue;
+        const Vec3 x_end = x.get(i), step = v.get(i) * h;
+        const Vec3 local_end = collider.end.apply_inverse(x_end);
+        const float path = (local_end - collider.start.apply_inverse(Vec3(x_end - step))).norm();
+        const float reach = collision_.thickness + path + 2.0f * step.norm();
+        if (!(query_shape(*collider.shape, local_end, reach).distance < reach)) continue;
         if (count == kRecordedColliders) {
             count = kEveryCollider;
             continue;

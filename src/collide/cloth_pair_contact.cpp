@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "collide/contact_response.h"
 #include "collide/self_collision.h"
@@ -38,6 +39,29 @@ Bounds bounds_of(const ParticleView& cloth, float dt) {
     return b;
 }
 
+// Marks the particles on the fabric's border (on an edge of one triangle)
+// into `border`, from entry `first`.
+void mark_border(const Fabric& fabric, HostVector<uint8_t>& border, uint32_t first) {
+    std::vector<uint64_t> edges;
+    edges.reserve(fabric.triangles.size());
+    for (size_t t = 0; t + 2 < fabric.triangles.size(); t += 3) {
+        for (int e = 0; e < 3; ++e) {
+            const uint64_t p = fabric.triangles[t + e], q = fabric.triangles[t + (e + 1) % 3];
+            edges.push_back(std::min(p, q) << 32 | std::max(p, q));
+        }
+    }
+    std::sort(edges.begin(), edges.end());
+    for (size_t k = 0; k < edges.size();) {
+        size_t next = k + 1;
+        while (next < edges.size() && edges[next] == edges[k]) ++next;
+        if (next - k == 1) {
+            border[first + static_cast<uint32_t>(edges[k] >> 32)] = 1;
+            border[first + static_cast<uint32_t>(edges[k] & 0xFFFFFFFFu)] = 1;
+        }
+        k = next;
+    }
+}
+
 }  // namespace
 
 ClothPairContact::ClothPairContact(const HostMemory* memory, const Fabric& a, const Fabric& b,
@@ -46,6 +70,7 @@ ClothPairContact::ClothPairContact(const HostMemory* memory, const Fabric& a, co
       count_a_(a.particle_count()),
       count_b_(b.particle_count()),
       radius_(settings.thickness + std::max(mean_rest_edge(a), mean_rest_edge(b))),
+      search_(radius_),
       hash_a_(memory),
       hash_b_(memory),
       x_(memory),
@@ -59,7 +84,9 @@ ClothPairContact::ClothPairContact(const HostMemory* memory, const Fabric& a, co
       contact_normal_(memory),
       contact_count_(HostAllocator<uint32_t>(memory)),
       touching_(HostAllocator<uint8_t>(memory)),
-      overlapping_(HostAllocator<uint8_t>(memory)) {
+      overlapping_(HostAllocator<uint8_t>(memory)),
+      border_(HostAllocator<uint8_t>(memory)),
+      task_speed2_(HostAllocator<float>(memory)) {
     const uint32_t n = count();
     hash_a_.reserve(count_a_);
     hash_b_.reserve(count_b_);
@@ -71,6 +98,10 @@ ClothPairContact::ClothPairContact(const HostMemory* memory, const Fabric& a, co
     contact_count_.assign(n, 0u);
     touching_.assign(n, 0);
     overlapping_.assign(n, 0);
+    border_.assign(n, 0);
+    task_speed2_.assign(2 * size_t{group_count_of(n)}, 0.0f);
+    mark_border(a, border_, 0);
+    mark_border(b, border_, count_a_);
 }
 
 bool ClothPairContact::near(const ParticleView& a, const ParticleView& b, float dt) const {
@@ -79,16 +110,24 @@ bool ClothPairContact::near(const ParticleView& a, const ParticleView& b, float 
     return (ba.low.array() - r <= bb.high.array()).all() && (bb.low.array() - r <= ba.high.array()).all();
 }
 
-void ClothPairContact::begin(const ParticleView& a, const ParticleView& b) {
+void ClothPairContact::begin(const ParticleView& a, const ParticleView& b, float h) {
     a_ = a;
     b_ = b;
+    h_ = h;
     round_ = Round::kGather;
 }
 
 void ClothPairContact::run(const GroupTask& task) {
     switch (round_) {
         case Round::kGather:
-            gather(task.begin, task.end);
+            gather(task.group, task.begin, task.end);
+            return;
+        case Round::kKeys:
+            if (task.begin < count_a_)
+                hash_a_.compute_keys(x_, search_, task.begin, std::min(task.end, count_a_));
+            if (task.end > count_a_)
+                hash_b_.compute_keys(x_, search_, std::max(task.begin, count_a_) - count_a_,
+                                     task.end - count_a_, count_a_);
             return;
         case Round::kSort:
             hash_a_.sort_into_buckets(x_);
@@ -110,7 +149,18 @@ void ClothPairContact::run(const GroupTask& task) {
 
 void ClothPairContact::finish_round() {
     switch (round_) {
-        case Round::kGather:
+        case Round::kGather: {
+            // The search grows by how far the two cloths' fastest particles
+            // move towards each other in the substep, up to twice the radius.
+            float fastest[2] = {0.0f, 0.0f};
+            for (size_t t = 0; t < task_speed2_.size(); ++t)
+                fastest[t % 2] = std::max(fastest[t % 2], task_speed2_[t]);
+            const float travel = (std::sqrt(fastest[0]) + std::sqrt(fastest[1])) * h_;
+            search_ = radius_ + std::min(travel, radius_);
+            round_ = Round::kKeys;
+            return;
+        }
+        case Round::kKeys:
             round_ = Round::kSort;
             return;
         case Round::kSort:
@@ -138,7 +188,8 @@ void ClothPairContact::finish_round() {
     }
 }
 
-void ClothPairContact::gather(uint32_t begin, uint32_t end) {
+void ClothPairContact::gather(uint32_t task, uint32_t begin, uint32_t end) {
+    float fastest[2] = {0.0f, 0.0f};  // squared speeds, of a's and of b's particles
     for (uint32_t i = begin; i < end; ++i) {
         const ParticleView& cloth = side_b(i) ? b_ : a_;
         const uint32_t p = side_b(i) ? i - count_a_ : i;
@@ -146,15 +197,16 @@ void ClothPairContact::gather(uint32_t begin, uint32_t end) {
         if (!started_) start_.set(i, x_.get(i));
         v_.set(i, cloth.v->get(p));
         normal_.set(i, vertex_normal(*cloth.fabric, *cloth.x, p));
-        inverse_mass_[i] = !cloth.steps || cloth.pinned[p] != 0.0f ? 0.0f : 1.0f / cloth.mass[p];
+        const bool moves = cloth.steps && cloth.pinned[p] == 0.0f;
+        inverse_mass_[i] = moves ? 1.0f / cloth.mass[p] : 0.0f;
+        if (moves) fastest[side_b(i)] = std::max(fastest[side_b(i)], v_.get(i).squaredNorm());
     }
-    if (begin < count_a_) hash_a_.compute_keys(x_, radius_, begin, std::min(end, count_a_));
-    if (end > count_a_)
-        hash_b_.compute_keys(x_, radius_, std::max(begin, count_a_) - count_a_, end - count_a_, count_a_);
+    task_speed2_[2 * size_t{task}] = fastest[0];
+    task_speed2_[2 * size_t{task} + 1] = fastest[1];
 }
 
 void ClothPairContact::find_contacts(uint32_t begin, uint32_t end) {
-    const float radius2 = radius_ * radius_, theta = settings_.thickness;
+    const float radius2 = search_ * search_, theta = settings_.thickness;
     const float tangential2 = (radius_ - theta) * (radius_ - theta);
     for (uint32_t i = begin; i < end; ++i) {
         const size_t first = size_t{i} * kMaxContacts;
@@ -168,7 +220,7 @@ void ClothPairContact::find_contacts(uint32_t begin, uint32_t end) {
         const SpatialHash& other_hash = b ? hash_a_ : hash_b_;
         const uint32_t first_other = b ? 0 : count_a_;
         int32_t bx, by, bz;
-        SpatialHash::query_block(xi, radius_, bx, by, bz);
+        SpatialHash::query_block(xi, search_, bx, by, bz);
         other_hash.for_each_in_block(
             bx, by, bz, kNoParticle, [&](uint32_t local, float xj, float yj, float zj) {
                 const uint32_t j = first_other + local;
@@ -180,11 +232,14 @@ void ClothPairContact::find_contacts(uint32_t begin, uint32_t end) {
                 const float side = (start_i - start_.get(j)).dot(nj);
                 const Vec3 n = (side > 0.0f || (side == 0.0f && !b)) ? nj : Vec3(-nj);
                 const float along = d.dot(n);
-                // Over j's part of the surface, and at most a thickness behind
-                // it: a particle meets the other cloth within a substep, so
-                // one deeper is past another part of it (a hem it hangs
-                // below), and pushing it through that part tears the cloth.
-                if (!((d - n * along).squaredNorm() < tangential2) || !(along > -theta)) return;
+                // Over j's part of the surface, and not so far behind it that
+                // it is another part of the cloth (the search reaches further
+                // only to find the fast ones in front of it); behind a
+                // particle on the other cloth's border (a hem) at most a
+                // thickness: deeper, it went round the border, and pushing
+                // it back through the hem's plane tears its own cloth.
+                const float behind = border_[j] ? theta : radius_;
+                if (!((d - n * along).squaredNorm() < tangential2) || !(along > -behind)) return;
                 touching = touching || along < theta;
                 uint32_t slot = count;
                 if (count < kMaxContacts) {

@@ -20,8 +20,9 @@
 // staged algorithm over both cloths' particles:
 //   1. gather(range)          copy both cloths' positions, velocities,
 //                             vertex normals and inverse masses into the
-//                             combined arrays (a's first); key each
-//                             particle in its own cloth's hash
+//                             combined arrays (a's first), then key each
+//                             particle in its own cloth's hash within a
+//                             search radius grown by the fastest speeds
 //   2. sort                   serial counting sort of both hashes
 //   3. find_contacts(range)   per particle: the nearest particles of the
 //                             other cloth and their planes
@@ -86,8 +87,9 @@ class ClothPairContact final : public StagedAlgorithm {
     bool near(const ParticleView& a, const ParticleView& b, float dt) const;
 
     // The rounds of a substep (the file comment's 1-5).
-    enum class Round : uint8_t { kGather, kSort, kContacts, kProject, kScatter, kDone };
-    void begin(const ParticleView& a, const ParticleView& b);
+    enum class Round : uint8_t { kGather, kKeys, kSort, kContacts, kProject, kScatter, kDone };
+    // `h`: the substep's length, by which the search grows with the speeds.
+    void begin(const ParticleView& a, const ParticleView& b, float h);
     Round round() const { return round_; }
     uint32_t task_count() const { return round_ == Round::kSort ? 1 : group_count_of(count()); }
     bool done() const override { return round_ == Round::kDone; }
@@ -111,21 +113,24 @@ class ClothPairContact final : public StagedAlgorithm {
 
   private:
     bool side_b(uint32_t i) const { return i >= count_a_; }
-    void gather(uint32_t begin, uint32_t end);
+    void gather(uint32_t task, uint32_t begin, uint32_t end);
     void find_contacts(uint32_t begin, uint32_t end);
     void project(uint32_t begin, uint32_t end);
     void scatter(uint32_t begin, uint32_t end);
 
     ClothPairSettings settings_;
     uint32_t count_a_, count_b_;
-    float radius_;  // contacts are gathered within it: the thickness plus the larger mean rest edge
+    float radius_;  // the thickness plus the larger mean rest edge
+    float search_;  // this substep's: contacts are gathered within it (the radius grown by the speeds)
+    float h_ = 0;
     uint32_t passes_ = 0;
     bool found_ = false;
     bool started_ = false;  // start_ holds where the contact last left the particles
     Round round_ = Round::kDone;
     ParticleView a_, b_;
     SpatialHash hash_a_, hash_b_;  // each cloth's particles (b's from entry count_a_ of the arrays)
-    Vec3Soa x_, v_, normal_, next_x_, start_;
+    Vec3Soa x_, v_, normal_, next_x_;
+    Vec3Soa start_;  // where the contact last left each particle
     HostVector<float> inverse_mass_;
     HostVector<uint32_t> contact_other_;  // kMaxContacts per particle
     HostVector<float> contact_distance2_;
@@ -133,6 +138,8 @@ class ClothPairContact final : public StagedAlgorithm {
     HostVector<uint32_t> contact_count_;
     HostVector<uint8_t> touching_;
     HostVector<uint8_t> overlapping_;
+    HostVector<uint8_t> border_;     // per particle: on its fabric's border
+    HostVector<float> task_speed2_;  // per gather task: the fastest squared speed of a's and of b's
 };
 
 }  // namespace cloth

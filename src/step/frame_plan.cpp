@@ -315,7 +315,7 @@ PairRounds::Side& ClothInstance::planned_pair() const {
 
 void ClothInstance::prepare_stage() {
     if (frame_.entry == frame_.pins_move_at && frame_.round == 0) move_pins();
-    if (pair_stage() && frame_.round == 0) planned_pair().arrive();
+    if (pair_stage() && frame_.round == 0) planned_pair().arrive(frame_.h);
     if (planned().stage == Stage::kStrainLimit && frame_.round == 0)
         frame_.strain_limiter.hold_at_least(frame_.strain_pins_demand);
 }

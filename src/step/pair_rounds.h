@@ -33,10 +33,11 @@ class PairRounds {
         void bind(PairRounds* pair, uint32_t side) { pair_ = pair, side_ = side; }
         PairRounds& pair() const { return *pair_; }
         uint32_t side() const { return side_; }
-        // The cloth reached the pair's stage (serial, before the round).
-        void arrive() {
+        // The cloth, whose substeps are `h` long, reached the pair's stage
+        // (serial, before the round).
+        void arrive(float h) {
             done_ = false;
-            pair_->arrive(side_);
+            pair_->arrive(side_, h);
         }
         uint32_t task_count() const { return pair_->task_count(side_); }
         bool done() const override { return done_; }
@@ -71,11 +72,11 @@ class PairRounds {
     }
 
   private:
-    void arrive(uint32_t side) {
+    void arrive(uint32_t side, float h) {
         assert(!running_);  // the other side left the pair's last stage
         arrived_[side] = true;
         if (arrived_[0] && arrived_[1]) {
-            contact_->begin(a_, b_);
+            contact_->begin(a_, b_, h);  // the two cloths' substeps are alike
             running_ = true;
         }
     }

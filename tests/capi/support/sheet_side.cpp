@@ -163,6 +163,16 @@ std::vector<float> sides_of_sheet(const std::vector<float>& signed_distances) {
     return sides;
 }
 
+void follow_sides_round_the_border(const std::vector<float>& signed_distances, std::vector<float>& sides) {
+    for (size_t i = 0; i < sides.size(); ++i) {
+        if (signed_distances[i] == 0.0f) {
+            sides[i] = 0.0f;
+        } else if (sides[i] == 0.0f) {
+            sides[i] = signed_distances[i] > 0.0f ? 1.0f : -1.0f;
+        }
+    }
+}
+
 Through count_through(const std::vector<float>& signed_distances, const std::vector<float>& start_side,
                       float depth) {
     Through through;

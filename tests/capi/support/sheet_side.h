@@ -34,8 +34,14 @@ std::vector<float> signed_distances_to_sheet(const std::vector<float>& points,
 // >= 0, else -1 (taken at the start, before the sheets move).
 std::vector<float> sides_of_sheet(const std::vector<float>& signed_distances);
 
+// A point changes sides legitimately only round the sheet's border: where
+// it is beside the sheet (signed distance 0) its side is forgotten (0), and
+// the next side it is seen on becomes its side. Tunnelling through the
+// inside of the sheet never passes beside it, so it is not forgiven.
+void follow_sides_round_the_border(const std::vector<float>& signed_distances, std::vector<float>& sides);
+
 // Points through the sheet: on the other side of it than `start_side`
-// says they started on, by more than `depth`.
+// says they started on (0: no side, never through), by more than `depth`.
 struct Through {
     uint32_t count = 0;  // points more than `depth` through
     float deepest = 0;   // m, the farthest a point is on the other side (0: none is)
