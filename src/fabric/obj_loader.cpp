@@ -7,6 +7,8 @@
 // libcloth.a links next to a host's own tinyobjloader without duplicate
 // symbols; in libcloth.so it is hidden like every other internal symbol.
 #define TINYOBJLOADER_IMPLEMENTATION
+// The macro is the namespace's own name, which is lower case.
+// NOLINTNEXTLINE(readability-identifier-naming)
 #define tinyobj cloth_tinyobj
 #include <tiny_obj_loader.h>
 
