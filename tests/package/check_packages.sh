@@ -11,17 +11,22 @@
 #  - a fresh Mono console project made of nothing but the unpacked Runtime/
 #    (compiled as its .asmdef says) and the plugin next to the program
 #    compiles without -unsafe and runs UnityPackageConsumer.cs, which checks
-#    the numbers.
-# Usage: check_packages.sh BUILD_DIR SOURCE_DIR
+#    the numbers;
+#  - with a Windows build tree (scripts/windows; ctest cloth_windows.unity_package),
+#    the package also holds that tree's cloth.dll, byte for byte, whose
+#    import settings enable it for the Windows x86_64 player and editor and
+#    for nothing else, as libcloth.so's do for Linux; without one, no cloth.dll.
+# Usage: check_packages.sh BUILD_DIR SOURCE_DIR [WINDOWS_BUILD_DIR]
 set -euo pipefail
 build="$1"
 root="$2"
+windows="${3:-}"
 here="$root/tests/package"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 fail() { echo "check_packages: $*" >&2; exit 1; }
 
-"$root/scripts/package" --no-build "$build" "$work/dist" >/dev/null
+"$root/scripts/package" --no-build "$build" "$work/dist" $windows >/dev/null
 header="$root/include/cloth/cloth.h"
 part() { sed -n "s/^#define CLOTH_VERSION_$1 \([0-9]*\)$/\1/p" "$header"; }
 version="$(part MAJOR).$(part MINOR).$(part PATCH)"
@@ -39,9 +44,9 @@ echo "ok - $linux.tar.gz: header, libraries, CMake package, cloth.pc, README, CH
 mkdir -p "$work/unpacked"
 tar -C "$work/unpacked" -xzf "$work/dist/com.cloth.clothsharp-$version.tgz"
 package="$work/unpacked/package"
-python3 - "$package" "$version" <<'PY'
-import json, os, sys
-package, version = sys.argv[1], sys.argv[2]
+python3 - "$package" "$version" "$windows" <<'PY'
+import filecmp, json, os, sys
+package, version, windows = sys.argv[1], sys.argv[2], sys.argv[3]
 manifest = json.load(open(os.path.join(package, "package.json")))
 assert manifest["name"] == "com.cloth.clothsharp", manifest["name"]
 assert manifest["version"] == version, (manifest["version"], version)
@@ -58,8 +63,23 @@ for folder, dirs, files in os.walk(package):
         guid = [l.split(": ")[1] for l in lines if l.startswith("guid: ")][0]
         assert len(guid) == 32 and guid not in guids, (path, guid)
         guids[guid] = path
-plugin_meta = open(os.path.join(package, "Runtime/Plugins/x86_64/libcloth.so.meta")).read()
-assert "Standalone: Linux64\n    second:\n      enabled: 1" in plugin_meta, "the plugin is not enabled for Linux x86_64"
+def enabled(meta, platform):
+    return "Standalone: %s\n    second:\n      enabled: 1" % platform in meta
+plugins = os.path.join(package, "Runtime/Plugins/x86_64")
+plugin_meta = open(os.path.join(plugins, "libcloth.so.meta")).read()
+assert enabled(plugin_meta, "Linux64"), "libcloth.so is not enabled for Linux x86_64"
+assert "OS: Linux" in plugin_meta and not enabled(plugin_meta, "Win64"), "libcloth.so is enabled off Linux"
+dll = os.path.join(plugins, "cloth.dll")
+if windows:
+    assert filecmp.cmp(dll, os.path.join(windows, "src/cloth.dll"), shallow=False), "cloth.dll is not the Windows build's"
+    dll_meta = open(dll + ".meta").read()
+    assert enabled(dll_meta, "Win64"), "cloth.dll is not enabled for Windows x86_64"
+    assert "OS: Windows" in dll_meta, "cloth.dll is not enabled for the editor on Windows"
+    assert not enabled(dll_meta, "Linux64") and not enabled(dll_meta, "Win"), "cloth.dll is enabled off Windows x86_64"
+    assert "Windows x86_64" in manifest["description"], manifest["description"]
+    print("ok - cloth.dll is the Windows build's, enabled for the Windows x86_64 player and editor only")
+else:
+    assert not os.path.exists(dll), "a cloth.dll in a package made without a Windows build"
 for needed in ["Runtime/ClothNative.g.cs", "Runtime/ClothSharp.cs", "Runtime/ClothSharp.asmdef"]:
     assert os.path.isfile(os.path.join(package, needed)), needed
 asmdef = json.load(open(os.path.join(package, "Runtime/ClothSharp.asmdef")))
