@@ -11,6 +11,10 @@ CLOTH_PACKAGES=(cmake ninja-build g++ pkg-config libeigen3-dev libbullet-dev lib
 # header's _WIN32 branch, and Python with Mono's C# compiler and runtime for
 # the C# binding (bindings/csharp). `cloth_install_packages "${CLOTH_CHECK_PACKAGES[@]}"`.
 CLOTH_CHECK_PACKAGES=(clang clang-format clang-tidy gcc-mingw-w64-x86-64-win32 python3 mono-mcs mono-runtime)
+# What scripts/windows adds: MinGW-w64's C++ compiler (posix threads, for
+# std::thread) and binutils (dlltool), gendef (mingw-w64-tools), wine64, and
+# GoogleTest's sources to compile for Windows.
+CLOTH_WINDOWS_PACKAGES=(g++-mingw-w64-x86-64-posix binutils-mingw-w64-x86-64 mingw-w64-tools wine64 googletest python3)
 
 cloth_install_packages() {
     local missing=()

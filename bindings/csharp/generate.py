@@ -626,6 +626,21 @@ class Emitter:
                 w("            %s = %s;" % (f, f.lower()))
             w("        }")
             w('        public override string ToString() { return "(" + %s + ")"; }' % ' + ", " + '.join(fields))
+            # The same layout as System.Numerics' and Unity's vector and quaternion: conversions both ways,
+            # so every Float3/Float4 parameter also takes them.
+            for ns, vec in (("System.Numerics", "Vector3" if n == 3 else "Quaternion"),
+                            ("UnityEngine", "Vector3" if n == 3 else "Quaternion")):
+                full = ns + "." + vec
+                lower = ns == "UnityEngine"
+                if lower:
+                    w("#if UNITY_5_3_OR_NEWER")
+                members = [f.lower() if lower else f for f in fields]
+                w("        public static implicit operator Float%d(%s v) { return new Float%d(%s); }"
+                  % (n, full, n, ", ".join("v." + m for m in members)))
+                w("        public static implicit operator %s(Float%d v) { return new %s(%s); }"
+                  % (full, n, full, ", ".join("v." + f for f in fields)))
+                if lower:
+                    w("#endif")
             w("    }")
             w("")
 
@@ -669,31 +684,72 @@ class Emitter:
         self.w("    public delegate %s %s(%s);" % (rtype, cs, ", ".join(args)))
         self.w("")
 
-    def emit_struct(self, s):
-        name, fields, docs, line = s
-        w = self.w
+    def default_function(self, name):
+        defaults = [f for f in self.h.functions if f[1].base == name and not f[1].pointers and not f[2]
+                    and f[0].startswith("cloth_default_")]
+        if len(defaults) > 1:
+            fail(defaults[1][4], "two cloth_default_*() functions return %s" % name)
+        return defaults[0][0] if defaults else None
+
+    def struct_rows(self, name):
+        """(decl, C# type, fixed size or None, C# member name, C# field name, is_flag) per field.
+
+        A struct with a cloth_default_*() function keeps its fields private behind properties
+        that fill every default first (so `new ClothGridDesc { Columns = 8 }` is a valid
+        description); a uint8_t field (a flag, 0 or 1) is a private byte behind a bool property.
+        Every other field is public, as the header has it."""
         cs = self.struct_names[name]
+        lazy = self.default_function(name) is not None
         rows = []
-        unsafe = False
-        for f in fields:
+        for f in self.struct_fields[name]:
             t, fixed = self.field_type(f)
             fname = pascal(f.name)
             if fname == cs:
                 fail(f.line, "field %s would share its struct's C# name" % f.name)
-            rows.append((f, t, fixed, fname))
-            unsafe = unsafe or fixed is not None
+            flag = f.ctype.base == "uint8_t" and not f.ctype.pointers and f.array is None
+            private = (lazy or flag) and fixed is None
+            field = param_name(fname[:1].lower() + fname[1:]) if private else fname
+            rows.append((f, t, fixed, fname, field, flag))
+        return rows
+
+    def emit_struct(self, s):
+        name, fields, docs, line = s
+        w = self.w
+        cs = self.struct_names[name]
+        rows = self.struct_rows(name)
+        unsafe = any(r[2] is not None for r in rows)
+        lazy = self.default_function(name) is not None
         self.out += doc_lines(docs + ["C: %s." % name], "    ")
         w("    [StructLayout(LayoutKind.Sequential)]")
         w("    public %sstruct %s%s" % ("unsafe " if unsafe else "", cs, self.equatable(name)))
         w("    {")
-        for f, t, fixed, fname in rows:
-            self.out += doc_lines(f.docs + ["C: %s%s." % (f.name, "[%s]" % f.array if f.array else "")], "        ")
+        for f, t, fixed, fname, field, flag in rows:
+            fdocs = f.docs + ["C: %s%s." % (f.name, "[%s]" % f.array if f.array else "")]
             if fixed is not None:
+                self.out += doc_lines(fdocs, "        ")
                 size = ("Native." + fixed) if fixed in self.constants else fixed
                 w("        public fixed %s %s[%s];" % (t, fname, size))
+            elif field != fname:
+                w("        %s %s;" % (t, field))
+                self.out += doc_lines(fdocs, "        ")
+                ptype = "bool" if flag else t
+                stored = ("(structSize != 0 ? %s : Default().%s)" % (field, field)) if lazy else field
+                get = ("%s != 0" % stored) if flag else stored
+                value = "value ? (byte)1 : (byte)0" if flag else "value"
+                fill = "EnsureDefaults(); " if lazy else ""
+                w("        public %s %s { get { return %s; } set { %s%s = %s; } }" % (ptype, fname, get, fill, field, value))
             else:
+                self.out += doc_lines(fdocs, "        ")
                 w("        public %s %s;" % (t, fname))
-        for f, t, fixed, fname in rows:
+        if lazy:
+            w("")
+            w("        /// <summary>Whether the struct holds a description (from Default(), or a property set on it);")
+            w("        /// false for an all-zero struct, which the library refuses (ErrorInvalidDesc).</summary>")
+            w("        public bool IsInitialized { get { return structSize != 0; } }")
+            w("        /// <summary>Fills every default (and the cookie) into an all-zero struct; does nothing otherwise.")
+            w("        /// Setting a property calls it first; the ClothSharp owners call it on what they are given.</summary>")
+            w("        public void EnsureDefaults() { if (structSize == 0) this = Default(); }")
+        for f, t, fixed, fname, field, flag in rows:
             if fixed is None:
                 continue
             size = ("Native." + fixed) if fixed in self.constants else fixed
@@ -717,15 +773,16 @@ class Emitter:
 
     def emit_defaults(self, name, cs):
         w = self.w
-        defaults = [f for f in self.h.functions if f[1].base == name and not f[1].pointers and not f[2]
-                    and f[0].startswith("cloth_default_")]
-        if len(defaults) > 1:
-            fail(defaults[1][4], "two cloth_default_*() functions return %s" % name)
-        if defaults:
+        default = self.default_function(name)
+        if default:
             w("")
-            w("        /// <summary>Every default set, from %s() (descriptions must start here: it sets" % defaults[0][0])
-            w("        /// the cookie a zero-filled one lacks).</summary>")
-            w("        public static %s Default() { return Native.%s(); }" % (cs, defaults[0][0]))
+            w("        /// <summary>Every default set, from %s() (with the cookie; `new %s { ... }`" % (default, cs))
+            w("        /// gets the same defaults for the properties it does not set).</summary>")
+            w("        public static %s Default()" % cs)
+            w("        {")
+            w("            try { return Native.%s(); }" % default)
+            w("            catch (DllNotFoundException e) { throw Native.LibraryNotFound(e); }")
+            w("        }")
         elif self.versioned(name):
             w("")
             w("        /// <summary>A zero-filled struct with StructSize set, as the library expects before it fills one.</summary>")
@@ -792,6 +849,34 @@ class Emitter:
         w("#else")
         w('        public const string Library = "cloth";')
         w("#endif")
+        w("")
+        w("        /// <summary>")
+        w("        /// A DllNotFoundException that says which file is needed and where it was looked for, in")
+        w("        /// place of the runtime's bare one (thrown by Default() and the ClothSharp owners).")
+        w("        /// </summary>")
+        w("        public static DllNotFoundException LibraryNotFound(DllNotFoundException inner)")
+        w("        {")
+        w("            string file;")
+        w("            string path = null;")
+        w("            switch (Environment.OSVersion.Platform)")
+        w("            {")
+        w('                case PlatformID.Win32NT: file = "cloth.dll"; path = "PATH"; break;')
+        w('                case PlatformID.MacOSX: file = "libcloth.dylib"; path = "DYLD_LIBRARY_PATH"; break;')
+        w("                default:")
+        w('                    file = System.IO.Directory.Exists("/System/Library") ? "libcloth.dylib" : "libcloth.so";')
+        w('                    path = file == "libcloth.so" ? "LD_LIBRARY_PATH" : "DYLD_LIBRARY_PATH";')
+        w("                    break;")
+        w("            }")
+        w("            string variable = Environment.GetEnvironmentVariable(path);")
+        w('            string message = "The cloth native library (" + file + ", the C API of cloth.h " +')
+        w('                             CLOTH_VERSION_MAJOR + "." + CLOTH_VERSION_MINOR + " or newer) could not be loaded. " +')
+        w('                             "DllImport(\\"" + Library + "\\") looks for " + file + " next to the program (" +')
+        w("                             AppDomain.CurrentDomain.BaseDirectory + \"), in \" + path + \" (\" +")
+        w('                             (string.IsNullOrEmpty(variable) ? "not set" : variable) + ") and in the system\'s library " +')
+        w('                             "directories; under Unity, in the package\'s Runtime/Plugins/<platform>/ with that " +')
+        w('                             "platform enabled in the plugin\'s import settings. The runtime said: " + inner.Message;')
+        w("            return new DllNotFoundException(message, inner);")
+        w("        }")
         w("")
         for name, ctype, literal, docs, line in h.constants:
             self.out += doc_lines(docs, "        ")
@@ -950,6 +1035,36 @@ class Emitter:
         w("            }")
         w("            return mismatches.ToArray();")
         w("        }")
+        w("")
+        w("        /// <summary>")
+        w("        /// One line per struct (\"cloth_x size N\") and per field (\"cloth_x.field offset N\"), with the")
+        w("        /// C names, as C# lays them out: the test command compares them with the same lines")
+        w("        /// printed by a C program compiled against cloth.h (generate.py --c-layouts).")
+        w("        /// </summary>")
+        w("        public static string[] FieldLayouts()")
+        w("        {")
+        w("            return new string[]")
+        w("            {")
+        for s in self.struct_names:
+            cs = self.struct_names[s]
+            w('                "%s size " + Marshal.SizeOf(typeof(%s)),' % (s, cs))
+            for f, t, fixed, fname, field, flag in self.struct_rows(s):
+                w('                "%s.%s offset " + (long)Marshal.OffsetOf(typeof(%s), "%s"),' % (s, f.name, cs, field.lstrip("@")))
+        w("            };")
+        w("        }")
+
+
+def c_layouts(header):
+    """A C program printing the lines of Native.FieldLayouts() from the C compiler's layout."""
+    lines = ["/* Written by bindings/csharp/generate.py --c-layouts: the C side of the layout check. */",
+             "#include <stddef.h>", "#include <stdio.h>", "#include <cloth/cloth.h>", "", "int main(void) {"]
+    for name, fields, docs, line in header.structs:
+        lines.append('    printf("%s size %%lu\\n", (unsigned long)sizeof(%s));' % (name, name))
+        for f in fields:
+            lines.append('    printf("%s.%s offset %%lu\\n", (unsigned long)offsetof(%s, %s));'
+                         % (name, f.name, name, f.name))
+    lines += ["    return 0;", "}", ""]
+    return "\n".join(lines)
 
 
 def generate(header_path):
@@ -965,12 +1080,16 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--header", default=DEFAULT_HEADER, help="cloth.h to bind (default: the repository's)")
     ap.add_argument("--out", required=True, help="the C# file to write")
+    ap.add_argument("--c-layouts", help="also write a C program printing every struct's size and field offsets")
     args = ap.parse_args()
     try:
         header, code = generate(args.header)
     except BindError as e:
         print("generate.py: %s" % e, file=sys.stderr)
         return 1
+    if args.c_layouts:
+        with open(args.c_layouts, "w", encoding="utf-8", newline="\n") as f:
+            f.write(c_layouts(header))
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     with open(args.out, "w", encoding="utf-8", newline="\n") as f:
         f.write(code)

@@ -1,6 +1,9 @@
 #include "base/host_allocator.h"
 
 #include <cstdlib>
+#if defined(_WIN32)
+#include <malloc.h>
+#endif
 
 namespace cloth {
 
@@ -10,8 +13,14 @@ void* HostMemory::allocate(size_t size, size_t alignment) const {
     if (alloc) {
         p = alloc(size, alignment, user);
     } else {
+#if defined(_WIN32)
+        // The Windows C runtimes have no aligned_alloc (its blocks cannot be
+        // released with free); _aligned_malloc's are released with _aligned_free.
+        p = _aligned_malloc(size, alignment);
+#else
         // aligned_alloc needs a size that is a multiple of the alignment.
         p = std::aligned_alloc(alignment, (size + alignment - 1) / alignment * alignment);
+#endif
     }
     if (!p) throw std::bad_alloc();
     return p;
@@ -22,7 +31,11 @@ void HostMemory::deallocate(void* ptr, size_t size) const {
     if (free) {
         free(ptr, size, user);
     } else {
+#if defined(_WIN32)
+        _aligned_free(ptr);
+#else
         std::free(ptr);
+#endif
     }
 }
 

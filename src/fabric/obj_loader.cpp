@@ -1,5 +1,15 @@
 // OBJ files through tinyobjloader (Debian libtinyobjloader-dev); faces are
 // triangulated by the loader, then built like any triangle mesh.
+//
+// The loader is compiled into the library from its header (this is the one
+// translation unit that defines TINYOBJLOADER_IMPLEMENTATION), so libcloth
+// needs no tinyobjloader at run time. Its namespace is renamed so that
+// libcloth.a links next to a host's own tinyobjloader without duplicate
+// symbols; in libcloth.so it is hidden like every other internal symbol.
+#define TINYOBJLOADER_IMPLEMENTATION
+// The macro is the namespace's own name, which is lower case.
+// NOLINTNEXTLINE(readability-identifier-naming)
+#define tinyobj cloth_tinyobj
 #include <tiny_obj_loader.h>
 
 #include <string>

@@ -30,11 +30,23 @@ void FrameProfile::begin(uint64_t frame_index, int64_t start, double budget) {
 
 namespace {
 
+// The format rules std::vsnprintf follows here. GCC's gnu_printf is C99's
+// (%zu and friends), which MinGW-w64 builds get from __USE_MINGW_ANSI_STDIO
+// (src/CMakeLists.txt); its printf archetype would check them by the
+// Windows C runtime's older rules there. Clang knows only printf, which is
+// C99's on every platform it builds this library for.
+#if defined(__GNUC__) && !defined(__clang__)
+#define CLOTH_FORMAT_PRINTF(format_index, first_arg) \
+    __attribute__((format(gnu_printf, format_index, first_arg)))
+#else
+#define CLOTH_FORMAT_PRINTF(format_index, first_arg) __attribute__((format(printf, format_index, first_arg)))
+#endif
+
 // Appends formatted text while it fits; always counts what it would need.
 class JsonOut {
   public:
     JsonOut(char* buffer, size_t capacity) : buffer_(buffer), capacity_(capacity) {}
-    void printf(const char* format, ...) __attribute__((format(printf, 2, 3))) {
+    void printf(const char* format, ...) CLOTH_FORMAT_PRINTF(2, 3) {
         char piece[512];
         va_list args;
         va_start(args, format);

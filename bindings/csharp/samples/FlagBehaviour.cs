@@ -25,7 +25,7 @@ sealed class FlagBehaviour : IDisposable
     World world;
     Cloth flag;
     Body chassis;
-    readonly uint[] poleColumn = new uint[Rows];
+    readonly int[] poleColumn = new int[Rows];
     readonly float[] poleOffsets = new float[3 * Rows];
 
     // The mesh's buffers (Mesh.vertices / Mesh.normals in Unity), rewritten every rendered frame.
@@ -69,7 +69,7 @@ sealed class FlagBehaviour : IDisposable
         }  // the cloth keeps the fabric alive
         for (int r = 0; r < Rows; ++r)
         {
-            poleColumn[r] = (uint)(r * Columns);
+            poleColumn[r] = r * Columns;
             poleOffsets[3 * r + 1] = PoleTop - Height * r / (Rows - 1);
             poleOffsets[3 * r + 2] = -0.05f;
         }
@@ -85,10 +85,10 @@ sealed class FlagBehaviour : IDisposable
         chassis.SetPose(chassisPosition, chassisRotation);
         chassis.SetVelocity(velocity, new Float3(0, 0, 0));
         var clock = Stopwatch.StartNew();
-        ClothResult r = world.Step(fixedDeltaTime);
+        ClothStepOutcome r = world.Step(fixedDeltaTime);
         StepMilliseconds += clock.Elapsed.TotalMilliseconds;
         ++Steps;
-        if (r != ClothResult.Ok) Console.WriteLine("step: " + ClothLibrary.ResultName(r));
+        if (r != ClothStepOutcome.Ok) Console.WriteLine("step: " + r);
         MaxStrain = Math.Max(MaxStrain, flag.GetStats().MaxStrain);
     }
 

@@ -5,6 +5,7 @@
 // line per check and exits non-zero on the first failure.
 using System;
 using System.Collections.Generic;
+using System.Numerics;
 using System.Runtime.InteropServices;
 using System.Threading;
 using ClothSharp;
@@ -32,6 +33,10 @@ static class ClothTests
             Attachment();
             Skin();
             ClothContact();
+            Descriptions();
+            NumericsTypes();
+            CharacterCloth();
+            Disposal();
             LevelOfDetail();
             ProfileAndZones();
             Allocator();
@@ -85,7 +90,7 @@ static class ClothTests
                 Check(fabric.ParticleCount == 256 && fabric.TriangleCount == 2 * 15 * 15, "grid fabric: 256 particles, 450 triangles");
                 Cloth cloth = world.CreateCloth(fabric);
                 Check(cloth.ParticleCount == 256, "cloth of the fabric: 256 particles");
-                cloth.Pin(new uint[] { 0, 15 });
+                cloth.Pin(new int[] { 0, 15 });
                 Check(cloth.IsPinned(0) && cloth.IsPinned(15) && !cloth.IsPinned(7), "bool outputs: 0 and 15 pinned, 7 not");
                 Check(Native.cloth_is_valid(cloth.Id) == 1 && Native.cloth_is_valid(ClothId.Null) == 0, "bool returns: one byte, 1 and 0");
                 Check(cloth.Id == cloth.Id && cloth.Id != ClothId.Null && ClothId.Null.IsNull && !cloth.Id.IsNull,
@@ -94,9 +99,9 @@ static class ClothTests
                 var xyz = new float[3 * cloth.ParticleCount];
                 cloth.ReadPositions(xyz);
                 float startY = xyz[3 * 255 + 1];
-                ClothResult last = ClothResult.Ok;
+                ClothStepOutcome last = ClothStepOutcome.Ok;
                 for (int frame = 0; frame < 120; ++frame) last = world.Step(1.0f / 60.0f);
-                Check(last == ClothResult.Ok, "120 steps of 1/60 s return Ok");
+                Check(last == ClothStepOutcome.Ok, "120 steps of 1/60 s return Ok");
                 var span = new Span<float>(xyz);
                 cloth.ReadPositions(span);
                 bool finite = true;
@@ -142,7 +147,7 @@ static class ClothTests
         {
             Fabric fabric = world.CreateGridFabric(ClothGridDesc.Default());
             Cloth cloth = world.CreateCloth(fabric);
-            cloth.Pin(new uint[] { 0, 31 });
+            cloth.Pin(new int[] { 0, 31 });
             cloth.SetWind(new Float3(2.0f, 0.0f, 1.0f));
             for (int i = 0; i < 30; ++i) world.Step(1.0f / 60.0f);
             byte[] snapshot = cloth.SaveSnapshot();
@@ -213,17 +218,18 @@ static class ClothTests
                 desc.InitialPositions = (IntPtr)x;
                 upper = world.CreateCloth(desc);
             }
-            uint[] corners = { 0, 15, 240, 255 };
+            int[] corners = { 0, 15, 240, 255 };
             lower.Pin(corners);
             upper.Pin(corners);
             ClothClothContactDesc contact = ClothClothContactDesc.Default();
-            Check(contact.Enabled == 0 && upper.GetContactWith(lower).Enabled == 0, "cloths are not in contact by default");
-            contact.Enabled = 1;
-            contact.Thickness = 0.05f;
-            lower.SetContactWith(upper, contact);
+            Check(!contact.Enabled && !upper.GetContactWith(lower).Enabled, "cloths are not in contact by default");
+            lower.EnableContactWith(upper, 0.05f);
             ClothClothContactDesc back = upper.GetContactWith(lower);
-            Check(back.Enabled == 1 && back.Thickness == 0.05f, "the pair reads back from either cloth");
-            uint contacts = 0, passes = 0, seen = 0;
+            Check(back.Enabled && back.Thickness == 0.05f && back.Passes == contact.Passes,
+                  "EnableContactWith turns the pair on (bool flag), other settings default; it reads back from either cloth");
+            contact.Enabled = true;
+            contact.Thickness = 0.05f;
+            int contacts = 0, passes = 0, seen = 0;
             for (int frame = 0; frame < 30; ++frame)
             {
                 world.Step(1.0f / 60.0f);
@@ -241,6 +247,161 @@ static class ClothTests
                 Check(e.Result == ClothResult.ErrorInvalidValue, "a cloth and itself is refused (INVALID_VALUE)");
             }
         }
+    }
+
+    // Descriptions cannot be built wrong: `new X { ... }` keeps the library's defaults for what it does
+    // not set, and an all-zero one given to an owner takes every default.
+    static void Descriptions()
+    {
+        ClothGridDesc defaults = ClothGridDesc.Default();
+        var grid = new ClothGridDesc { Columns = 8, Rows = 4 };
+        Check(grid.IsInitialized && grid.StructSize == defaults.StructSize && grid.U.X == defaults.U.X &&
+              grid.SpringKinds == defaults.SpringKinds && grid.Columns == 8,
+              "new ClothGridDesc { Columns = 8, Rows = 4 } holds the library's defaults for the rest");
+        Check(default(ClothGridDesc).Columns == defaults.Columns && !default(ClothGridDesc).IsInitialized,
+              "an all-zero description reads as the defaults (" + defaults.Columns + " columns)");
+        using (var world = new World(new ClothWorldDesc { WorkerCount = 1 }))
+        {
+            Check(world.CreateGridFabric(grid).ParticleCount == 32, "a grid from new ClothGridDesc { ... }: 8 x 4 particles");
+            Check(world.CreateGridFabric(new ClothGridDesc()).ParticleCount == (int)(defaults.Columns * defaults.Rows),
+                  "new ClothGridDesc() given to the owner takes every default");
+            Fabric fabric = world.CreateGridFabric(grid);
+            Cloth cloth = world.CreateCloth(new ClothDesc { Fabric = fabric.Id });
+            Check(cloth.ParticleCount == 32 && cloth.Solver.Kind == ClothDesc.Default().Solver.Kind,
+                  "new ClothDesc { Fabric = ... } makes a cloth with the default solver");
+            var collision = new ClothCollisionParams { Friction = 0.25f };
+            cloth.Collision = collision;
+            Check(cloth.Collision.Friction == 0.25f, "new ClothCollisionParams { Friction = 0.25f } is accepted and reads back");
+        }
+    }
+
+    // System.Numerics: Vector3 and Quaternion wherever the API takes or returns points and rotations.
+    static void NumericsTypes()
+    {
+        using (var world = new World())
+        {
+            Cloth cloth = world.CreateCloth(world.CreateGridFabric(new ClothGridDesc { Columns = 8, Rows = 8 }));
+            cloth.Pin(new int[] { 0, 7 });
+            cloth.SetWind(new Vector3(3.0f, 0.0f, 1.0f));
+            world.SetGravity(new Vector3(0.0f, -9.81f, 0.0f));
+            for (int frame = 0; frame < 10; ++frame) world.Step(1.0f / 60.0f);
+            var v = new Vector3[cloth.ParticleCount];
+            var f = new float[3 * cloth.ParticleCount];
+            cloth.ReadPositions(v);
+            cloth.ReadPositions(f);
+            Span<Vector3> span = new Vector3[cloth.ParticleCount];
+            cloth.ReadPositions(span);
+            Check(v[63].X == f[189] && v[63].Y == f[190] && v[63].Z == f[191] && span[63] == v[63] && v[63].Y < 0.0f,
+                  "ReadPositions(Vector3[]) and (Span<Vector3>) read what the float[] overload reads: " + v[63]);
+            var n = new Vector3[cloth.ParticleCount];
+            cloth.ReadNormals(n);
+            Check(Math.Abs(n[20].Length() - 1.0f) < 1e-3f, "ReadNormals(Vector3[]): unit normals");
+            cloth.SetPositions(new int[] { 63 }, new Vector3[] { new Vector3(5.0f, 6.0f, 7.0f) });
+            cloth.ReadPositions(v);
+            Check(v[63] == new Vector3(5.0f, 6.0f, 7.0f), "SetPositions(int[], Vector3[]) teleports a particle");
+
+            Quaternion turn = Quaternion.CreateFromAxisAngle(Vector3.UnitY, 0.5f);
+            Body body = world.CreateBody(new Vector3(1.0f, 2.0f, 3.0f), Quaternion.Identity);
+            body.SetPose(new Vector3(4.0f, 5.0f, 6.0f), turn);
+            Vector3 p;
+            Quaternion q;
+            body.GetPose(out p, out q);
+            Check(p == new Vector3(4.0f, 5.0f, 6.0f) && q == turn && body.Rotation == turn,
+                  "Body.SetPose/GetPose with Vector3 and Quaternion: " + p + " " + q);
+            cloth.Attach(body, new int[] { 0 }, new Vector3[] { new Vector3(0.0f, 0.0f, 0.5f) });
+            Vector3 offset;
+            Check(cloth.GetAttachment(0, out offset) == body && offset.Z == 0.5f && cloth.GetAttachment(5, out offset) == null,
+                  "Attach(Body, int[], Vector3[]) and GetAttachment return the Body owner and the offset");
+            world.SetBodyPoses(new Body[] { body }, new Vector3[] { new Vector3(-1.0f, 0.0f, 0.0f) },
+                               new Quaternion[] { Quaternion.Identity });
+            body.GetPose(out p, out q);
+            Check(p.X == -1.0f && q == Quaternion.Identity, "World.SetBodyPoses with Vector3[] and Quaternion[]");
+        }
+    }
+
+    // Character cloth in the high layer: skin with int joints, System.Numerics joint matrices, max
+    // distances and backstops from managed arrays, no unsafe code.
+    static void CharacterCloth()
+    {
+        using (var world = new World())
+        {
+            Cloth cape = world.CreateCloth(world.CreateGridFabric(new ClothGridDesc { Columns = 8, Rows = 8 }));
+            var rest = new Vector3[64];
+            cape.ReadPositions(rest);
+            var joints = new int[64];
+            for (int v = 0; v < 64; ++v) joints[v] = v < 32 ? 0 : 1;
+            cape.SetSkin(2, 1, joints, null);
+            var reach = new float[64];  // all 0: every particle pinned to its skinned position
+            cape.SetMaxDistances(reach);
+            var distances = new float[64];
+            var radii = new float[64];
+            for (int v = 0; v < 64; ++v) { distances[v] = 0.2f; radii[v] = 0.1f; }
+            cape.SetBackstops(distances, radii);
+            // Joint 0 lifted 1 m, joint 1 turned a quarter about y: System.Numerics' row-vector matrices.
+            cape.SetJointMatrices(new Matrix4x4[] { Matrix4x4.CreateTranslation(0.0f, 1.0f, 0.0f),
+                                                    Matrix4x4.CreateRotationY((float)(Math.PI / 2)) });
+            world.Step(1.0f / 60.0f);
+            var x = new Vector3[64];
+            var skinned = new Vector3[64];
+            var normals = new Vector3[64];
+            cape.ReadPositions(x);
+            cape.ReadSkinnedPositions(skinned, normals);
+            Vector3 turned = Vector3.Transform(rest[40], Matrix4x4.CreateRotationY((float)(Math.PI / 2)));
+            Check(Vector3.Distance(x[3], rest[3] + new Vector3(0.0f, 1.0f, 0.0f)) < 1e-5f &&
+                  Vector3.Distance(x[40], turned) < 1e-5f && Vector3.Distance(skinned[40], x[40]) < 1e-5f,
+                  "SetJointMatrices(Matrix4x4[]): particle 3 lifted 1 m, particle 40 turned a quarter " + x[40] + " = " + turned);
+            Check(cape.IsPinned(10), "SetMaxDistances(float[]) of 0 pins to the skin");
+
+            // Contact between two garments from managed code: a second cloth, EnableContactWith.
+            Cloth skirt = world.CreateCloth(world.CreateGridFabric(new ClothGridDesc { Columns = 8, Rows = 8 }));
+            cape.EnableContactWith(skirt, 0.01f, 0.2f);
+            ClothClothContactDesc pair = skirt.GetContactWith(cape);
+            Check(pair.Enabled && pair.Friction == 0.2f, "EnableContactWith sets the pair from managed code");
+            cape.DisableContactWith(skirt);
+            Check(!skirt.GetContactWith(cape).Enabled, "DisableContactWith turns it off");
+            try
+            {
+                cape.SetSkin(2, 1, new int[3], null);
+                Check(false, "a skin of the wrong length is refused");
+            }
+            catch (ArgumentException)
+            {
+                Check(true, "a skin of the wrong length throws ArgumentException before any native call");
+            }
+        }
+    }
+
+    // ObjectDisposedException after Dispose, and objects of a disposed world are disposed too.
+    static void Disposal()
+    {
+        var world = new World();
+        Fabric fabric = world.CreateGridFabric(new ClothGridDesc { Columns = 4, Rows = 4 });
+        Cloth cloth = world.CreateCloth(fabric);
+        Body body = world.CreateBody(ClothBodyDesc.Default());
+        Check(!cloth.IsDisposed && !world.IsDisposed, "live objects are not disposed");
+        world.Dispose();
+        Check(world.IsDisposed && cloth.IsDisposed && fabric.IsDisposed && body.IsDisposed,
+              "disposing the world makes its cloths, fabrics and bodies IsDisposed");
+        int thrown = 0;
+        Action[] calls =
+        {
+            () => cloth.ReadPositions(new float[48]),
+            () => cloth.Pin(new int[] { 0 }),
+            () => { var unused = cloth.Id; },
+            () => body.SetPose(new Vector3(0, 0, 0), Quaternion.Identity),
+            () => { var unused = fabric.ParticleCount; },
+            () => world.Step(1.0f / 60.0f),
+            () => world.CreateGridFabric(ClothGridDesc.Default()),
+        };
+        foreach (Action call in calls)
+        {
+            try { call(); }
+            catch (ObjectDisposedException) { ++thrown; }
+        }
+        Check(thrown == calls.Length, "every call on a disposed world or its objects throws ObjectDisposedException (" +
+                                      thrown + " of " + calls.Length + ")");
+        cloth.Dispose();  // after the world: nothing to do, no exception
+        Check(cloth.IsDisposed, "disposing a cloth after its world does nothing");
     }
 
     static void LevelOfDetail()
@@ -343,9 +504,9 @@ static class ClothTests
             Cloth cloth = world.CreateCloth(fabric);
             Body pole = world.CreateBody(ClothBodyDesc.Default());
             // The top row hangs from the pole, 0.1 m in front of its axis.
-            var top = new uint[8];
+            var top = new int[8];
             var offsets = new float[3 * 8];
-            for (uint c = 0; c < 8; ++c)
+            for (int c = 0; c < 8; ++c)
             {
                 top[c] = c;
                 offsets[3 * c + 0] = c / 7.0f;
@@ -365,7 +526,7 @@ static class ClothTests
             var xyz = new float[3 * cloth.ParticleCount];
             cloth.ReadPositions(xyz);
             float error = 0.0f;
-            for (uint c = 0; c < 8; ++c)
+            for (int c = 0; c < 8; ++c)
             {
                 error = Math.Max(error, Math.Abs(xyz[3 * c] - (x + c / 7.0f)));
                 error = Math.Max(error, Math.Abs(xyz[3 * c + 1] - 1.0f));
@@ -380,8 +541,9 @@ static class ClothTests
             pole.Dispose();
             Check(!cloth.IsPinned(3) && Native.cloth_collider_is_valid(sphere.Id) == 1,
                   "disposing the body frees its attachments; the static collider stays");
+            ClothColliderId sphereId = sphere.Id;
             sphere.Dispose();  // a static collider: destroyed now
-            Check(Native.cloth_collider_is_valid(sphere.Id) == 0, "collider disposed");
+            Check(Native.cloth_collider_is_valid(sphereId) == 0 && sphere.IsDisposed, "collider disposed");
         }
     }
 
@@ -392,7 +554,7 @@ static class ClothTests
         public readonly Dictionary<int, int> Threads = new Dictionary<int, int>();
         public readonly HashSet<string> Names = new HashSet<string>();
 
-        public void Begin(string name, uint worker)
+        public void Begin(string name, int worker)
         {
             Interlocked.Increment(ref Begins);
             lock (Threads)
@@ -402,11 +564,11 @@ static class ClothTests
                 Threads.TryGetValue(id, out n);
                 Threads[id] = n + 1;
                 Names.Add(name);
-                if ((int)worker > MaxWorker) MaxWorker = (int)worker;
+                if (worker > MaxWorker) MaxWorker = worker;
             }
         }
 
-        public void End(string name, uint worker) { Interlocked.Increment(ref Ends); }
+        public void End(string name, int worker) { Interlocked.Increment(ref Ends); }
     }
 
     static void ProfileAndZones()
@@ -420,7 +582,7 @@ static class ClothTests
             grid.Rows = 64;
             Fabric fabric = world.CreateGridFabric(grid);
             Cloth cloth = world.CreateCloth(fabric);
-            cloth.Pin(new uint[] { 0, 63 });
+            cloth.Pin(new int[] { 0, 63 });
             var zones = new ZoneCounter();
             world.SetZoneCallbacks(zones);
             world.SetProfiling(4096);
@@ -538,19 +700,41 @@ static class ClothTests
                 Console.WriteLine("  " + e.Message);
                 Check(e.Result == ClothResult.ErrorInvalidValue && e.Message.Contains("cloth_step"),
                       "dt 0 throws ClothException(INVALID_VALUE) with the library's message");
-                Check(messages.Count == 1 && messages[0].Contains(e.LibraryMessage), "the log callback heard the same message");
+                Check(messages.Count == 0, "an error that is thrown is not logged as well (one channel per error)");
             }
+
+            // A budget no step meets: the world advances, Step returns OverBudget (no exception) and the
+            // log handler hears the warning.
+            Cloth budgeted = world.CreateCloth(world.CreateGridFabric(new ClothGridDesc { Columns = 8, Rows = 8 }));
+            world.SetFrameBudget(1e-6f);
+            var before = new Vector3[budgeted.ParticleCount];
+            var after = new Vector3[budgeted.ParticleCount];
+            budgeted.ReadPositions(before);
+            ClothStepOutcome outcome = world.Step(1.0f / 60.0f);
+            budgeted.ReadPositions(after);
+            Check(outcome == ClothStepOutcome.OverBudget && after[63].Y < before[63].Y,
+                  "over budget: the world advanced and Step returned OverBudget (" + outcome + ")");
+            Check(messages.Count == 1 && messages[0].StartsWith(ClothResult.ErrorOverBudget + ":"),
+                  "the log handler heard the step outcome's warning: " + (messages.Count > 0 ? messages[0] : "nothing"));
+            world.SetFrameBudget(0.0f);
+            budgeted.Dispose();
 
             try
             {
-                world.CreateGridFabric(new ClothGridDesc());  // zero-filled: no cookie
-                Check(false, "a description made with new is refused");
+                budgeted.Pin(new int[] { 0 });
+                Check(false, "a disposed cloth is refused");
             }
-            catch (ClothException e)
+            catch (ObjectDisposedException)
             {
-                Console.WriteLine("  " + e.Message);
-                Check(e.Result == ClothResult.ErrorInvalidDesc, "a description made with new is refused (INVALID_DESC): start from Default()");
+                Check(budgeted.IsDisposed, "a disposed cloth throws ObjectDisposedException");
             }
+
+            // Only the raw layer can still pass an all-zero description, and the library refuses it.
+            var zero = new ClothGridDesc();
+            ClothFabricId none;
+            Check(!zero.IsInitialized &&
+                  Native.cloth_fabric_create_grid(world.Id, ref zero, out none) == ClothResult.ErrorInvalidDesc,
+                  "an all-zero description through Native is refused (INVALID_DESC)");
 
             world.CreateTaperedCapsule(ClothColliderDesc.Default(), 0.1f, 0.05f, 0.3f);
             try

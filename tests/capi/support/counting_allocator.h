@@ -13,6 +13,9 @@
 #pragma once
 
 #include <cloth/cloth.h>
+#ifdef _WIN32
+#include <malloc.h>
+#endif
 
 #include <atomic>
 #include <cstddef>
@@ -132,9 +135,16 @@ class CountingAllocator {
         }
         // posix_memalign of exactly `size` bytes: AddressSanitizer sees a
         // read or write one byte past the block.
+        // Windows' C runtimes have no posix_memalign: _aligned_malloc, whose
+        // blocks only _aligned_free takes back.
         void* p = nullptr;
+#ifdef _WIN32
+        p = _aligned_malloc(size == 0 ? 1 : size, alignment);
+        if (p == nullptr) {
+#else
         if (posix_memalign(&p, alignment < sizeof(void*) ? sizeof(void*) : alignment, size == 0 ? 1 : size) !=
             0) {
+#endif
             ++self->refusals_;
             return nullptr;
         }
@@ -165,7 +175,11 @@ class CountingAllocator {
         self->live_bytes_ -= it->second;
         self->blocks_.erase(it);
         ++self->frees_;
+#ifdef _WIN32
+        _aligned_free(ptr);
+#else
         std::free(ptr);
+#endif
     }
 
     static void log(cloth_log_level level, cloth_result code, const char* message, void* user) {
