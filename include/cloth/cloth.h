@@ -1926,23 +1926,29 @@ CLOTH_API cloth_result CLOTH_CALL cloth_get_self_collision_stats(cloth_id cloth,
  *
  * The other cloth's surface is seen through its particles: each stands
  * for the plane through it normal to the surface there, and a particle is
- * kept on the side of it where the last frame left it, so a particle that
- * crossed within the frame is pushed back. Cloths that intersect when the
- * pair is turned on stay on the sides they are on then: turn it on with
- * the cloths apart.
+ * kept on the side of it where the last substep left it, so a particle that
+ * crossed within a substep is pushed back; one that went round the other
+ * cloth's border (a hem) is on its new side. Cloths that intersect when
+ * the pair is turned on stay on the sides they are on then: turn it on
+ * with the cloths apart.
  *
- * It is resolved once per frame, after every cloth of the world has
- * stepped, pair by pair in the order the pairs were turned on; then each
- * cloth that was touched runs its strain-limit passes and its skin's max
- * distances and backstops once more, so those still win. What contact
- * pushes is not passed on to the cloth's neighbours within the frame: a
- * fast impact on a fabric whose edges are shorter than the thickness
- * stretches it where it is hit. Results are bit-identical for any thread
+ * It is resolved inside both cloths' substeps, which step together: once a
+ * substep, after both integrated and met their colliders and before their
+ * strain limits, both cloths' contacts are found (within a search that
+ * grows with their speeds) and projected; each cloth's strain-limit passes
+ * then take back the stretch the pushes made, and its velocities lose
+ * the part approaching the other cloth; the skin's max distances and
+ * backstops come last, so those still win. The two cloths run the same
+ * number of substeps (the more of the two: a stiff cloth in contact with
+ * a soft one makes it run more), and a cloth is in contact with at most 4
+ * others (CLOTH_ERROR_CAPACITY). Results are bit-identical for any thread
  * count.
  *
  * Off for every pair by default. A pair costs nothing while it is off, and
  * two bound computations a frame while the cloths' bounds, grown by
- * `thickness` and the larger mean rest edge, do not meet. A pair is turned
+ * `thickness`, the larger mean rest edge and how far their particles move
+ * in the frame, do not meet. A cloth that sleeps beside one that steps is
+ * a still surface to it, and wakes when it is touched. A pair is turned
  * off when either cloth is destroyed; it is not part of either cloth's
  * snapshot. */
 
@@ -1956,7 +1962,8 @@ typedef struct cloth_cloth_contact_desc {
     float thickness;
     /// Coulomb coefficient on the sliding velocity, >= 0; default 0
     float friction;
-    /// at most this many projection passes per frame, 1..CLOTH_MAX_SELF_COLLISION_PASSES; default 4
+    /// at most this many projection passes per substep (per frame before
+    /// 1.13), 1..CLOTH_MAX_SELF_COLLISION_PASSES; default 4
     uint32_t passes;
     /// set by the struct\'s cloth_default_*() function; do not change
     uint32_t internal_cookie;
@@ -1969,15 +1976,17 @@ CLOTH_API cloth_cloth_contact_desc CLOTH_CALL cloth_default_cloth_contact_desc(v
 /// cloths of one world; the order of `a` and `b` does not matter. Turning
 /// a pair on allocates (CLOTH_ERROR_OUT_OF_MEMORY changes nothing) and
 /// wakes both cloths. A cloth and itself is CLOTH_ERROR_INVALID_VALUE;
-/// cloths of two worlds, CLOTH_ERROR_INVALID_HANDLE. Since 1.10.
+/// cloths of two worlds, CLOTH_ERROR_INVALID_HANDLE; a new pair with a
+/// cloth already in contact with 4 others, CLOTH_ERROR_CAPACITY (since
+/// 1.13), and nothing changes. Since 1.10.
 CLOTH_API cloth_result CLOTH_CALL cloth_set_cloth_contact(cloth_id a, cloth_id b,
                                                           const cloth_cloth_contact_desc* desc);
 /// The pair's settings (enabled = 0 and defaults while off). Since 1.10.
 CLOTH_API cloth_result CLOTH_CALL cloth_get_cloth_contact(cloth_id a, cloth_id b,
                                                           cloth_cloth_contact_desc* out_desc);
 /// Particles of either cloth within `thickness` of the other cloth when
-/// the last frame looked (0 while the pair is off or the cloths were
-/// apart), and the projection passes it ran. Since 1.10.
+/// the last substep looked (0 while the pair is off or the cloths were
+/// apart), and the projection passes it ran then. Since 1.10.
 CLOTH_API cloth_result CLOTH_CALL cloth_get_cloth_contact_count(cloth_id a, cloth_id b,
                                                                 uint32_t* out_contacts, uint32_t* out_passes);
 

@@ -108,7 +108,7 @@ uint32_t ClothContact::collide(float h, float from, float to, const float* kinem
             // Every chunk the collider may reach in the rest of the substep,
             // with at least the margin record() takes.
             CollisionParams reach = collision_;
-            reach.thickness += 2.0f * range.travel;
+            reach.thickness += collision_.thickness + 2.0f * range.travel;
             if (!range_is_clear(moving, reach, range)) {
                 for (uint32_t k = 0; k < chunk_count; ++k) {
                     if (range_is_clear(moving, reach, chunks[k])) continue;
@@ -141,7 +141,8 @@ void ClothContact::record(const MovingCollider& collider, uint16_t slot, float h
     // Before this collider's own pass moved them. A particle's path over
     // the substep, in the collider's moving frame, touches the collider
     // only if its end is within the thickness plus the path's length of
-    // it; the passes after it may take it about twice its own path further.
+    // it; the passes after it may take it about twice its own path
+    // further, and one the collision stage left at the thickness back in.
     for (uint32_t i = begin; i < end; ++i) {
         if (kinematic[i] != 0.0f) continue;
         uint8_t& count = recorded_count_[i];
@@ -149,7 +150,7 @@ void ClothContact::record(const MovingCollider& collider, uint16_t slot, float h
         const Vec3 x_end = x.get(i), step = v.get(i) * h;
         const Vec3 local_end = collider.end.apply_inverse(x_end);
         const float path = (local_end - collider.start.apply_inverse(Vec3(x_end - step))).norm();
-        const float reach = collision_.thickness + path + 2.0f * step.norm();
+        const float reach = 2.0f * collision_.thickness + path + 2.0f * step.norm();
         if (!(query_shape(*collider.shape, local_end, reach).distance < reach)) continue;
         if (count == kRecordedColliders) {
             count = kEveryCollider;

@@ -73,16 +73,17 @@ class ClothContact {
     // motion and teleports are seen frame by frame, so such a cloth steps
     // at update rate 1 (update_rate.h).
     bool rides_bodies() const { return !attached_body_.empty() || carrier_.active(); }
-    // Which colliders a collision pass tests. The substep's collision
-    // stage tests every one and records, per particle, those it is within
-    // reach of: nearer than the thickness plus its path in the collider's
-    // frame plus twice its own path in the substep (what the strain
-    // limiter's passes after it move a particle, mostly). The rounds
-    // between the passes test each particle against its record only, so a
-    // particle far from every collider costs nothing there. What a record
-    // misses (a particle the passes pull further, after a neighbour a
-    // collider pushed) the round after the last pass finds: it tests
-    // every collider again, so the substep ends out of every one.
+    // Which colliders a collision pass tests. The first of the rounds
+    // between the strain limiter's passes tests every one and records,
+    // per particle, those it is within reach of: nearer than twice the
+    // thickness plus its path over the substep in the collider's frame
+    // plus twice its own path (what the passes after it move a particle,
+    // mostly). The later rounds between the passes test each particle
+    // against its record only, so a particle far from every collider costs
+    // nothing there. What a record misses (a particle the passes pull
+    // further, after a neighbour a collider pushed) the round after the
+    // last pass finds: it tests every collider again, so the substep ends
+    // out of every one.
     enum class Pass : uint8_t { kRecord, kRecorded, kEvery };
     // Sizes the record for the cloth's particles (at its creation).
     void size_record(uint32_t particle_count);

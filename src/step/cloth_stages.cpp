@@ -203,7 +203,7 @@ float ClothInstance::substep_end_fraction() const {
 
 void ClothInstance::collide_stage(const GroupTask& task) {
     expect_stage(Stage::kCollisions);
-    collide(task, ClothContact::Pass::kRecord, &frame_.group_contacts[task.group]);
+    collide(task, ClothContact::Pass::kEvery, &frame_.group_contacts[task.group]);
 }
 
 void ClothInstance::note_contacts() {
@@ -224,10 +224,7 @@ void ClothInstance::limit_strain(const GroupTask& task) {
     expect_stage(Stage::kStrainLimit);
     switch (frame_.limit_rounds.round()) {  // limit_rounds.h: what runs between the passes, and why
         case LimitRounds::Round::kColliders:
-            // Between the passes the colliders the collision stage found
-            // within reach; after the last, every one (cloth_contact.h).
-            collide(task, frame_.strain_limiter.done() ? ClothContact::Pass::kEvery
-                                                       : ClothContact::Pass::kRecorded);
+            collide(task, frame_.collider_pass);
             return;
         case LimitRounds::Round::kProject:
         case LimitRounds::Round::kRespond:

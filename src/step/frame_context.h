@@ -12,6 +12,7 @@
 #include "base/math.h"
 #include "base/soa.h"
 #include "base/staged.h"
+#include "collide/cloth_contact.h"
 #include "solve/iterative_solve.h"
 #include "solve/solver_settings.h"
 #include "solve/strain_limit.h"
@@ -97,6 +98,11 @@ struct FrameContext {
     bool started_slow = false;   // no free particle faster than kDefaultQuietSpeed at its start
     bool collides = false;       // this frame runs the collision stage
     bool touching = false;       // this substep's collision stage found a contact
+    // The colliders' pass of the current round between the strain limiter's
+    // passes (ClothContact::Pass): the first records, the later ones test
+    // the record, the one after the last pass every collider.
+    ClothContact::Pass collider_pass = ClothContact::Pass::kEvery;
+    bool colliders_recorded = false;  // this substep's colliders have a record
     bool converged = true;
     bool out_of_memory = false;  // set by the serial solve task
     FrameBackup backup = FrameBackup::kCopied;

@@ -42,6 +42,7 @@ void ClothInstance::plan_substep() {
     frame_.solution = &dv_;  // where the solver leaves dv (JACOBI: record_iterative_result says)
     frame_.theta = frame_.strained ? 1.0f : frame_.solver.theta;
     frame_.touching = false;
+    frame_.colliders_recorded = false;
     const cloth_solver_kind kind = frame_.solver.kind;
     if (frame_.substep == 0 && skin_.active())
         plan(Stage::kSkinning, &C::skin_particles, &C::finish_skinning);
@@ -318,6 +319,16 @@ void ClothInstance::prepare_stage() {
     if (pair_stage() && frame_.round == 0) planned_pair().arrive(frame_.h);
     if (planned().stage == Stage::kStrainLimit && frame_.round == 0)
         frame_.strain_limiter.hold_at_least(frame_.strain_pins_demand);
+    if (planned().stage == Stage::kStrainLimit &&
+        frame_.limit_rounds.round() == LimitRounds::Round::kColliders) {
+        // Between the passes the colliders each particle can reach, found
+        // in the first such round; after the last, every one (cloth_contact.h).
+        using Pass = ClothContact::Pass;
+        frame_.collider_pass = frame_.strain_limiter.done() ? Pass::kEvery
+                               : frame_.colliders_recorded  ? Pass::kRecorded
+                                                            : Pass::kRecord;
+        frame_.colliders_recorded = frame_.colliders_recorded || frame_.collider_pass == Pass::kRecord;
+    }
 }
 
 uint32_t ClothInstance::task_count() const {

@@ -342,3 +342,29 @@ TEST(ClothContactApi, BadInputIsRejectedWithItsCodeAndChangesNothing) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ClothContactApi, AFifthPairForOneClothIsRefusedAndChangesNothing) {
+    TwoSheets sheets;
+    // Four more cloths of the same fabric, each paired with `lower`.
+    std::vector<cloth_id> others;
+    for (int k = 0; k < 4; ++k) others.push_back(sheets.create(0.2f * static_cast<float>(k + 1), 0.0f));
+    cloth_cloth_contact_desc d = cloth_default_cloth_contact_desc();
+    d.enabled = 1;
+    d.thickness = kThickness;
+    ASSERT_EQ(cloth_set_cloth_contact(sheets.lower, sheets.upper, &d), CLOTH_OK);
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(cloth_set_cloth_contact(sheets.lower, others[k], &d), CLOTH_OK);
+    EXPECT_EQ(cloth_set_cloth_contact(sheets.lower, others[3], &d), CLOTH_ERROR_CAPACITY)
+        << "a cloth is in contact with at most four others";
+    cloth_cloth_contact_desc out = cloth_default_cloth_contact_desc();
+    ASSERT_EQ(cloth_get_cloth_contact(sheets.lower, others[3], &out), CLOTH_OK);
+    EXPECT_EQ(out.enabled, 0) << "the refused pair stays off";
+    // Changing a pair it has is no new pair; the other cloth has room.
+    d.friction = 0.5f;
+    EXPECT_EQ(cloth_set_cloth_contact(sheets.lower, others[0], &d), CLOTH_OK);
+    EXPECT_EQ(cloth_set_cloth_contact(sheets.upper, others[3], &d), CLOTH_OK);
+    for (int f = 0; f < 30; ++f) ASSERT_EQ(cloth_step(sheets.world, kFrame), CLOTH_OK);
+}
+
+}  // namespace
