@@ -13,7 +13,8 @@
 #  - a fresh Mono console project made of nothing but the unpacked Runtime/
 #    (compiled as its .asmdef says) and the plugin next to the program
 #    compiles without -unsafe and runs UnityPackageConsumer.cs, which checks
-#    the numbers;
+#    the numbers, and its first scene ends in the same position bits as the
+#    same scene through cloth.h (package_scene.c);
 #  - with a Windows build tree (scripts/windows; ctest cloth_windows.unity_package),
 #    the package also holds that tree's cloth.dll, byte for byte, whose
 #    import settings enable it for the Windows x86_64 player and editor and
@@ -117,4 +118,9 @@ mcs -langversion:7.2 -unsafe -nologo -warnaserror+ -r:System.Numerics -target:li
 mcs -langversion:7.2 -nologo -warnaserror+ -r:System.Numerics -r:"$project/ClothSharp.dll" \
     -out:"$project/Consumer.exe" "$here/UnityPackageConsumer.cs"
 cp "$package/Runtime/Plugins/x86_64/libcloth.so" "$project/"
-(cd "$project" && env -u LD_LIBRARY_PATH mono Consumer.exe)
+(cd "$project" && env -u LD_LIBRARY_PATH mono Consumer.exe) | tee "$work/consumer.txt"
+# The same values as the native library: the C# program's first scene and
+# package_scene.c's, through cloth.h, end in the same position bits.
+native="$("$build/tests/package/cloth_package_scene")"
+grep -qx "$native" "$work/consumer.txt" || fail "the package's scene gives other positions than cloth.h's ($native)"
+echo "ok - the package's scene ends in the same position bits as through cloth.h ($native)"
