@@ -32,6 +32,7 @@ bool dress(cloth_world_id world, cloth_body_id root, cloth_fabric_id fabric, con
     desc.fabric = fabric;
     desc.initial_positions = rest.data();
     desc.particle_mass = g->particle_mass = mass / static_cast<float>(g->count);
+    desc.structural.stiffness += g->stiffness_offset;
     if (cloth_create(world, &desc, &g->cloth) != CLOTH_OK) return fail("cloth_create");
     cloth_skin_desc skin = cloth_default_skin_desc();
     skin.particle_count = g->count;

@@ -27,6 +27,7 @@ struct Garment {
     std::vector<float> max_distance, back_distance, back_radius;
     uint32_t collider_mask = 0;      // the body's collider groups it meets (body.h)
     float particle_mass = 0;         // kg
+    float stiffness_offset = 0;      // N/m added to the default structural stiffness (set before make_*)
     std::vector<uint32_t> top, hem;  // the cape's top row and its hem (none for the skirt)
 };
 

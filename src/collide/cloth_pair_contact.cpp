@@ -86,7 +86,9 @@ ClothPairContact::ClothPairContact(const HostMemory* memory, const Fabric& a, co
       touching_(HostAllocator<uint8_t>(memory)),
       overlapping_(HostAllocator<uint8_t>(memory)),
       border_(HostAllocator<uint8_t>(memory)),
-      task_speed2_(HostAllocator<float>(memory)) {
+      task_speed2_(HostAllocator<float>(memory)),
+      task_bounds_(HostAllocator<Vec3>(memory)),
+      near_(HostAllocator<uint8_t>(memory)) {
     const uint32_t n = count();
     hash_a_.reserve(count_a_);
     hash_b_.reserve(count_b_);
@@ -100,6 +102,8 @@ ClothPairContact::ClothPairContact(const HostMemory* memory, const Fabric& a, co
     overlapping_.assign(n, 0);
     border_.assign(n, 0);
     task_speed2_.assign(2 * size_t{group_count_of(n)}, 0.0f);
+    task_bounds_.assign(4 * size_t{group_count_of(n)}, Vec3::Zero());
+    near_.assign(n, 0);
     mark_border(a, border_, 0);
     mark_border(b, border_, count_a_);
 }
@@ -123,6 +127,7 @@ void ClothPairContact::run(const GroupTask& task) {
             gather(task.group, task.begin, task.end);
             return;
         case Round::kKeys:
+            mark_near(task.begin, task.end);
             if (task.begin < count_a_)
                 hash_a_.compute_keys(x_, search_, task.begin, std::min(task.end, count_a_));
             if (task.end > count_a_)
@@ -157,6 +162,17 @@ void ClothPairContact::finish_round() {
                 fastest[t % 2] = std::max(fastest[t % 2], task_speed2_[t]);
             const float travel = (std::sqrt(fastest[0]) + std::sqrt(fastest[1])) * h_;
             search_ = radius_ + std::min(travel, radius_);
+            // Each cloth's bounds, grown by the search: a particle outside
+            // the other cloth's can meet none of its particles.
+            for (int side = 0; side < 2; ++side) {
+                Vec3 low = Vec3::Constant(std::numeric_limits<float>::infinity()), high = -low;
+                for (size_t t = 0; t < task_bounds_.size(); t += 4) {
+                    low = low.cwiseMin(task_bounds_[t + 2 * side]);
+                    high = high.cwiseMax(task_bounds_[t + 2 * side + 1]);
+                }
+                reach_low_[side] = low - Vec3::Constant(search_);
+                reach_high_[side] = high + Vec3::Constant(search_);
+            }
             round_ = Round::kKeys;
             return;
         }
@@ -190,25 +206,56 @@ void ClothPairContact::finish_round() {
 
 void ClothPairContact::gather(uint32_t task, uint32_t begin, uint32_t end) {
     float fastest[2] = {0.0f, 0.0f};  // squared speeds, of a's and of b's particles
+    Vec3 low[2], high[2];             // bounds, of a's and of b's particles
+    for (int side = 0; side < 2; ++side) {
+        low[side] = Vec3::Constant(std::numeric_limits<float>::infinity());
+        high[side] = -low[side];
+    }
     for (uint32_t i = begin; i < end; ++i) {
         const ParticleView& cloth = side_b(i) ? b_ : a_;
         const uint32_t p = side_b(i) ? i - count_a_ : i;
-        x_.set(i, cloth.x->get(p));
-        if (!started_) start_.set(i, x_.get(i));
+        const Vec3 xi = cloth.x->get(p);
+        x_.set(i, xi);
+        if (!started_) start_.set(i, xi);
         v_.set(i, cloth.v->get(p));
-        normal_.set(i, vertex_normal(*cloth.fabric, *cloth.x, p));
         const bool moves = cloth.steps && cloth.pinned[p] == 0.0f;
         inverse_mass_[i] = moves ? 1.0f / cloth.mass[p] : 0.0f;
         if (moves) fastest[side_b(i)] = std::max(fastest[side_b(i)], v_.get(i).squaredNorm());
+        low[side_b(i)] = low[side_b(i)].cwiseMin(xi);
+        high[side_b(i)] = high[side_b(i)].cwiseMax(xi);
     }
     task_speed2_[2 * size_t{task}] = fastest[0];
     task_speed2_[2 * size_t{task} + 1] = fastest[1];
+    for (int side = 0; side < 2; ++side) {
+        task_bounds_[4 * size_t{task} + 2 * side] = low[side];
+        task_bounds_[4 * size_t{task} + 2 * side + 1] = high[side];
+    }
+}
+
+void ClothPairContact::mark_near(uint32_t begin, uint32_t end) {
+    for (uint32_t i = begin; i < end; ++i) {
+        const int other = side_b(i) ? 0 : 1;
+        const Vec3 xi = x_.get(i);
+        const bool near = (xi.array() >= reach_low_[other].array()).all() &&
+                          (xi.array() <= reach_high_[other].array()).all();
+        near_[i] = near ? 1 : 0;
+        // Only a particle near the other cloth is ever another's contact.
+        if (near) {
+            const ParticleView& cloth = side_b(i) ? b_ : a_;
+            normal_.set(i, vertex_normal(*cloth.fabric, *cloth.x, side_b(i) ? i - count_a_ : i));
+        }
+    }
 }
 
 void ClothPairContact::find_contacts(uint32_t begin, uint32_t end) {
     const float radius2 = search_ * search_, theta = settings_.thickness;
     const float tangential2 = (radius_ - theta) * (radius_ - theta);
     for (uint32_t i = begin; i < end; ++i) {
+        if (!near_[i]) {
+            contact_count_[i] = 0;
+            touching_[i] = 0;
+            continue;
+        }
         const size_t first = size_t{i} * kMaxContacts;
         uint32_t* other = &contact_other_[first];
         float* distance2 = &contact_distance2_[first];

@@ -18,11 +18,13 @@
 // once a substep after both cloths integrated and met their colliders,
 // with both waiting for it (step/pair_rounds.h), as the rounds of this
 // staged algorithm over both cloths' particles:
-//   1. gather(range)          copy both cloths' positions, velocities,
-//                             vertex normals and inverse masses into the
-//                             combined arrays (a's first), then key each
-//                             particle in its own cloth's hash within a
-//                             search radius grown by the fastest speeds
+//   1. gather(range)          copy both cloths' positions, velocities and
+//                             inverse masses into the combined arrays (a's
+//                             first), then key each particle in its own
+//                             cloth's hash within a search radius grown by
+//                             the fastest speeds; the particles within it of
+//                             the other cloth's bounds take their vertex
+//                             normals, and only they look for contacts
 //   2. sort                   serial counting sort of both hashes
 //   3. find_contacts(range)   per particle: the nearest particles of the
 //                             other cloth and their planes
@@ -114,6 +116,9 @@ class ClothPairContact final : public StagedAlgorithm {
   private:
     bool side_b(uint32_t i) const { return i >= count_a_; }
     void gather(uint32_t task, uint32_t begin, uint32_t end);
+    // Which particles lie within the search of the other cloth's bounds,
+    // and their vertex normals.
+    void mark_near(uint32_t begin, uint32_t end);
     void find_contacts(uint32_t begin, uint32_t end);
     void project(uint32_t begin, uint32_t end);
     void scatter(uint32_t begin, uint32_t end);
@@ -138,8 +143,11 @@ class ClothPairContact final : public StagedAlgorithm {
     HostVector<uint32_t> contact_count_;
     HostVector<uint8_t> touching_;
     HostVector<uint8_t> overlapping_;
-    HostVector<uint8_t> border_;     // per particle: on its fabric's border
-    HostVector<float> task_speed2_;  // per gather task: the fastest squared speed of a's and of b's
+    HostVector<uint8_t> border_;         // per particle: on its fabric's border
+    HostVector<float> task_speed2_;      // per gather task: the fastest squared speed of a's and of b's
+    HostVector<Vec3> task_bounds_;       // per gather task: a's low and high, b's low and high
+    Vec3 reach_low_[2], reach_high_[2];  // each cloth's bounds grown by the search
+    HostVector<uint8_t> near_;           // per particle: within the other cloth's reach
 };
 
 }  // namespace cloth
