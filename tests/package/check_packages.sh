@@ -2,9 +2,12 @@
 # The packages scripts/package makes from this build tree, checked as a user
 # meets them (ctest cloth_package.*):
 #  - the Linux archive holds the header, both libraries, the CMake package,
-#    cloth.pc, README.md and CHANGELOG.md; with a Windows build, the Windows
-#    archive holds its cloth.dll, cloth.lib, cloth.def, libcloth.dll.a, the
-#    header, README.md and CHANGELOG.md;
+#    cloth.pc, the API reference, README.md and CHANGELOG.md, and a fresh
+#    CMake project and a pkg-config build consume it unpacked
+#    (tests/install/check.sh); with a Windows build, the Windows archive
+#    holds its install tree (cloth.dll, libcloth.dll.a, libcloth.a, the CMake
+#    package, cloth.pc, the header), cloth.lib and cloth.def, the API
+#    reference, README.md and CHANGELOG.md;
 #  - the Unity tarball unpacks to package/ with package.json (name, the
 #    header's ABI version, displayName, unity), a .meta with a unique GUID
 #    for every file and folder outside Samples~, the plugin's import settings
@@ -38,10 +41,13 @@ version="$(part MAJOR).$(part MINOR).$(part PATCH)"
 linux="cloth-$version-linux-x86_64"
 tar -tzf "$work/dist/$linux.tar.gz" >"$work/linux.txt"
 for entry in include/cloth/cloth.h lib/libcloth.so lib/libcloth.a lib/cmake/cloth/clothConfig.cmake \
-             lib/cmake/cloth/clothTargets.cmake lib/pkgconfig/cloth.pc README.md CHANGELOG.md; do
+             lib/cmake/cloth/clothTargets.cmake lib/pkgconfig/cloth.pc doc/html/index.html README.md CHANGELOG.md; do
     grep -qx "$linux/$entry" "$work/linux.txt" || fail "$linux.tar.gz lacks $entry"
 done
-echo "ok - $linux.tar.gz: header, libraries, CMake package, cloth.pc, README, CHANGELOG ($(wc -l <"$work/linux.txt") entries)"
+echo "ok - $linux.tar.gz: header, libraries, CMake package, cloth.pc, API reference, README, CHANGELOG ($(wc -l <"$work/linux.txt") entries)"
+# A fresh CMake project (and a pkg-config build) consumes the unpacked archive.
+tar -C "$work" -xzf "$work/dist/$linux.tar.gz"
+"$root/tests/install/check.sh" --prefix "$work/$linux" "$root/tests/install"
 
 # The Windows archive, with a Windows build: the DLL byte for byte, its
 # import libraries for MSVC and MinGW, the header and the documents.
@@ -49,13 +55,13 @@ windows_archive="$work/dist/cloth-$version-windows-x86_64.tar.gz"
 if [ -n "$windows" ]; then
     win="cloth-$version-windows-x86_64"
     tar -C "$work" -xzf "$windows_archive"
-    for entry in include/cloth/cloth.h bin/cloth.dll lib/cloth.lib lib/cloth.def lib/libcloth.dll.a README.md \
-                 CHANGELOG.md; do
+    for entry in include/cloth/cloth.h bin/cloth.dll lib/cloth.lib lib/cloth.def lib/libcloth.dll.a lib/libcloth.a \
+                 lib/cmake/cloth/clothConfig.cmake lib/pkgconfig/cloth.pc doc/html/index.html README.md CHANGELOG.md; do
         [ -f "$work/$win/$entry" ] || fail "$win.tar.gz lacks $entry"
     done
     cmp -s "$work/$win/bin/cloth.dll" "$windows/src/cloth.dll" || fail "$win.tar.gz's cloth.dll is not the build's"
     cmp -s "$work/$win/include/cloth/cloth.h" "$header" || fail "$win.tar.gz's cloth.h is not the source's"
-    echo "ok - $win.tar.gz: cloth.dll (the build's), cloth.lib, cloth.def, libcloth.dll.a, header, README, CHANGELOG"
+    echo "ok - $win.tar.gz: cloth.dll (the build's), cloth.lib, cloth.def, libcloth.dll.a, libcloth.a, CMake package, cloth.pc, header, API reference, README, CHANGELOG"
 elif [ -e "$windows_archive" ]; then
     fail "a Windows archive without a Windows build"
 fi
