@@ -381,6 +381,11 @@ int main(int argc, char** argv) {
     std::vector<int> worker_tracks;
     std::vector<cloth_task_record> tasks(kProfileTasks);
     std::vector<double> step_ms, stage_ms[kStages];
+    // The strain limiter's effort per garment: its passes each frame and
+    // the frames it stopped at their cap; the step's time standing idle at
+    // the start and standing after the teleport.
+    std::vector<double> strain_passes[2], idle_ms, still_ms;
+    int capped_frames[2] = {0, 0};
     GarmentChecks checks[2];
     MotionChecks motion(kDt, o.energy_margin_speed);
     std::vector<Moment> moments;
@@ -461,6 +466,8 @@ int main(int argc, char** argv) {
             stats.struct_size = sizeof stats;
             cloth_get_stats(garments[k]->cloth, &stats);
             speed = std::max(speed, std::isfinite(stats.max_speed) ? stats.max_speed : INFINITY);
+            strain_passes[k].push_back(stats.last_strain_passes);
+            capped_frames[k] += stats.last_strain_pass_cap_hit;
         }
         worst_speed = std::max(worst_speed, speed);
         const float gap = closest_between(positions(cape), positions(skirt), 4.0f * garment_gap);
@@ -470,6 +477,8 @@ int main(int argc, char** argv) {
         closest_folds = std::min(closest_folds, fold);
         if (fold < cape_gap) ++cape_folds_touching, ok = false;
         const Phase phase = clip.phase(time);
+        if (phase == Phase::kIdle) idle_ms.push_back(step_ms.back());
+        if (phase == Phase::kTeleported) still_ms.push_back(step_ms.back());
         ok = motion.observe(pose, phase, frame, teleported, cape, skirt) && ok;
         ok = ok && speed <= o.max_speed;
         bad_frames += !ok;
@@ -511,6 +520,20 @@ int main(int argc, char** argv) {
         "cost per free particle: %.3f us a frame at p50 (Kim, Chentanez and Mueller 2012: a 1,500-vertex "
         "dress at 0.67 us a vertex on one 2012 core)\n",
         per_particle_us);
+
+    for (int k = 0; k < 2; ++k) {
+        std::printf(
+            "strain passes of the %s: p50 %.0f, max %.0f a frame; stopped at their cap in %d frames (%.1f "
+            "%%)\n",
+            garments[k]->name.c_str(), percentile(strain_passes[k], 0.5), percentile(strain_passes[k], 1.0),
+            capped_frames[k], 100.0 * capped_frames[k] / std::max(frames_run, 1));
+    }
+    if (!idle_ms.empty() && !still_ms.empty()) {
+        std::printf(
+            "standing still after the teleport: cloth step p50 %.3f ms, %.2fx the idle start's %.3f ms\n",
+            percentile(still_ms, 0.5), percentile(still_ms, 0.5) / percentile(idle_ms, 0.5),
+            percentile(idle_ms, 0.5));
+    }
 
     std::printf("\nchecks over %d frames:\n", frames_run);
     for (int k = 0; k < 2; ++k) {
