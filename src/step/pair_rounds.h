@@ -27,7 +27,8 @@ namespace cloth {
 class PairRounds {
   public:
     // The pair's stage as one cloth's plan sees it (base/staged.h): no
-    // task until both sides arrived, then side 0 runs the pair's rounds.
+    // task until both sides arrived, then side 0 (side 1 while side 0
+    // sleeps) runs the pair's rounds.
     class Side final : public StagedAlgorithm {
       public:
         void bind(PairRounds* pair, uint32_t side) { pair_ = pair, side_ = side; }
