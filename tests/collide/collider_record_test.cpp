@@ -7,8 +7,8 @@
 // frame; where they kick through the cloth, the passes pull particles
 // after the ones a leg pushed, past their records, and the round after the
 // last pass (every collider) still ends every frame with no particle
-// deeper in a leg or the sphere than 1 mm past the full test's deepest. And the stats say what the strain limiter's
-// passes did.
+// deeper in a leg or the sphere than 1 mm past the full test's deepest. And the stats say what the strain
+// limiter's passes did.
 #include <cloth/cloth.h>
 #include <gtest/gtest.h>
 
@@ -71,7 +71,9 @@ struct KickedCloth {
     }
     ~KickedCloth() { EXPECT_EQ(cloth_world_destroy(world), CLOTH_OK); }
     // The legs swing forward and back.
-    float swing(int frame) const { return amplitude * std::sin(omega * static_cast<float>(frame + 1) * kFrame); }
+    float swing(int frame) const {
+        return amplitude * std::sin(omega * static_cast<float>(frame + 1) * kFrame);
+    }
     void step(int frame) {
         const float position[3] = {0.0f, 0.0f, swing(frame)};
         const float rotation[4] = {0.0f, 0.0f, 0.0f, 1.0f};
