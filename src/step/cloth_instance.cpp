@@ -213,7 +213,7 @@ void ClothInstance::set_sleep(const SleepSettings& settings) {
 
 void ClothInstance::wake() {
     end_sleep();
-    quiet_ = false;
+    last_.quiet = false;
 }
 
 void ClothInstance::end_sleep() {
@@ -289,7 +289,7 @@ void ClothInstance::set_backstops(const float* distances, const float* radii) {
 
 float ClothInstance::moved_speed_squared() const {
     if (frame_.backup == FrameBackup::kFirstIntegration) return -1.0f;
-    const float frame = frame_.h * static_cast<float>(frame_.solver.substeps);
+    const float frame = frame_.h * static_cast<float>(frame_.decision.solver.substeps);
     if (!(frame > 0)) return -1.0f;
     float most = 0;
     for (uint32_t i = 0; i < particle_count(); ++i) {

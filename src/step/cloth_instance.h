@@ -66,14 +66,22 @@ class ClothInstance {
     // (frame_rounds.h) for one cloth here and for all of a world's cloths in
     // World::step. Serial calls are made on the stepping thread; run_task
     // on any worker, concurrently for different tasks of one stage:
-    //   begin_frame(dt, gravity)
+    //   in = frame_inputs(dt, budget)                      // what the frame is decided on
+    //   decision = decide_frame(in)                         // frame_decision.h: pure
+    //   open_frame(dt, decision)                            // the state it starts from (carrier)
+    //   [cloths in contact: share_substeps(decision, ...)] // the world, before the frame starts
+    //   begin_frame(in, decision, gravity)
     //   while (!frame_done()) {
     //       prepare_stage();                               // serial
     //       run_task(t, worker) for t in [0, task_count()) // parallel
     //       finish_stage();                                // serial, after the barrier
     //   }
     //   end_frame()
-    void begin_frame(float dt, const Vec3& gravity);
+    FrameInputs frame_inputs(float dt, const BudgetBounds& budget) const;
+    void open_frame(float dt, const FrameDecision& decision);
+    void begin_frame(const FrameInputs& in, const FrameDecision& decision, const Vec3& gravity);
+    // The first four for a cloth outside any budget or pair (step()).
+    void begin_frame_alone(float dt, const Vec3& gravity);
     bool frame_done() const { return frame_.done; }
     Stage stage() const;  // the stage the current round belongs to
     uint32_t substep() const { return frame_.substep; }
@@ -145,7 +153,7 @@ class ClothInstance {
     bool last_step_ran() const { return frame_.h > 0; }
     // The strain limit the last step ran with (0: none).
     float ran_strain_limit() const {
-        const StrainLimit& limit = frame_.solver.strain_limit;
+        const StrainLimit& limit = frame_.decision.solver.strain_limit;
         return limit.iterations > 0 ? limit.max_strain : 0.0f;
     }
 
@@ -184,7 +192,7 @@ class ClothInstance {
     SolverSettings& solver() { return solver_; }
     const SolverSettings& solver() const { return solver_; }
     // What the last frame ran: CLOTH_SOLVER_DEFAULT's choice, caps and theta.
-    const SolverSettings& last_frame_solver() const { return frame_.solver; }
+    const SolverSettings& last_frame_solver() const { return frame_.decision.solver; }
     // New solver settings from the host: a quality policy's caps and its
     // memory of what each rung cost go with the old ones.
     void set_solver(const SolverSettings& settings);
@@ -213,13 +221,9 @@ class ClothInstance {
         return ParticleView{fabric_.get(), &x_, &v_, mass_.data(), pinned_.data(), steps};
     }
     // Contact with other cloths this frame (World::step, between
-    // begin_frame and the first round): the substeps the cloth shares with
-    // them (raised, never lowered), and its side of each pair, in the
-    // world's pair order (step/pair_rounds.h).
-    void take_substeps(uint32_t substeps);
+    // begin_frame and the first round): the cloth's side of each pair, in
+    // the world's pair order (step/pair_rounds.h).
     void join_pair(PairRounds::Side* side);
-    uint32_t frame_substeps() const { return frame_.solver.substeps; }
-    float frame_dt() const { return frame_.dt; }
     const Vec3Soa& velocities() const { return v_; }
     const HostVector<float>& masses() const { return mass_; }
     // Unit area-weighted vertex normals of the reported positions.
@@ -313,8 +317,6 @@ class ClothInstance {
     void respond_to_pairs(const GroupTask& task);
     bool pair_stage() const;
     PairRounds::Side& planned_pair() const;
-    // Substeps past the substep gamma run backward Euler (begin_frame, take_substeps).
-    void hold_theta_within_gamma();
     /// Free particles into their max distances, out of their backstops
     /// (after the colliders, so the skin wins; also after each strain-limit pass).
     void constrain_to_skin(const GroupTask& task);
@@ -384,34 +386,23 @@ class ClothInstance {
     HostVector<uint8_t> strain_maybe_over_;    // its scratch, one per particle (StrainLimitPass)
     HostVector<float> strain_pull_;            // and its pull weights, one per particle
     bool tethers_follow_pins_ = false;         // planned for the current pin set
-    // The last successful frame's last substep ended past the strain
-    // limit's promise, so the next runs backward Euler (solver_default.h);
-    // saved in snapshots.
-    bool strained_ = false;
+    // What the next frame reads from the last (frame_decision.h); its
+    // strained and quiet flags are saved in snapshots.
+    LastFrameRecord last_;
     uint32_t group_count_ = 0;
     FrameContext frame_;  // the frame in progress, or the last one
 
     void update_sleep();  // end of a successful frame
-    // Whether a frame of `dt` starts quiet (solver_default.h,
-    // kDefaultQuietSpeed): it starts slow (frame_.started_slow), the last
-    // frame started slow too with no spring past the strain limit and no
-    // change by the host since (quiet_), no pin moves faster, and the
-    // cloth follows no bodies (as for sleep) and has no skin. Two slow
-    // frame ends in a row: a swing's turning point, where the speed passes
-    // through zero, has one.
-    bool starts_quiet(float dt) const;
     // Bodies move without a call on the cloth, and a skin moves it each
     // frame: such a cloth is never quiet, and pays for no speed check.
     bool may_be_quiet() const { return !contact_.follows_bodies() && !skin_.active(); }
     bool free_particles_slower_than(float speed) const;
+    // Whether no pin moves faster than `speed` to its target over a frame of `dt`.
+    bool pins_slower_than(float speed, float dt) const;
     // The largest speed of a free particle relative to the mean velocity
     // of the pinned particles (of all, without pins): its motion within
     // the cloth, whatever carries it.
     float fastest_free_speed_relative_to_pins() const;
-    // The last frame started slow with no spring past the strain limit,
-    // and the host has not changed the cloth since (wake); saved in
-    // snapshots.
-    bool quiet_ = false;
     void end_sleep();  // wake(), but a quiet cloth stays quiet
     // The largest squared speed of a particle's move over the frame, from
     // the frame's start positions (in frame_.backup_x); -1 when they are

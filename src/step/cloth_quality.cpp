@@ -21,8 +21,9 @@ SolverSettings ClothQuality::settings() const {
     if (solver_.kind != CLOTH_SOLVER_DEFAULT) return solver_;
     SolverSettings out = solver_;
     out.iterations =
-        solver_.default_iteration_cap > 0 ? solver_.default_iteration_cap : frame_.solver.iterations;
-    out.substeps = solver_.default_substep_cap > 0 ? solver_.default_substep_cap : frame_.solver.substeps;
+        solver_.default_iteration_cap > 0 ? solver_.default_iteration_cap : frame_.decision.solver.iterations;
+    out.substeps =
+        solver_.default_substep_cap > 0 ? solver_.default_substep_cap : frame_.decision.solver.substeps;
     return out;
 }
 
@@ -33,14 +34,15 @@ void ClothQuality::set_settings(const SolverSettings& settings) {
     }
     // Caps at or above the default's own choice of the last frame change
     // nothing: drop them, so the default follows its own choice again.
-    const bool below = settings.iterations < frame_.own_iterations || settings.substeps < frame_.own_substeps;
+    const bool below = settings.iterations < frame_.decision.own_iterations ||
+                       settings.substeps < frame_.decision.own_substeps;
     solver_.default_iteration_cap = below ? settings.iterations : 0;
     solver_.default_substep_cap = below ? settings.substeps : 0;
 }
 
 QualityLadder ClothQuality::ladder() const {
     const QualityRung top = solver_.kind == CLOTH_SOLVER_DEFAULT
-                                ? QualityRung{frame_.own_iterations, frame_.own_substeps}
+                                ? QualityRung{frame_.decision.own_iterations, frame_.decision.own_substeps}
                                 : QualityRung{policy_.max_iterations, policy_.max_substeps};
     return {top, policy_.min_iterations, policy_.min_substeps, policy_.max_update_rate};
 }
@@ -50,13 +52,15 @@ bool ClothQuality::can_rise() const {
            solver_.default_substep_cap > 0 || (policy_.max_update_rate > 1 && rate() > 1);
 }
 
-bool ClothQuality::below_floor() const {
-    if (!policy_.enabled) return false;
-    const bool lowered =
-        solver_.kind == CLOTH_SOLVER_DEFAULT
-            ? frame_.solver.iterations < frame_.own_iterations || frame_.solver.substeps < frame_.own_substeps
-            : solver_.iterations < policy_.max_iterations || solver_.substeps < policy_.max_substeps;
-    return lowered && frame_.solver.iterations < ladder().floor();
+BudgetBounds ClothQuality::bounds() const {
+    BudgetBounds b;
+    b.enabled = policy_.enabled;
+    b.min_iterations = policy_.min_iterations;
+    b.max_iterations = policy_.max_iterations;
+    b.max_substeps = policy_.max_substeps;
+    b.iteration_cap = solver_.default_iteration_cap;
+    b.substep_cap = solver_.default_substep_cap;
+    return b;
 }
 
 }  // namespace cloth

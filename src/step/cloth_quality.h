@@ -36,6 +36,8 @@ class ClothQuality {
     // Enabling clamps the solver settings into the bounds; either way the
     // default's caps and the cost memory go.
     void set_policy(const QualityPolicy& policy);
+    // The bounds and caps the frame's decision reads (frame_decision.h).
+    BudgetBounds bounds() const;
     QualityCosts& costs() { return costs_; }
     const QualityCosts& costs() const { return costs_; }
 
@@ -52,9 +54,11 @@ class ClothQuality {
     // ladder that put it there (fewer substeps where a budget's cap would
     // have made a substep too long: frame_plan.cpp).
     QualityLadder ladder() const;
-    QualityRung ran_rung() const { return {frame_.solver.iterations, frame_.solver.substeps, rate_.rate()}; }
+    QualityRung ran_rung() const {
+        return {frame_.decision.solver.iterations, frame_.decision.solver.substeps, rate_.rate()};
+    }
     QualityRung capped_rung() const {
-        return {frame_.solver.iterations, frame_.capped_substeps, rate_.rate()};
+        return {frame_.decision.solver.iterations, frame_.decision.capped_substeps, rate_.rate()};
     }
     // The update rate the policy wants (set_rate), or the cloth's own.
     // The world applies a wanted rate after the policy's decision
@@ -71,10 +75,6 @@ class ClothQuality {
     bool rate_cut() const { return rate_cut_; }
     // Whether the policy may raise it: not a default running its own choice.
     bool can_rise() const;
-    // Whether the policy has taken this frame below its ladder's floor
-    // (fewer iterations than half the top's): a solve that no longer holds
-    // the cloth, whose strain limit then runs only the passes asked for.
-    bool below_floor() const;
 
   private:
     SolverSettings& solver_;

@@ -117,8 +117,8 @@ void ClothInstance::save_snapshot(void* out) const {
     h.substeps = solver_.substeps;
     h.sleeping = sleeping_ ? 1 : 0;
     h.rest_frames = rest_frames_;
-    h.flags = (strained_ ? kStrainedFlag : 0) | (held_asleep_ ? kHeldAsleepFlag : 0) |
-              (snapshot_has_skin() ? kSkinFlag : 0) | (quiet_ ? kQuietFlag : 0);
+    h.flags = (last_.strained ? kStrainedFlag : 0) | (held_asleep_ ? kHeldAsleepFlag : 0) |
+              (snapshot_has_skin() ? kSkinFlag : 0) | (last_.quiet ? kQuietFlag : 0);
     for (int c = 0; c < 3; ++c) h.wind[c] = aero_.wind[c];
     h.air_density = aero_.air_density;
     h.drag_coefficient = aero_.drag_coefficient;
@@ -271,8 +271,8 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
     contact_.forget_sleep();
     if (held_asleep_) contact_.fall_asleep();  // a carrier is caught up with from where it is now
     rest_frames_ = h.rest_frames;
-    strained_ = (h.flags & kStrainedFlag) != 0;
-    quiet_ = (h.flags & kQuietFlag) != 0;
+    last_.strained = (h.flags & kStrainedFlag) != 0;
+    last_.quiet = (h.flags & kQuietFlag) != 0;
     update_rate_.settle();  // reports show the restored state at once
     return {};
 }

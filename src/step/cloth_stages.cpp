@@ -26,17 +26,19 @@ AssemblyPass ClothInstance::assembly() const {
 }
 
 SpringModel ClothInstance::spring_model() const {
-    SpringModel model = SpringModel::make(frame_.solver.compression_safe_jacobian);
+    SpringModel model = SpringModel::make(frame_.decision.solver.compression_safe_jacobian);
     // The strain cable (springs.h) with a strain limit and an implicit
     // solver; the explicit integrator, whose step a spring 100 times
     // stiffer would blow up, relies on the projection passes alone.
-    if (frame_.solver.strain_limit.max_strain > 0 && frame_.solver.kind != CLOTH_SOLVER_EXPLICIT) {
+    if (frame_.decision.solver.strain_limit.max_strain > 0 &&
+        frame_.decision.solver.kind != CLOTH_SOLVER_EXPLICIT) {
         // The passes hold the limit, or what the pins demand where that is
         // more (Tethers::strain_pins_demand). The default's cable takes a
         // held cloth's load just inside that, where the passes leave it at
         // rest (solver_default.h).
         const bool inside = solver_.kind == CLOTH_SOLVER_DEFAULT;
-        const float limit = frame_.solver.strain_limit.max_strain, demand = frame_.strain_pins_demand;
+        const float limit = frame_.decision.solver.strain_limit.max_strain,
+                    demand = frame_.strain_pins_demand;
         float cable = std::max(limit, demand);
         if (inside)
             cable =
@@ -128,7 +130,7 @@ CLOTH_HOT_LOOP void ClothInstance::evaluate_forces(const GroupTask& task) {
     uint32_t spring_begin, spring_end;
     task.items(springs_->item_count(), spring_begin, spring_end);
     // h = 0: plain forces; the theta step takes them at theta h (integrate.h).
-    const float h = frame_.solver.kind == CLOTH_SOLVER_EXPLICIT ? 0.0f : frame_.theta * frame_.h;
+    const float h = frame_.decision.solver.kind == CLOTH_SOLVER_EXPLICIT ? 0.0f : frame_.theta * frame_.h;
     springs_->evaluate(x_, v_, h, spring_model(), spring_begin, spring_end);
 }
 
@@ -151,7 +153,8 @@ void ClothInstance::assemble_system(const GroupTask& task) {
 void ClothInstance::solve_by_cg(const GroupTask&) {
     expect_stage(Stage::kSerialSolve);
     try {
-        last_solve_ = solve_cg(system(), frame_.solver.cg_tolerance, frame_.solver.cg_max_iterations, dv_);
+        last_solve_ = solve_cg(system(), frame_.decision.solver.cg_tolerance,
+                               frame_.decision.solver.cg_max_iterations, dv_);
     } catch (const std::bad_alloc&) {
         frame_.out_of_memory = true;  // end_frame restores the cloth
     }
@@ -160,7 +163,8 @@ void ClothInstance::solve_by_cg(const GroupTask&) {
 void ClothInstance::record_cg_result() { frame_.converged = frame_.converged && last_solve_.converged; }
 
 void ClothInstance::iterate_solver(const GroupTask& task) {
-    expect_stage(frame_.solver.kind == CLOTH_SOLVER_JACOBI ? Stage::kJacobiSweep : Stage::kIterativeSolve);
+    expect_stage(frame_.decision.solver.kind == CLOTH_SOLVER_JACOBI ? Stage::kJacobiSweep
+                                                                    : Stage::kIterativeSolve);
     frame_.iterative.run(task);
 }
 
@@ -198,7 +202,7 @@ void ClothInstance::hold_to_skin(const GroupTask& task, bool prepared) {
 }
 
 float ClothInstance::substep_end_fraction() const {
-    return static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.solver.substeps);
+    return static_cast<float>(frame_.substep + 1) / static_cast<float>(frame_.decision.solver.substeps);
 }
 
 void ClothInstance::collide_stage(const GroupTask& task) {
@@ -213,7 +217,8 @@ void ClothInstance::note_contacts() {
 
 void ClothInstance::collide(const GroupTask& task, ClothContact::Pass pass, uint32_t* contacts) {
     // Particles against the world's colliders over this substep (colliders.h).
-    const float from = static_cast<float>(frame_.substep) / static_cast<float>(frame_.solver.substeps);
+    const float from =
+        static_cast<float>(frame_.substep) / static_cast<float>(frame_.decision.solver.substeps);
     const float to = substep_end_fraction();
     const uint32_t found =
         contact_.collide(frame_.h, from, to, pinned_.data(), task.begin, task.end, x_, v_, pass);

@@ -16,6 +16,7 @@
 #include "solve/iterative_solve.h"
 #include "solve/solver_settings.h"
 #include "solve/strain_limit.h"
+#include "step/frame_decision.h"
 #include "step/limit_rounds.h"
 #include "step/pair_rounds.h"
 #include "step/step_stage.h"
@@ -69,14 +70,8 @@ struct FrameContext {
         group_contacts.assign(groups, 0);
     }
 
-    // What this frame runs: the cloth's solver settings with
-    // CLOTH_SOLVER_DEFAULT resolved, and what the default chose by itself,
-    // within a quality policy's maxima and before its caps.
-    SolverSettings solver;
-    uint32_t own_iterations = 0, own_substeps = 0;
-    // The substeps a budget's cap left, before the longest-substep floor
-    // (frame_plan.cpp) added any: the rung the budget put the cloth on.
-    uint32_t capped_substeps = 0;
+    // What this frame runs (frame_decision.h), decided before it started.
+    FrameDecision decision;
 
     float h = 0;   // substep length, s
     float dt = 0;  // frame length, s
@@ -95,7 +90,6 @@ struct FrameContext {
     bool limit_held = false;     // a substep's strain limiter found a spring past the limit
     uint32_t strain_passes = 0;  // the strain limiter's passes, over the frame's substeps
     bool strain_capped = false;  // a substep's passes stopped at their cap (StrainLimiter::capped)
-    bool started_slow = false;   // no free particle faster than kDefaultQuietSpeed at its start
     bool collides = false;       // this frame runs the collision stage
     bool touching = false;       // this substep's collision stage found a contact
     // The colliders' pass of the current round between the strain limiter's

@@ -40,10 +40,10 @@ using C = ClothInstance;
 void ClothInstance::plan_substep() {
     frame_.plan_size = 0;
     frame_.solution = &dv_;  // where the solver leaves dv (JACOBI: record_iterative_result says)
-    frame_.theta = frame_.strained ? 1.0f : frame_.solver.theta;
+    frame_.theta = frame_.strained ? 1.0f : frame_.decision.solver.theta;
     frame_.touching = false;
     frame_.colliders_recorded = false;
-    const cloth_solver_kind kind = frame_.solver.kind;
+    const cloth_solver_kind kind = frame_.decision.solver.kind;
     if (frame_.substep == 0 && skin_.active())
         plan(Stage::kSkinning, &C::skin_particles, &C::finish_skinning);
     frame_.pins_move_at = frame_.plan_size;  // the skin gives its pins their targets first
@@ -84,33 +84,29 @@ void ClothInstance::plan_substep() {
 
 StagedAlgorithm* ClothInstance::begin_iterative_solve() {
     // The physical stop (SolverSettings::velocity_tolerance) in r.z's units.
-    const double v_tol = frame_.solver.velocity_tolerance;
-    frame_.iterative.begin(frame_.solver.kind, frame_.solver.iterations, frame_.solver.cg_tolerance,
+    const double v_tol = frame_.decision.solver.velocity_tolerance;
+    frame_.iterative.begin(frame_.decision.solver.kind, frame_.decision.solver.iterations,
+                           frame_.decision.solver.cg_tolerance,
                            {system(), assembly(), &dv_, &solver_work_, &dv_scratch_,
-                            frame_.solver.multigrid ? &multigrid_ : nullptr},
+                            frame_.decision.solver.multigrid ? &multigrid_ : nullptr},
                            frame_.lightest_free_mass * v_tol * v_tol);
     return &frame_.iterative;
 }
 
 bool ClothInstance::limits_strain() const {
-    const StrainLimit& limit = frame_.solver.strain_limit;
+    const StrainLimit& limit = frame_.decision.solver.strain_limit;
     return limit.max_strain > 0 && limit.iterations > 0;
 }
 
 StagedAlgorithm* ClothInstance::begin_strain_limit() {
-    const StrainLimit& limit = frame_.solver.strain_limit;
+    const StrainLimit& limit = frame_.decision.solver.strain_limit;
     const StrainLimitPass pass{
         fabric_.get(),       mass_.data(),       pinned_.data(), limit.max_strain, strain_maybe_over_.data(),
         strain_pull_.data(), holds_compression()};
-    const bool accelerate = frame_.solver.kind != CLOTH_SOLVER_EXPLICIT;  // strain_limit.h
-    // The passes past those asked for are quality the budget cannot
-    // predict: a cloth a quality policy has taken below its floor runs
-    // without them, since behind a solve that no longer holds the cloth
-    // they grow, and the frame with them (docs/vehicle_flag.md).
-    const uint32_t most =
-        quality_.below_floor() ? limit.iterations : kStrainLimitMorePasses * limit.iterations;
+    const bool accelerate = frame_.decision.solver.kind != CLOTH_SOLVER_EXPLICIT;  // strain_limit.h
     frame_.strain_limiter.begin(pass, limit.iterations, frame_.h, x_, v_, solver_work_.r, solver_work_.z,
-                                accelerate, &grid_strain_terms_, &tethers_, stretch_counts_.data(), most);
+                                accelerate, &grid_strain_terms_, &tethers_, stretch_counts_.data(),
+                                frame_.decision.strain_passes_cap);
     frame_.limit_rounds.begin(&frame_.strain_limiter, frame_.collides, &frame_.touching,
                               self_collision_.get(), &x_, &v_);
     return &frame_.limit_rounds;
@@ -129,7 +125,7 @@ Status ClothInstance::step(float dt, const Vec3& gravity, TaskSystem* tasks) {
     TaskSystem& runner = tasks ? *tasks : serial;
     if (woken_by_bodies()) wake();
     if (sleeping_) return {};
-    begin_frame(dt, gravity);
+    begin_frame_alone(dt, gravity);
     ClothInstance* self = this;
     auto body = [this](uint32_t begin, uint32_t end, uint32_t worker) {
         for (uint32_t t = begin; t < end; ++t) run_task(t, worker);
@@ -138,59 +134,36 @@ Status ClothInstance::step(float dt, const Vec3& gravity, TaskSystem* tasks) {
     return end_frame();
 }
 
-void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
+void ClothInstance::begin_frame_alone(float dt, const Vec3& gravity) {
+    const FrameInputs in = frame_inputs(dt, quality_.bounds());
+    const FrameDecision decision = decide_frame(in);
+    open_frame(dt, decision);
+    begin_frame(in, decision, gravity);
+}
+
+FrameInputs ClothInstance::frame_inputs(float dt, const BudgetBounds& budget) const {
+    FrameInputs in;
+    in.host = solver_;
+    in.dt = dt;
+    const bool by_default = solver_.kind == CLOTH_SOLVER_DEFAULT;
     // Only the default solver's choice depends on k / m (a pass over every particle).
-    const float lightest = solver_.kind == CLOTH_SOLVER_DEFAULT
-                               ? lightest_free_mass(mass_.data(), pinned_.data(), particle_count())
-                               : 0.0f;
-    const float stiffness_per_mass = stiffness_over_mass(material_, lightest);
-    frame_.dt = dt;
-    frame_.stiffness_per_mass = stiffness_per_mass;
-    frame_.pair_count = 0;
-    frame_.solver = resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty());
-    frame_.lightest_free_mass = frame_.solver.velocity_tolerance > 0 ? lightest : 0.0f;
-    frame_.strained = strained_;
-    // The default's own choice within a quality policy's maxima (the
-    // host's bounds), then the policy's caps on it (ClothQuality::settings): the
-    // host's budget wins.
-    const QualityPolicy& policy = quality_.policy();
-    if (policy.enabled && solver_.kind == CLOTH_SOLVER_DEFAULT) {
-        frame_.solver.iterations = std::min(frame_.solver.iterations, policy.max_iterations);
-        frame_.solver.substeps = std::min(frame_.solver.substeps, policy.max_substeps);
-    }
-    frame_.own_iterations = frame_.solver.iterations;
-    frame_.own_substeps = frame_.solver.substeps;
-    if (solver_.default_iteration_cap > 0)
-        frame_.solver.iterations = std::min(frame_.solver.iterations, solver_.default_iteration_cap);
-    if (solver_.default_substep_cap > 0)
-        frame_.solver.substeps = std::min(frame_.solver.substeps, solver_.default_substep_cap);
-    // A quiet cloth's fewer substeps come last: its own choice, which a
-    // budget's ladder starts from, is that of a moving cloth.
-    frame_.started_slow = solver_.kind == CLOTH_SOLVER_DEFAULT && may_be_quiet() &&
-                          free_particles_slower_than(kDefaultQuietSpeed);
-    if (starts_quiet(dt)) {
-        const SolverSettings quiet =
-            resolve_solver(solver_, dt, stiffness_per_mass, !multigrid_.empty(), true);
-        if (quiet.substeps < frame_.solver.substeps) {
-            frame_.solver.substeps = quiet.substeps;
-            frame_.solver.theta = quiet.theta;
-        }
-    }
-    frame_.capped_substeps = frame_.solver.substeps;
-    // Down to the ladder's floor a budget's cap never stretches a substep
-    // past longest_capped_substep (a slow update rate's step is long:
-    // solver_default.h); below it the budget wins and the strain gives, as
-    // the strain limit's passes do there (cloth_quality.h).
-    if (solver_.default_substep_cap > 0 && !quality_.below_floor()) {
-        // frame_.h is still the last step's substep (0 before the first).
-        const float longest = longest_capped_substep(frame_.h, fastest_free_speed_relative_to_pins(),
-                                                     mean_structural_rest_length_);
-        const auto least = static_cast<uint32_t>(std::min(std::ceil(static_cast<double>(dt) / longest - 1e-4),
-                                                          static_cast<double>(frame_.own_substeps)));
-        frame_.solver.substeps = std::max(frame_.solver.substeps, least);
-    }
-    hold_theta_within_gamma();
-    if (contact_.carrier().active() || frame_.solver.kind == CLOTH_SOLVER_EXPLICIT) {
+    const float lightest =
+        by_default ? lightest_free_mass(mass_.data(), pinned_.data(), particle_count()) : 0.0f;
+    in.stiffness_per_mass = stiffness_over_mass(material_, lightest);
+    in.multigrid = !multigrid_.empty();
+    in.budget = budget;
+    in.last = last_;
+    // Each scan of the particles only where the decision reads it.
+    in.starts_slow = by_default && may_be_quiet() && free_particles_slower_than(kDefaultQuietSpeed);
+    in.pins_slow = last_.quiet && in.starts_slow && pins_slower_than(kDefaultQuietSpeed, dt);
+    if (budget.substep_cap > 0) in.fastest_free_speed = fastest_free_speed_relative_to_pins();
+    in.mean_rest_length = mean_structural_rest_length_;
+    in.lightest_free_mass = lightest;
+    return in;
+}
+
+void ClothInstance::open_frame(float dt, const FrameDecision& decision) {
+    if (contact_.carrier().active() || decision.solver.kind == CLOTH_SOLVER_EXPLICIT) {
         frame_.backup = FrameBackup::kCopied;
         frame_.backup_x = x_;
         frame_.backup_v = v_;
@@ -201,13 +174,22 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     contact_.begin_step(dt, pinned_.data(), x_, v_);  // carrier (no pass without one)
     frame_.collides = contact_.collides();
     for (uint32_t i : pinned_list_) frame_.pin_start.set(i, x_.get(i));
-    if (frame_.solver.strain_limit.max_strain > 0 && !tethers_follow_pins_) {
+    // A teleport of the carrier is one of the character the skin is on.
+    if (skin_.active()) skin_.begin_frame(contact_.carrier().teleported());
+    frame_.dt = dt;
+    frame_.pair_count = 0;
+}
+
+void ClothInstance::begin_frame(const FrameInputs& in, const FrameDecision& decision, const Vec3& gravity) {
+    frame_.decision = decision;
+    frame_.stiffness_per_mass = in.stiffness_per_mass;
+    frame_.lightest_free_mass = decision.solver.velocity_tolerance > 0 ? in.lightest_free_mass : 0.0f;
+    frame_.strained = last_.strained;
+    if (frame_.decision.solver.strain_limit.max_strain > 0 && !tethers_follow_pins_) {
         tethers_.plan(*fabric_, pinned_.data());
         tethers_follow_pins_ = true;
     }
-    // A teleport of the carrier is one of the character the skin is on.
-    if (skin_.active()) skin_.begin_frame(contact_.carrier().teleported());
-    frame_.h = dt / static_cast<float>(frame_.solver.substeps);
+    frame_.h = decision.h;
     frame_.gravity = gravity;
     frame_.converged = true;
     frame_.limit_held = false;
@@ -218,24 +200,6 @@ void ClothInstance::begin_frame(float dt, const Vec3& gravity) {
     frame_.substep = frame_.entry = frame_.round = 0;
     plan_substep();
     frame_.done = false;
-}
-
-void ClothInstance::hold_theta_within_gamma() {
-    // Substeps past the substep gamma run backward Euler, whether the
-    // default's most substeps, a cap or a partner in contact put them
-    // there (resolve_solver).
-    if (solver_.kind == CLOTH_SOLVER_DEFAULT &&
-        !within_substep_gamma(frame_.dt, frame_.stiffness_per_mass, frame_.solver.substeps,
-                              !multigrid_.empty()))
-        frame_.solver.theta = 1.0f;
-}
-
-void ClothInstance::take_substeps(uint32_t substeps) {
-    if (substeps <= frame_.solver.substeps) return;
-    frame_.solver.substeps = substeps;
-    hold_theta_within_gamma();
-    frame_.h = frame_.dt / static_cast<float>(substeps);
-    plan_substep();
 }
 
 void ClothInstance::join_pair(PairRounds::Side* side) {
@@ -269,9 +233,8 @@ bool ClothInstance::free_particles_slower_than(float speed) const {
     return true;
 }
 
-bool ClothInstance::starts_quiet(float dt) const {
-    if (!quiet_ || !frame_.started_slow) return false;  // started_slow implies may_be_quiet
-    const float farthest = kDefaultQuietSpeed * kDefaultQuietSpeed * dt * dt;
+bool ClothInstance::pins_slower_than(float speed, float dt) const {
+    const float farthest = speed * speed * dt * dt;
     for (uint32_t i : pinned_list_) {
         if ((pin_target_.get(i) - x_.get(i)).squaredNorm() > farthest) return false;
     }
@@ -340,7 +303,7 @@ uint32_t ClothInstance::task_count() const {
 
 bool ClothInstance::final_round() const {
     const PlannedStage& s = planned();
-    return frame_.substep + 1 == frame_.solver.substeps && frame_.entry + 1 == frame_.plan_size &&
+    return frame_.substep + 1 == frame_.decision.solver.substeps && frame_.entry + 1 == frame_.plan_size &&
            (!s.rounds || s.rounds->last_round());
 }
 
@@ -381,7 +344,7 @@ void ClothInstance::finish_stage() {
     }
     frame_.round = 0;
     if (++frame_.entry < frame_.plan_size) return;
-    if (++frame_.substep == frame_.solver.substeps) {
+    if (++frame_.substep == frame_.decision.solver.substeps) {
         frame_.done = true;
         return;
     }
@@ -391,6 +354,7 @@ void ClothInstance::finish_stage() {
 
 Status ClothInstance::end_frame() {
     frame_.done = true;
+    last_.h = frame_.h;
     if (frame_.out_of_memory) {
         // Only the CG reference solver allocates during a step.
         restore_frame_start();
@@ -408,8 +372,8 @@ Status ClothInstance::end_frame() {
             "the step (lower dt, raise substeps or iterations, or use a sturdier solver)");
     }
     last_step_result_ = frame_.converged ? CLOTH_OK : CLOTH_ERROR_SOLVER_FAILED;
-    strained_ = frame_.strained;
-    quiet_ = frame_.started_slow && !frame_.limit_held;
+    last_.strained = frame_.strained;
+    last_.quiet = frame_.decision.started_slow && !frame_.limit_held;
     update_sleep();
     if (!frame_.converged) {
         return Status::error(CLOTH_ERROR_SOLVER_FAILED,

@@ -2,15 +2,15 @@
 
 #include <algorithm>
 
+#include "step/frame_decision.h"
+
 namespace cloth {
 
 uint32_t QualityLadder::fewest_substeps() const { return std::min(min_substeps, top.substeps); }
 
 uint32_t QualityLadder::fewest_iterations() const { return std::min(min_iterations, top.iterations); }
 
-uint32_t QualityLadder::floor() const {
-    return std::clamp((top.iterations + 1) / 2, fewest_iterations(), top.iterations);
-}
+uint32_t QualityLadder::floor() const { return ladder_floor(top.iterations, min_iterations); }
 
 bool QualityLadder::at_or_below_floor(QualityRung rung) const {
     return rung.substeps == fewest_substeps() && rung.iterations <= floor();

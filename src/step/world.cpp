@@ -22,6 +22,9 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       pool_(desc.enqueue_task ? 1 : desc.worker_count),
       stepping_(HostAllocator<uint32_t>(&memory_)),
       stepping_cloths_(HostAllocator<ClothInstance*>(&memory_)),
+      stepping_index_(HostAllocator<uint32_t>(&memory_)),
+      frame_inputs_(HostAllocator<FrameInputs>(&memory_)),
+      decisions_(HostAllocator<FrameDecision>(&memory_)),
       unit_parent_(HostAllocator<uint32_t>(&memory_)),
       units_(HostAllocator<uint32_t>(&memory_)),
       unit_begin_(HostAllocator<uint32_t>(&memory_)),
@@ -39,6 +42,9 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
     cloths_.make_all_slots();
     stepping_.reserve(desc.max_cloths);
     stepping_cloths_.reserve(desc.max_cloths);
+    stepping_index_.assign(desc.max_cloths, kNotStepping);
+    frame_inputs_.reserve(desc.max_cloths);
+    decisions_.reserve(desc.max_cloths);
     unit_parent_.reserve(desc.max_cloths);
     units_.reserve(desc.max_cloths);
     unit_begin_.reserve(size_t{desc.max_cloths} + 1);
@@ -247,6 +253,9 @@ Status World::step(float dt) {
     const bool timed = timing();
     stepping_.clear();
     stepping_cloths_.clear();
+    frame_inputs_.clear();
+    decisions_.clear();
+    std::fill(stepping_index_.begin(), stepping_index_.end(), kNotStepping);
     for (uint32_t s = 0; s < cloths_.size(); ++s) {
         ClothInstance* cloth = cloths_[s].object.get();
         if (!cloth) continue;
@@ -260,12 +269,20 @@ Status World::step(float dt) {
         // A body that carries the cloth moves frame by frame: back to rate 1.
         if (cloth->update_rate().rate() > 1 && cloth->contact().rides_bodies()) cloth->set_update_rate(1, 0);
         if (!cloth->update_rate().due(frame_)) continue;  // between its steps (update_rate.h)
-        cloth->begin_frame(dt * static_cast<float>(cloth->begin_rate_step(frame_)), gravity);
+        // The frame's decision (frame_decision.h), made once before it starts.
+        const float step_dt = dt * static_cast<float>(cloth->begin_rate_step(frame_));
+        const FrameInputs& in =
+            frame_inputs_.emplace_back(cloth->frame_inputs(step_dt, cloth->quality().bounds()));
+        cloth->open_frame(step_dt, decisions_.emplace_back(decide_frame(in)));
+        stepping_index_[s] = static_cast<uint32_t>(stepping_.size());
         stepping_.push_back(s);
         stepping_cloths_.push_back(cloth);
     }
     profile_.awake_cloths = static_cast<uint32_t>(stepping_.size());
     begin_cloth_pairs();
+    for (uint32_t k = 0; k < stepping_.size(); ++k)
+        stepping_cloths_[k]->begin_frame(frame_inputs_[k], decisions_[k], gravity);
+    join_cloth_pairs();
     group_units();
     if (steps_whole_cloths()) {
         step_whole_cloths(timed);

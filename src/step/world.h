@@ -169,9 +169,12 @@ class World {
     };
     // The pair of a and b's slots in cloth_pairs_, or its size.
     size_t find_cloth_pair(uint32_t slot_a, uint32_t slot_b) const;
-    // After every stepping cloth's begin_frame: the pairs whose cloths can
-    // meet this frame join both frames, with the substeps they share.
+    // After every stepping cloth's open_frame: the pairs whose cloths can
+    // meet this frame, and the substeps they share (share_substeps on the
+    // decisions); after their begin_frame, the pairs join both frames.
     void begin_cloth_pairs();
+    void join_cloth_pairs();
+    bool steps(uint32_t slot) const { return stepping_index_[slot] != kNotStepping; }
     // After the frame: a sleeping cloth another one touched wakes.
     void end_cloth_pairs();
     void drop_cloth_pairs(uint32_t slot);
@@ -181,8 +184,13 @@ class World {
     ThreadPool pool_;  // starts no thread unless the world asked for workers and has no host callbacks
     HostVector<uint32_t> stepping_;               // slots of the cloths of the frame in progress
     HostVector<ClothInstance*> stepping_cloths_;  // and those cloths, in the same order
-    HostVector<uint32_t> unit_parent_;            // per stepping index: union-find over active pairs
-    HostVector<uint32_t> units_, unit_begin_;     // group_units()
+    static constexpr uint32_t kNotStepping = UINT32_MAX;
+    HostVector<uint32_t> stepping_index_;  // per cloth slot: its index in stepping_, or kNotStepping
+    // Per stepping cloth: what its frame is decided on, and the decision.
+    HostVector<FrameInputs> frame_inputs_;
+    HostVector<FrameDecision> decisions_;
+    HostVector<uint32_t> unit_parent_;         // per stepping index: union-find over active pairs
+    HostVector<uint32_t> units_, unit_begin_;  // group_units()
     HostVector<ClothInstance*> unit_cloths_;
     HostVector<RoundTask> round_;           // sized for every group of every cloth
     HostVector<TaskTime> round_times_;      // one slot per task of the round, written by its worker

@@ -77,8 +77,7 @@ void World::begin_cloth_pairs() {
     for (ClothPair& pair : cloth_pairs_) {
         ClothInstance& a = *cloths_[pair.slot_a].object;
         ClothInstance& b = *cloths_[pair.slot_b].object;
-        // A cloth steps this frame when begin_frame began one (World::step).
-        const bool a_steps = !a.frame_done(), b_steps = !b.frame_done();
+        const bool a_steps = steps(pair.slot_a), b_steps = steps(pair.slot_b);
         // Both step to the same frame (update_rate.h: cloths of one rate
         // in contact share a phase), or one steps beside the other asleep.
         const bool together =
@@ -86,8 +85,8 @@ void World::begin_cloth_pairs() {
         const bool beside_sleeper =
             (a_steps && !b_steps && b.sleeping()) || (b_steps && !a_steps && a.sleeping());
         const ParticleView va = a.particle_view(a_steps), vb = b.particle_view(b_steps);
-        pair.active =
-            (together || beside_sleeper) && pair.contact->near(va, vb, a_steps ? a.frame_dt() : b.frame_dt());
+        const float dt = frame_inputs_[stepping_index_[a_steps ? pair.slot_a : pair.slot_b]].dt;
+        pair.active = (together || beside_sleeper) && pair.contact->near(va, vb, dt);
         if (!pair.active) {
             pair.contact->clear();
             continue;
@@ -99,21 +98,21 @@ void World::begin_cloth_pairs() {
     for (bool raised = true; raised;) {
         raised = false;
         for (const ClothPair& pair : cloth_pairs_) {
-            ClothInstance& a = *cloths_[pair.slot_a].object;
-            ClothInstance& b = *cloths_[pair.slot_b].object;
-            if (!pair.active || a.frame_done() || b.frame_done()) continue;
-            const uint32_t most = std::max(a.frame_substeps(), b.frame_substeps());
-            raised = raised || a.frame_substeps() != b.frame_substeps();
-            a.take_substeps(most);
-            b.take_substeps(most);
+            if (!pair.active || !steps(pair.slot_a) || !steps(pair.slot_b)) continue;
+            const uint32_t ia = stepping_index_[pair.slot_a], ib = stepping_index_[pair.slot_b];
+            const uint32_t most = std::max(decisions_[ia].solver.substeps, decisions_[ib].solver.substeps);
+            raised = raised || decisions_[ia].solver.substeps != decisions_[ib].solver.substeps;
+            decisions_[ia] = share_substeps(decisions_[ia], most, frame_inputs_[ia]);
+            decisions_[ib] = share_substeps(decisions_[ib], most, frame_inputs_[ib]);
         }
     }
+}
+
+void World::join_cloth_pairs() {
     for (ClothPair& pair : cloth_pairs_) {
         if (!pair.active) continue;
-        ClothInstance& a = *cloths_[pair.slot_a].object;
-        ClothInstance& b = *cloths_[pair.slot_b].object;
-        if (!a.frame_done()) a.join_pair(&pair.rounds->side(0));
-        if (!b.frame_done()) b.join_pair(&pair.rounds->side(1));
+        if (steps(pair.slot_a)) cloths_[pair.slot_a].object->join_pair(&pair.rounds->side(0));
+        if (steps(pair.slot_b)) cloths_[pair.slot_b].object->join_pair(&pair.rounds->side(1));
     }
 }
 
