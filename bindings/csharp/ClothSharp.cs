@@ -2,7 +2,11 @@
 // written by generate.py from cloth.h). Owners that destroy what they
 // created (World, Fabric, Cloth, Body, Collider), array and Span overloads
 // for particle data, and results turned into exceptions. Everything it does
-// not wrap is one call away in Native, with each owner's Id.
+// not wrap is one call away in Native, with each owner's Id. The owners are
+// partial: their get/set properties of one shape (a cloth_get_X /
+// cloth_set_X pair of a struct, float, double or enum: Cloth.Solver,
+// Cloth.Importance, ...) are generated into ClothSharp.g.cs
+// (generate.py --properties); the pairs of other shapes are here.
 //
 // The error model (README, "Errors"): a method either does what it says or
 // throws, and a method that threw changed nothing. ClothException carries
@@ -191,7 +195,7 @@ namespace ClothSharp
     /// world never disposed is destroyed by its finalizer. Threading (cloth.h): one thread at a time
     /// calls a world and the objects in it, and none while Step runs.
     /// </summary>
-    public sealed class World : IDisposable
+    public sealed partial class World : IDisposable
     {
         // What the static callbacks reach through `user`: kept by a GCHandle for the native world's
         // lifetime. It does not reference the World, so an abandoned World can still be finalized.
@@ -682,7 +686,7 @@ namespace ClothSharp
     }
 
     /// <summary>Shared topology (cloth_fabric_id). Disposing releases the handle; cloths made of it keep working.</summary>
-    public sealed class Fabric : WorldObject
+    public sealed partial class Fabric : WorldObject
     {
         readonly ClothFabricId id;
         internal Fabric(World world, ClothFabricId id) : base(world) { this.id = id; }
@@ -713,7 +717,7 @@ namespace ClothSharp
     }
 
     /// <summary>A rigid frame the host moves (cloth_body_id). Disposing destroys its colliders and attachments too.</summary>
-    public sealed class Body : WorldObject
+    public sealed partial class Body : WorldObject
     {
         readonly ClothBodyId id;
         internal Body(World world, ClothBodyId id) : base(world) { this.id = id; }
@@ -770,7 +774,7 @@ namespace ClothSharp
     }
 
     /// <summary>A collision shape (cloth_collider_id); it dies with the body it is fixed to.</summary>
-    public sealed class Collider : WorldObject
+    public sealed partial class Collider : WorldObject
     {
         readonly ClothColliderId id;
         internal Collider(World world, ClothColliderId id) : base(world) { this.id = id; }
@@ -785,7 +789,7 @@ namespace ClothSharp
     /// particle), Float3, System.Numerics.Vector3 (and under Unity, UnityEngine.Vector3) arrays and
     /// spans; particle indices are int.
     /// </summary>
-    public sealed unsafe class Cloth : WorldObject
+    public sealed unsafe partial class Cloth : WorldObject
     {
         readonly ClothId id;
 
@@ -1227,6 +1231,7 @@ namespace ClothSharp
 #endif
 
         // Settings and queries -----------------------------------------------------------------------
+        // The get/set properties of one shape (Solver, Importance, ...) are generated: ClothSharp.g.cs.
 
         public bool IsPinned(int index)
         {
@@ -1263,46 +1268,6 @@ namespace ClothSharp
             ClothStats stats = ClothStats.Default();
             ClothException.Check(Native.cloth_get_stats(Id, ref stats));
             return stats;
-        }
-        public ClothSolverSettings Solver
-        {
-            get
-            {
-                ClothSolverSettings s = ClothSolverSettings.Default();
-                ClothException.Check(Native.cloth_get_solver(Id, ref s));
-                return s;
-            }
-            set { value.EnsureDefaults(); ClothException.Check(Native.cloth_set_solver(Id, ref value)); }
-        }
-        public ClothStrainLimit StrainLimit
-        {
-            get
-            {
-                ClothStrainLimit s = ClothStrainLimit.Default();
-                ClothException.Check(Native.cloth_get_strain_limit(Id, ref s));
-                return s;
-            }
-            set { value.EnsureDefaults(); ClothException.Check(Native.cloth_set_strain_limit(Id, ref value)); }
-        }
-        public ClothCollisionParams Collision
-        {
-            get
-            {
-                ClothCollisionParams s = ClothCollisionParams.Default();
-                ClothException.Check(Native.cloth_get_collision(Id, ref s));
-                return s;
-            }
-            set { value.EnsureDefaults(); ClothException.Check(Native.cloth_set_collision(Id, ref value)); }
-        }
-        public ClothSelfCollisionDesc SelfCollision
-        {
-            get
-            {
-                ClothSelfCollisionDesc s = ClothSelfCollisionDesc.Default();
-                ClothException.Check(Native.cloth_get_self_collision(Id, ref s));
-                return s;
-            }
-            set { value.EnsureDefaults(); ClothException.Check(Native.cloth_set_self_collision(Id, ref value)); }
         }
         public ClothSelfCollisionStats GetSelfCollisionStats()
         {
@@ -1351,12 +1316,8 @@ namespace ClothSharp
         public void SetWind(Float3 wind) { ClothException.Check(Native.cloth_set_wind(Id, ref wind)); }
         public void SetSleep(ClothSleepParams p) { p.EnsureDefaults(); ClothException.Check(Native.cloth_set_sleep(Id, ref p)); }
         public void SetQualityPolicy(ClothQualityPolicy p) { p.EnsureDefaults(); ClothException.Check(Native.cloth_set_quality_policy(Id, ref p)); }
-        /// <summary>How much the cloth matters under a frame budget (>= 0, default 1).</summary>
-        public float Importance
-        {
-            get { float v; ClothException.Check(Native.cloth_get_importance(Id, out v)); return v; }
-            set { ClothException.Check(Native.cloth_set_importance(Id, value)); }
-        }
+        // The update rate's getter reads two values (rate and phase) and its setter takes an int:
+        // written here, not generated.
         /// <summary>Steps every UpdateRate-th world step (1, 2, 4 or 8), reads interpolated between.</summary>
         public int UpdateRate
         {

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The C# binding's checks, run by ctest (bindings/csharp/CMakeLists.txt):
 #
-#   check.sh build   OUT_DIR              generate the binding from cloth.h into OUT_DIR and
-#                                         compile with Mono's mcs (C# 7.2, warnings are errors):
+#   check.sh build   OUT_DIR              generate the binding from cloth.h into OUT_DIR
+#                                         (ClothNative.g.cs, and the owners' get/set properties
+#                                         in ClothSharp.g.cs) and compile with Mono's mcs
+#                                         (C# 7.2, warnings are errors):
 #                                         ClothSharp.dll, the tests, the flag sample; the
 #                                         CLOTH_NO_SPAN branch; the Unity branches
 #                                         (UNITY_5_3_OR_NEWER, and UNITY_IOS) against the
@@ -24,8 +26,9 @@ MCS=(mcs -langversion:7.2 -unsafe -warn:4 -warnaserror+ -nologo -r:System.Numeri
 
 case "$mode" in
 build)
-    python3 "$here/generate.py" --header "$header" --out "$out/ClothNative.g.cs" --c-layouts "$out/layouts.c"
-    binding=("$out/ClothNative.g.cs" "$here/ClothSharp.cs")
+    python3 "$here/generate.py" --header "$header" --out "$out/ClothNative.g.cs" \
+        --properties "$out/ClothSharp.g.cs" --c-layouts "$out/layouts.c"
+    binding=("$out/ClothNative.g.cs" "$out/ClothSharp.g.cs" "$here/ClothSharp.cs")
     "${MCS[@]}" -target:library -out:"$out/ClothSharp.dll" "${binding[@]}"
     "${MCS[@]}" -r:"$out/ClothSharp.dll" -out:"$out/ClothTests.exe" "$here/tests/ClothTests.cs"
     "${MCS[@]}" -r:"$out/ClothSharp.dll" -out:"$out/FlagLoop.exe" "$here/samples/FlagBehaviour.cs"

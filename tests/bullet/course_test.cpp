@@ -1,6 +1,6 @@
 // The vehicle_flag course itself, without cloth: the terrain the checks use
 // is the terrain Bullet collides with, the penetration counts find what they
-// should, and the scripted driver really drives the course the issue asks for.
+// should, and the scripted driver really drives the course (docs/vehicle_flag.md).
 #include "course.h"
 
 #include <gtest/gtest.h>
@@ -95,7 +95,7 @@ TEST(CourseChecks, CountsSpringsThroughThePoleAndNotThoseWrappedRoundIt) {
     EXPECT_EQ(count(btVector3(r, y, 0), btVector3(r, y + 0.02f, 0), 1, 2), 0) << "up beside the pole";
 }
 
-// The course of issue 6: 30 m/s, a slalom, a hard brake, a jump, one teleport.
+// The whole course: 30 m/s, a slalom, a hard brake, a jump, one teleport.
 TEST(CourseDriver, DrivesTheWholeCourse) {
     const Terrain terrain;
     VehicleWorld vehicle(terrain);

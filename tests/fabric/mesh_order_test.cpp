@@ -1,7 +1,7 @@
 // Mesh fabrics store their particles in a spatial (Morton) order so that
-// each group of consecutive particles is a compact patch (issue 4: groups
-// are spatially compact whatever order the host's mesh came in), while
-// every C API call keeps speaking the host's vertex indices.
+// each group of consecutive particles is a compact patch whatever order
+// the host's mesh came in, while every C API call keeps speaking the
+// host's vertex indices.
 #include <gtest/gtest.h>
 
 #include <algorithm>

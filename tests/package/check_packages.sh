@@ -106,7 +106,7 @@ if windows:
     print("ok - cloth.dll is the Windows build's, enabled for the Windows x86_64 player and editor only")
 else:
     assert not os.path.exists(dll), "a cloth.dll in a package made without a Windows build"
-for needed in ["Runtime/ClothNative.g.cs", "Runtime/ClothSharp.cs", "Runtime/ClothSharp.asmdef"]:
+for needed in ["Runtime/ClothNative.g.cs", "Runtime/ClothSharp.g.cs", "Runtime/ClothSharp.cs", "Runtime/ClothSharp.asmdef"]:
     assert os.path.isfile(os.path.join(package, needed)), needed
 asmdef = json.load(open(os.path.join(package, "Runtime/ClothSharp.asmdef")))
 assert asmdef["allowUnsafeCode"] is True

@@ -1,4 +1,4 @@
-// The default settings hold the scenes (a 1 m, 1 kg cloth pinned at
+// The default settings hold the standard scenes (a 1 m, 1 kg cloth pinned at
 // two top corners, 1/60 s frames): no energy gain beyond the work of
 // gravity, max strain under 10 %. Here a short version runs in every build
 // (32x32 at both stiffnesses; 64x64 at both outside sanitizer builds);

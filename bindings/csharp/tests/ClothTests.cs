@@ -272,6 +272,16 @@ static class ClothTests
             var collision = new ClothCollisionParams { Friction = 0.25f };
             cloth.Collision = collision;
             Check(cloth.Collision.Friction == 0.25f, "new ClothCollisionParams { Friction = 0.25f } is accepted and reads back");
+            // The other generated get/set properties (ClothSharp.g.cs) round-trip too.
+            cloth.StrainLimit = new ClothStrainLimit { MaxStrain = 0.05f };
+            Check(cloth.StrainLimit.MaxStrain == 0.05f, "new ClothStrainLimit { MaxStrain = 0.05f } is accepted and reads back");
+            cloth.SelfCollision = new ClothSelfCollisionDesc { Enabled = true, Thickness = 0.02f };
+            Check(cloth.SelfCollision.Enabled && cloth.SelfCollision.Thickness == 0.02f,
+                  "new ClothSelfCollisionDesc { Enabled = true, Thickness = 0.02f } is accepted and reads back");
+            var solver = cloth.Solver;
+            solver.Iterations = 3;
+            cloth.Solver = solver;
+            Check(cloth.Solver.Iterations == 3, "a solver setting changed on a copy is set and reads back");
         }
     }
 
