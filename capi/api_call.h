@@ -16,7 +16,7 @@
 
 #include "base/id_pool.h"
 #include "errors.h"
-#include "step/world.h"
+#include "scene/world.h"
 
 namespace cloth::api {
 inline constexpr uint32_t kCookie = 0x636C7468;  // "clth": the desc came from cloth_default_*()
@@ -210,6 +210,23 @@ cloth_result with_object(const char* function, Id id, const char* kind, Body bod
 template <class Body>
 cloth_result with_cloth(const char* function, cloth_id id, Body body) {
     return with_object(function, id, "cloth", body);
+}
+// As with_cloth, with the scene's record of the cloth (scene/scene_cloth.h):
+// `body(scene)` or `body(scene, world)`.
+template <class Body>
+cloth_result with_scene_cloth(const char* function, cloth_id id, Body body) {
+    return api_call(function, [&](const World*& log_world) -> Status {
+        World* world = find_owning_world(id);
+        if (!world) return is_null(id) ? null_handle_error("cloth") : no_world_error("cloth");
+        log_world = world;
+        SceneCloth* scene = world->find_scene_cloth(id);
+        if (!scene) return no_object_error("cloth");
+        if constexpr (std::is_invocable_v<Body&, SceneCloth&, World&>) {
+            return body(*scene, *world);
+        } else {
+            return body(*scene);
+        }
+    });
 }
 template <class Body>
 cloth_result with_fabric(const char* function, cloth_fabric_id id, Body body) {

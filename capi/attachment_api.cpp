@@ -12,7 +12,8 @@ extern "C" {
 
 CLOTH_API cloth_result cloth_attach(cloth_id id, cloth_body_id body_id, const uint32_t* indices,
                                     const float* local_offsets_xyz, uint32_t count) {
-    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+    return with_scene_cloth(__func__, id, [&](SceneCloth& scene) -> Status {
+        ClothInstance& cloth = scene.cloth();
         const BodyState* body = nullptr;
         Status s = find_body_of_cloth(id, body_id, body);
         if (s.ok()) s = check_indices(indices, count, cloth.particle_count());
@@ -38,6 +39,7 @@ CLOTH_API cloth_result cloth_attach(cloth_id id, cloth_body_id body_id, const ui
             const uint32_t i = fabric.particle(indices[k]);
             cloth.set_position(i, pose.apply(contact.attached_offset(i)));
         }
+        scene.settle();
         return {};
     });
 }

@@ -6,7 +6,7 @@
 
 #include "api_call.h"
 #include "api_validation.h"
-#include "step/update_rate.h"
+#include "scene/update_rate.h"
 
 using namespace cloth;
 using namespace cloth::api;
@@ -40,7 +40,7 @@ CLOTH_API cloth_quality_policy cloth_default_quality_policy(void) {
 }
 
 CLOTH_API cloth_result cloth_set_quality_policy(cloth_id id, const cloth_quality_policy* policy) {
-    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+    return with_scene_cloth(__func__, id, [&](SceneCloth& cloth) -> Status {
         if (!policy) return null_error("policy");
         // 1.10's struct ends before max_update_rate.
         const bool before_rates = policy->struct_size == kPolicySize110;

@@ -46,10 +46,11 @@ Status check_cloth_desc(const cloth_desc& desc, const Fabric& fabric) {
 
 template <class Read>
 cloth_result read_vectors(const char* function, cloth_id id, float* out, uint32_t capacity, Read read) {
-    return with_cloth(function, id, [&](ClothInstance& cloth) -> Status {
+    return with_scene_cloth(function, id, [&](SceneCloth& scene) -> Status {
+        const ClothInstance& cloth = scene.cloth();
         Status s = check_capacity(out, capacity, 3 * static_cast<size_t>(cloth.particle_count()));
         if (!s.ok()) return s;
-        copy_out(read(cloth), cloth.fabric(), out);
+        copy_out(read(scene), cloth.fabric(), out);
         return {};
     });
 }
@@ -118,22 +119,23 @@ CLOTH_API cloth_result cloth_get_particle_count(cloth_id id, uint32_t* out_count
 
 CLOTH_API cloth_result cloth_read_positions(cloth_id id, float* out_xyz, uint32_t capacity) {
     return read_vectors(__func__, id, out_xyz, capacity,
-                        [](const ClothInstance& c) -> const Vec3Soa& { return c.reported_positions(); });
+                        [](const SceneCloth& c) -> const Vec3Soa& { return c.reported_positions(); });
 }
 
 CLOTH_API cloth_result cloth_read_velocities(cloth_id id, float* out_xyz, uint32_t capacity) {
     return read_vectors(__func__, id, out_xyz, capacity,
-                        [](const ClothInstance& c) -> const Vec3Soa& { return c.velocities(); });
+                        [](const SceneCloth& c) -> const Vec3Soa& { return c.cloth().velocities(); });
 }
 
 CLOTH_API cloth_result cloth_read_normals(cloth_id id, float* out_xyz, uint32_t capacity) {
     return read_vectors(__func__, id, out_xyz, capacity,
-                        [](const ClothInstance& c) -> const Vec3Soa& { return c.normals(); });
+                        [](const SceneCloth& c) -> const Vec3Soa& { return c.reported_normals(); });
 }
 
 CLOTH_API cloth_result cloth_set_positions(cloth_id id, const uint32_t* indices, const float* positions_xyz,
                                            uint32_t count) {
-    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+    return with_scene_cloth(__func__, id, [&](SceneCloth& scene) -> Status {
+        ClothInstance& cloth = scene.cloth();
         Status s = check_indices(indices, count, cloth.particle_count());
         if (s.ok()) s = check_points(positions_xyz, count, "positions");
         if (!s.ok()) return s;
@@ -141,6 +143,7 @@ CLOTH_API cloth_result cloth_set_positions(cloth_id id, const uint32_t* indices,
             const float* p = positions_xyz + 3 * k;
             cloth.set_position(cloth.fabric().particle(indices[k]), Vec3(p[0], p[1], p[2]));
         }
+        scene.settle();  // a teleport shows at once
         return {};
     });
 }
@@ -241,9 +244,8 @@ CLOTH_API cloth_result cloth_get_stats(cloth_id id, cloth_stats* out) {
         stats.strain_limit_excess = limit > 0.0f ? std::max(0.0f, strain - limit) : 0.0f;
         stats.strain_limit_unmet = stats.strain_limit_excess > kStrainPromiseSlackOfAStep ? 1 : 0;
         if (cloth.last_step_ran()) {
-            const QualityRung ran = cloth.quality().ran_rung();
-            stats.last_max_iterations = ran.iterations;
-            stats.last_substeps = ran.substeps;
+            stats.last_max_iterations = cloth.last_frame_solver().iterations;
+            stats.last_substeps = cloth.last_frame_solver().substeps;
             stats.last_strain_passes = cloth.last_strain_passes();
             stats.last_strain_pass_cap_hit = cloth.last_strain_capped() ? 1 : 0;
         }

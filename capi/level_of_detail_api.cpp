@@ -4,7 +4,7 @@
 
 #include "api_call.h"
 #include "api_validation.h"
-#include "step/update_rate.h"
+#include "scene/update_rate.h"
 
 using namespace cloth;
 using namespace cloth::api;
@@ -12,7 +12,7 @@ using namespace cloth::api;
 extern "C" {
 
 CLOTH_API cloth_result cloth_set_importance(cloth_id id, float importance) {
-    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+    return with_scene_cloth(__func__, id, [&](SceneCloth& cloth) -> Status {
         Status s = check_non_negative(importance, "importance");
         if (!s.ok()) return s;
         cloth.set_importance(importance);
@@ -21,7 +21,7 @@ CLOTH_API cloth_result cloth_set_importance(cloth_id id, float importance) {
 }
 
 CLOTH_API cloth_result cloth_get_importance(cloth_id id, float* out_importance) {
-    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+    return with_scene_cloth(__func__, id, [&](SceneCloth& cloth) -> Status {
         if (!out_importance) return null_error("out_importance");
         *out_importance = cloth.importance();
         return {};
@@ -43,10 +43,10 @@ CLOTH_API cloth_result cloth_world_set_viewer(cloth_world_id id, const float pos
 }
 
 CLOTH_API cloth_result cloth_set_update_rate(cloth_id id, uint32_t rate) {
-    return with_cloth(__func__, id, [&](ClothInstance& cloth, World& world) -> Status {
+    return with_scene_cloth(__func__, id, [&](SceneCloth& cloth, World& world) -> Status {
         if (!UpdateRate::valid(rate))
             return Status::error(CLOTH_ERROR_INVALID_VALUE, "rate %u is not 1, 2, 4 or 8", rate);
-        if (rate > 1 && cloth.contact().rides_bodies()) {
+        if (rate > 1 && cloth.cloth().contact().rides_bodies()) {
             return Status::error(
                 CLOTH_ERROR_INVALID_VALUE,
                 "rate %u: the cloth is attached to or carried by a body, and steps every frame", rate);
@@ -57,7 +57,7 @@ CLOTH_API cloth_result cloth_set_update_rate(cloth_id id, uint32_t rate) {
 }
 
 CLOTH_API cloth_result cloth_get_update_rate(cloth_id id, uint32_t* out_rate, uint32_t* out_phase) {
-    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+    return with_scene_cloth(__func__, id, [&](SceneCloth& cloth) -> Status {
         if (!out_rate && !out_phase) return null_error("out_rate and out_phase");
         if (out_rate) *out_rate = cloth.update_rate().rate();
         if (out_phase) *out_phase = cloth.update_rate().phase();

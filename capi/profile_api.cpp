@@ -6,7 +6,7 @@
 
 #include "api_call.h"
 #include "api_validation.h"
-#include "step/frame_profile.h"
+#include "scene/frame_profile.h"
 
 using namespace cloth;
 using namespace cloth::api;

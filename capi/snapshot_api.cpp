@@ -30,9 +30,11 @@ CLOTH_API cloth_result cloth_save_snapshot(cloth_id id, void* buffer, size_t cap
 }
 
 CLOTH_API cloth_result cloth_restore_snapshot(cloth_id id, const void* buffer, size_t size) {
-    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+    return with_scene_cloth(__func__, id, [&](SceneCloth& scene) -> Status {
         if (!buffer) return null_error("buffer");
-        return cloth.restore_snapshot(buffer, size);
+        Status s = scene.cloth().restore_snapshot(buffer, size);
+        if (s.ok()) scene.settle();  // reports show the restored state at once
+        return s;
     });
 }
 

@@ -23,21 +23,24 @@ CLOTH_API cloth_solver_settings cloth_default_solver_settings(void) {
 }
 
 CLOTH_API cloth_result cloth_set_solver(cloth_id id, const cloth_solver_settings* settings) {
-    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+    return with_scene_cloth(__func__, id, [&](SceneCloth& cloth) -> Status {
         if (!settings) return null_error("settings");
         Status s = check_solver(*settings);
         if (!s.ok()) return s;
         SolverSettings core = to_core(*settings);
-        core.strain_limit = cloth.solver().strain_limit;
+        core.strain_limit = cloth.cloth().solver().strain_limit;  // set by cloth_set_strain_limit
         cloth.set_solver(core);
         return {};
     });
 }
 
 CLOTH_API cloth_result cloth_get_solver(cloth_id id, cloth_solver_settings* out) {
-    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+    return with_scene_cloth(__func__, id, [&](SceneCloth& cloth) -> Status {
         if (!out) return null_error("out_settings");
-        const SolverSettings& core = cloth.solver();
+        // The host's settings, and for a kind other than the default the
+        // iterations and substeps a budget gave it (cloth.h, "Frame budget").
+        const SolverSettings& host = cloth.cloth().solver();
+        const SolverSettings core = host.kind == CLOTH_SOLVER_DEFAULT ? host : cloth.quality().settings();
         *out = cloth_default_solver_settings();
         out->kind = core.kind;
         out->iterations = core.iterations;
@@ -59,15 +62,11 @@ CLOTH_API cloth_strain_limit cloth_default_strain_limit(void) {
 }
 
 CLOTH_API cloth_result cloth_set_strain_limit(cloth_id id, const cloth_strain_limit* limit) {
-    return with_cloth(__func__, id, [&](ClothInstance& cloth) -> Status {
+    return with_scene_cloth(__func__, id, [&](SceneCloth& cloth) -> Status {
         if (!limit) return null_error("limit");
         Status s = check_strain_limit(*limit);
         if (!s.ok()) return s;
-        // Through set_solver, as cloth_set_solver: it wakes the cloth and
-        // clears the budget policy's cost memory.
-        SolverSettings settings = cloth.solver();
-        settings.strain_limit = StrainLimit{limit->max_strain, limit->iterations, true};
-        cloth.set_solver(settings);
+        cloth.set_strain_limit(StrainLimit{limit->max_strain, limit->iterations, true});
         return {};
     });
 }

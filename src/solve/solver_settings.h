@@ -43,11 +43,6 @@ struct SolverSettings {
     // PCG preconditioned by multigrid (multigrid.h) rather than block
     // Jacobi: what CLOTH_SOLVER_DEFAULT resolves to.
     bool multigrid = false;
-    // CLOTH_SOLVER_DEFAULT under a quality policy (budget_policy.h): at most
-    // this many iterations and substeps, below the default's own choice;
-    // 0: no cap.
-    uint32_t default_iteration_cap = 0;
-    uint32_t default_substep_cap = 0;
     StrainLimit strain_limit;  // set with cloth_set_strain_limit, kept by cloth_set_solver
 };
 

@@ -40,8 +40,6 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       strain_maybe_over_(HostAllocator<uint8_t>(memory)),
       strain_pull_(HostAllocator<float>(memory)),
       frame_(memory),
-      previous_x_(memory),
-      reported_x_(memory),
       contact_(memory),
       skin_(memory) {
     const Fabric& f = *fabric_;
@@ -112,7 +110,6 @@ void ClothInstance::set_pinned(const uint32_t* indices, uint32_t count, bool pin
 void ClothInstance::set_position(uint32_t particle, const Vec3& x) {
     wake();
     contact_.forget_sleep();
-    update_rate_.settle();  // a teleport shows at once
     x_.set(particle, x);
     v_.set(particle, Vec3::Zero());
     pin_target_.set(particle, x);
@@ -130,77 +127,13 @@ void ClothInstance::set_self_collision(const SelfCollisionSettings* settings) {
                                                           *fabric_, *settings);
 }
 
-const Vec3Soa& ClothInstance::normals() const {
-    compute_vertex_normals(*fabric_, reported_positions(), 0, particle_count(), normals_);
+const Vec3Soa& ClothInstance::normals(const Vec3Soa& positions) const {
+    compute_vertex_normals(*fabric_, positions, 0, particle_count(), normals_);
     return normals_;
-}
-
-// ---------------------------------------------------------------- update rate
-
-void ClothInstance::set_update_rate(uint32_t rate, uint32_t phase) {
-    if (rate > 1) size_interpolation();
-    update_rate_.set(rate, phase);
-    if (rate == 1 && update_rate_.fraction(world_frame_) == 1.0f && !rates_by_budget()) free_interpolation();
-}
-
-bool ClothInstance::rates_by_budget() const {
-    return quality_.policy().enabled && quality_.policy().max_update_rate > 1;
-}
-
-void ClothInstance::size_interpolation() {
-    const uint32_t n = particle_count();
-    if (previous_x_.size() == n) return;
-    const HostMemory* memory = x_.x.get_allocator().memory();
-    Vec3Soa previous(memory), reported(memory);
-    previous.resize(n);
-    reported.resize(n);
-    previous = x_;
-    previous_x_.swap_buffers(previous);
-    reported_x_.swap_buffers(reported);
-}
-
-void ClothInstance::free_interpolation() {
-    const HostMemory* memory = x_.x.get_allocator().memory();
-    Vec3Soa previous(memory), reported(memory);
-    previous_x_.swap_buffers(previous);
-    reported_x_.swap_buffers(reported);
-}
-
-uint32_t ClothInstance::begin_rate_step(uint64_t frame) {
-    const uint32_t frames = update_rate_.begin_step(frame);
-    // A one-frame step ends at the world's frame: nothing to interpolate,
-    // and back at rate 1 the copies are not needed again.
-    if (frames > 1) {
-        previous_x_ = x_;
-    } else if (update_rate_.rate() == 1 && previous_x_.size() > 0 && !rates_by_budget()) {
-        free_interpolation();
-    }
-    return frames;
-}
-
-const Vec3Soa& ClothInstance::reported_positions() const {
-    const float t = update_rate_.fraction(world_frame_);
-    if (t == 1.0f || previous_x_.size() != x_.size()) return x_;
-    const uint32_t n = particle_count();
-    for (uint32_t i = 0; i < n; ++i) {
-        reported_x_.x[i] = previous_x_.x[i] + t * (x_.x[i] - previous_x_.x[i]);
-        reported_x_.y[i] = previous_x_.y[i] + t * (x_.y[i] - previous_x_.y[i]);
-        reported_x_.z[i] = previous_x_.z[i] + t * (x_.z[i] - previous_x_.z[i]);
-    }
-    return reported_x_;
-}
-
-void ClothInstance::set_quality_policy(const QualityPolicy& policy) {
-    const bool rate_was_cut = quality_.rate_cut();
-    if (policy.enabled && policy.max_update_rate > 1) size_interpolation();
-    quality_.set_policy(policy);
-    if (rate_was_cut) set_update_rate(1, 0);
-    wake();
 }
 
 void ClothInstance::set_solver(const SolverSettings& settings) {
     solver_ = settings;
-    quality_.costs().clear();
     wake();
 }
 
@@ -229,7 +162,7 @@ void ClothInstance::hold_asleep() {
 }
 
 bool ClothInstance::can_shift_origin(const Vec3& shift) const {
-    for (const Vec3Soa* a : {&x_, &pin_target_, &previous_x_}) {
+    for (const Vec3Soa* a : {&x_, &pin_target_}) {
         for (size_t i = 0; i < a->size(); ++i) {
             if (!(a->get(i) - shift).allFinite()) return false;
         }
@@ -238,7 +171,7 @@ bool ClothInstance::can_shift_origin(const Vec3& shift) const {
 }
 
 void ClothInstance::shift_origin(const Vec3& shift) {
-    for (Vec3Soa* a : {&x_, &pin_target_, &previous_x_}) {
+    for (Vec3Soa* a : {&x_, &pin_target_}) {
         for (float& c : a->x) c -= shift.x();
         for (float& c : a->y) c -= shift.y();
         for (float& c : a->z) c -= shift.z();
@@ -327,7 +260,6 @@ void ClothInstance::update_sleep() {
 }
 
 void ClothInstance::restore_frame_start() {
-    update_rate_.undo_step();
     switch (frame_.backup) {
         case FrameBackup::kCopied:
             x_ = frame_.backup_x;

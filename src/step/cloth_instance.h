@@ -30,10 +30,8 @@
 #include "solve/solver_settings.h"
 #include "solve/solvers.h"
 #include "solve/strain_limit.h"
-#include "step/cloth_quality.h"
 #include "step/frame_context.h"
 #include "step/step_stage.h"
-#include "step/update_rate.h"
 
 namespace cloth {
 
@@ -57,10 +55,10 @@ class ClothInstance {
     uint32_t particle_count() const { return fabric_->particle_count(); }
 
     // Advance by one frame of `dt` seconds (settings().substeps substeps),
-    // running the stages on `tasks` (serially if null). Returns
-    // CLOTH_ERROR_NONFINITE_STATE after restoring the state from before the
-    // call if the result was not finite.
-    Status step(float dt, const Vec3& gravity, TaskSystem* tasks = nullptr);
+    // running the stages on `tasks` (serially if null), within a budget's
+    // `bounds` (none by default). Returns CLOTH_ERROR_NONFINITE_STATE after
+    // restoring the state from before the call if the result was not finite.
+    Status step(float dt, const Vec3& gravity, TaskSystem* tasks = nullptr, const BudgetBounds& bounds = {});
 
     // The frame protocol (frame_plan.cpp), driven by run_frames
     // (frame_rounds.h) for one cloth here and for all of a world's cloths in
@@ -80,8 +78,8 @@ class ClothInstance {
     FrameInputs frame_inputs(float dt, const BudgetBounds& budget) const;
     void open_frame(float dt, const FrameDecision& decision);
     void begin_frame(const FrameInputs& in, const FrameDecision& decision, const Vec3& gravity);
-    // The first four for a cloth outside any budget or pair (step()).
-    void begin_frame_alone(float dt, const Vec3& gravity);
+    // The first four for a cloth in no pair (step()).
+    void begin_frame_alone(float dt, const Vec3& gravity, const BudgetBounds& bounds);
     bool frame_done() const { return frame_.done; }
     Stage stage() const;  // the stage the current round belongs to
     uint32_t substep() const { return frame_.substep; }
@@ -115,36 +113,6 @@ class ClothInstance {
     bool can_shift_origin(const Vec3& shift) const;
     void shift_origin(const Vec3& shift);
 
-    // Update rate (update_rate.h): World::step steps the cloth only when
-    // it is due, over begin_rate_step's frames. A rate above 1 allocates
-    // the previous state and the reported positions (an allocation failure
-    // changes nothing); back at rate 1 they go once the reports caught up
-    // (here, or at the next step).
-    void set_update_rate(uint32_t rate, uint32_t phase);
-    const UpdateRate& update_rate() const { return update_rate_; }
-    // Whether the quality policy may change the rate (its copies stay).
-    bool rates_by_budget() const;
-    // Starts the step of world frame `frame`; returns the frames it covers.
-    uint32_t begin_rate_step(uint64_t frame);
-    // The world's current frame, which the reported positions are at.
-    void set_world_frame(uint64_t frame) { world_frame_ = frame; }
-    // The positions a reader sees: the state, or between steps the
-    // interpolation between the last two states at the world's frame.
-    const Vec3Soa& reported_positions() const;
-
-    // How much the cloth matters to the host (>= 0, default 1): under a
-    // frame budget the least important cloths are lowered first.
-    float importance() const { return importance_; }
-    void set_importance(float importance) { importance_ = importance; }
-
-    // The cloth under a world's frame budget (cloth_quality.h). A new
-    // quality policy wakes the cloth; one that may slow the update rate
-    // allocates what a rate above 1 needs (a failure changes nothing), so
-    // the budget's changes of rate allocate nothing; a rate the last
-    // policy slowed goes back to 1.
-    void set_quality_policy(const QualityPolicy& policy);
-    ClothQuality& quality() { return quality_; }
-    const ClothQuality& quality() const { return quality_; }
     // The strain limiter's passes over the last step's substeps, and
     // whether a substep's passes stopped at their cap.
     uint32_t last_strain_passes() const { return frame_.strain_passes; }
@@ -193,8 +161,9 @@ class ClothInstance {
     const SolverSettings& solver() const { return solver_; }
     // What the last frame ran: CLOTH_SOLVER_DEFAULT's choice, caps and theta.
     const SolverSettings& last_frame_solver() const { return frame_.decision.solver; }
-    // New solver settings from the host: a quality policy's caps and its
-    // memory of what each rung cost go with the old ones.
+    // The last frame's decision (frame_decision.h).
+    const FrameDecision& last_frame_decision() const { return frame_.decision; }
+    // New solver settings from the host (wakes the cloth).
     void set_solver(const SolverSettings& settings);
     AeroParams& aero() { return aero_; }
     const AeroParams& aero() const { return aero_; }
@@ -226,8 +195,9 @@ class ClothInstance {
     void join_pair(PairRounds::Side* side);
     const Vec3Soa& velocities() const { return v_; }
     const HostVector<float>& masses() const { return mass_; }
-    // Unit area-weighted vertex normals of the reported positions.
-    const Vec3Soa& normals() const;
+    // Unit area-weighted vertex normals of `positions` (the state, or what
+    // the scene reports between steps: scene/scene_cloth.h).
+    const Vec3Soa& normals(const Vec3Soa& positions) const;
 
     // Self-collision (self_collision.h): off (null, nothing allocated) until
     // enabled; `settings` null turns it off and frees it. Allocates when on.
@@ -409,20 +379,9 @@ class ClothInstance {
     // not kept.
     float moved_speed_squared() const;
     SleepSettings sleep_;
-    UpdateRate update_rate_;
-    ClothQuality quality_{solver_, frame_, update_rate_};
     bool sleeping_ = false;
     bool held_asleep_ = false;  // put to sleep by the host (hold_asleep)
     uint32_t rest_frames_ = 0;  // consecutive frames below sleep_.max_speed
-
-    // The previous state and the reported positions, sized aside (an
-    // allocation failure changes nothing), or freed.
-    void size_interpolation();
-    void free_interpolation();
-    uint64_t world_frame_ = 0;
-    Vec3Soa previous_x_;          // the state before the last step, while the rate is above 1
-    mutable Vec3Soa reported_x_;  // filled by reported_positions() between steps
-    float importance_ = 1.0f;
 
     ClothContact contact_;  // colliders, attachments, carrier
     Skin skin_;             // sized only once the host gives the cloth a skin

@@ -273,7 +273,6 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
     rest_frames_ = h.rest_frames;
     last_.strained = (h.flags & kStrainedFlag) != 0;
     last_.quiet = (h.flags & kQuietFlag) != 0;
-    update_rate_.settle();  // reports show the restored state at once
     return {};
 }
 

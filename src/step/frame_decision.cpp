@@ -25,6 +25,9 @@ FrameDecision decide_frame(const FrameInputs& in) {
     const bool by_default = in.host.kind == CLOTH_SOLVER_DEFAULT;
     FrameDecision d;
     d.solver = resolve_solver(in.host, in.dt, in.stiffness_per_mass, in.multigrid);
+    // A kind the host chose runs the budget's rung where it has one.
+    if (!by_default && budget.iterations > 0) d.solver.iterations = budget.iterations;
+    if (!by_default && budget.substeps > 0) d.solver.substeps = budget.substeps;
     // The default's own choice within a quality policy's maxima (the
     // host's bounds), then the budget's caps on it: the host's budget wins.
     if (budget.enabled && by_default) {
@@ -33,8 +36,9 @@ FrameDecision decide_frame(const FrameInputs& in) {
     }
     d.own_iterations = d.solver.iterations;
     d.own_substeps = d.solver.substeps;
-    if (budget.iteration_cap > 0) d.solver.iterations = std::min(d.solver.iterations, budget.iteration_cap);
-    if (budget.substep_cap > 0) d.solver.substeps = std::min(d.solver.substeps, budget.substep_cap);
+    if (by_default && budget.iterations > 0)
+        d.solver.iterations = std::min(d.solver.iterations, budget.iterations);
+    if (by_default && budget.substeps > 0) d.solver.substeps = std::min(d.solver.substeps, budget.substeps);
     // Below the floor of the ladder the budget moves the cloth along: its
     // top is the default's own choice, or the policy's maxima.
     const uint32_t top = by_default ? d.own_iterations : budget.max_iterations;
@@ -54,7 +58,7 @@ FrameDecision decide_frame(const FrameInputs& in) {
     // Down to the ladder's floor a budget's cap never stretches a substep
     // past longest_capped_substep (a slow update rate's step is long:
     // solver_default.h); below it the budget wins and the strain gives.
-    if (budget.substep_cap > 0 && !d.below_floor) {
+    if (by_default && budget.substeps > 0 && !d.below_floor) {
         const float longest = longest_capped_substep(in.last.h, in.fastest_free_speed, in.mean_rest_length);
         const auto least = static_cast<uint32_t>(std::min(
             std::ceil(static_cast<double>(in.dt) / longest - 1e-4), static_cast<double>(d.own_substeps)));

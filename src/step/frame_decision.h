@@ -16,13 +16,14 @@
 namespace cloth {
 
 // The bounds a quality policy puts on a cloth's iterations and substeps
-// (scene/cloth_quality.h), and the budget's caps on the default's own
-// choice within them (0: none).
+// (scene/cloth_quality.h), and where the budget put the cloth within them:
+// caps on CLOTH_SOLVER_DEFAULT's own choice, or what another kind runs
+// instead of the host's settings (0: none).
 struct BudgetBounds {
     bool enabled = false;
     uint32_t min_iterations = 1, max_iterations = 8;
     uint32_t max_substeps = 4;
-    uint32_t iteration_cap = 0, substep_cap = 0;
+    uint32_t iterations = 0, substeps = 0;
 };
 
 // The fewest iterations a budget's ladder runs above its fewest substeps:

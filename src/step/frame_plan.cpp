@@ -120,12 +120,12 @@ void ClothInstance::plan(Stage stage, void (C::*run)(const GroupTask&), void (C:
 
 // ---------------------------------------------------------------- the machine
 
-Status ClothInstance::step(float dt, const Vec3& gravity, TaskSystem* tasks) {
+Status ClothInstance::step(float dt, const Vec3& gravity, TaskSystem* tasks, const BudgetBounds& bounds) {
     SerialTasks serial;
     TaskSystem& runner = tasks ? *tasks : serial;
     if (woken_by_bodies()) wake();
     if (sleeping_) return {};
-    begin_frame_alone(dt, gravity);
+    begin_frame_alone(dt, gravity, bounds);
     ClothInstance* self = this;
     auto body = [this](uint32_t begin, uint32_t end, uint32_t worker) {
         for (uint32_t t = begin; t < end; ++t) run_task(t, worker);
@@ -134,8 +134,8 @@ Status ClothInstance::step(float dt, const Vec3& gravity, TaskSystem* tasks) {
     return end_frame();
 }
 
-void ClothInstance::begin_frame_alone(float dt, const Vec3& gravity) {
-    const FrameInputs in = frame_inputs(dt, quality_.bounds());
+void ClothInstance::begin_frame_alone(float dt, const Vec3& gravity, const BudgetBounds& bounds) {
+    const FrameInputs in = frame_inputs(dt, bounds);
     const FrameDecision decision = decide_frame(in);
     open_frame(dt, decision);
     begin_frame(in, decision, gravity);
@@ -156,7 +156,7 @@ FrameInputs ClothInstance::frame_inputs(float dt, const BudgetBounds& budget) co
     // Each scan of the particles only where the decision reads it.
     in.starts_slow = by_default && may_be_quiet() && free_particles_slower_than(kDefaultQuietSpeed);
     in.pins_slow = last_.quiet && in.starts_slow && pins_slower_than(kDefaultQuietSpeed, dt);
-    if (budget.substep_cap > 0) in.fastest_free_speed = fastest_free_speed_relative_to_pins();
+    if (by_default && budget.substeps > 0) in.fastest_free_speed = fastest_free_speed_relative_to_pins();
     in.mean_rest_length = mean_structural_rest_length_;
     in.lightest_free_mass = lightest;
     return in;

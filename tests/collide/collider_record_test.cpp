@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "api_call.h"
-#include "step/world.h"
+#include "scene/world.h"
 
 namespace cloth {
 namespace {

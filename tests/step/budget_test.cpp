@@ -16,7 +16,7 @@
 
 #include "pinned_cloth.h"
 #include "scenes.h"
-#include "step/budget_policy.h"
+#include "scene/budget_policy.h"
 
 namespace {
 

@@ -26,15 +26,15 @@ FrameInputs the_default(float stiffness_per_mass = kSoft, float dt = kFrame) {
     return in;
 }
 
-BudgetBounds policy(uint32_t max_iterations, uint32_t max_substeps, uint32_t iteration_cap = 0,
-                    uint32_t substep_cap = 0) {
+BudgetBounds policy(uint32_t max_iterations, uint32_t max_substeps, uint32_t iterations = 0,
+                    uint32_t substeps = 0) {
     BudgetBounds b;
     b.enabled = true;
     b.min_iterations = 1;
     b.max_iterations = max_iterations;
     b.max_substeps = max_substeps;
-    b.iteration_cap = iteration_cap;
-    b.substep_cap = substep_cap;
+    b.iterations = iterations;
+    b.substeps = substeps;
     return b;
 }
 
@@ -60,6 +60,12 @@ std::vector<Row> rows() {
         in.stiffness_per_mass = kStiff;
         r.push_back({"a kind the host chose runs as set, with four times its strain passes at most", in, 3, 2,
                      1.0f, 3, 2, 2, false, 20});
+        in.budget = policy(8, 4, 6, 3);
+        r.push_back({"a kind the host chose runs the budget's rung, above the host's settings too", in, 6, 3,
+                     1.0f, 6, 3, 3, false, 20});
+        in.budget = policy(8, 4, 3, 1);
+        r.push_back({"a kind the host chose, below the floor of the policy's maxima", in, 3, 1, 1.0f, 3, 1, 1,
+                     true, 5});
     }
     r.push_back(
         {"the default's substep rule: substeps of at most 1/120 s, multigrid's 5 iterations, theta 0.7",

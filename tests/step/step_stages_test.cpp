@@ -98,7 +98,7 @@ TEST(StepStages, EveryParticleStageHasOneTaskPerGroupOfAtMostGroupSizeParticles)
     auto fabric = make_grid(40, 30);
     ClothInstance cloth(cloth::testing::heap(), fabric, Material{}, SolverSettings{}, AeroParams{});
     EXPECT_EQ(cloth.group_count(), (1200u + ClothInstance::kGroupSize - 1) / ClothInstance::kGroupSize);
-    cloth.begin_frame_alone(1.0f / 60.0f, kGravity);
+    cloth.begin_frame_alone(1.0f / 60.0f, kGravity, BudgetBounds{});
     uint32_t stages = 0;
     while (!cloth.frame_done()) {
         cloth.prepare_stage();
@@ -116,7 +116,7 @@ TEST(StepStages, EveryParticleStageHasOneTaskPerGroupOfAtMostGroupSizeParticles)
 // iterations, strain-limit rounds, projection passes) folded into one.
 std::vector<Stage> stage_sequence(ClothInstance& cloth) {
     std::vector<Stage> seen;
-    cloth.begin_frame_alone(1.0f / 60.0f, kGravity);
+    cloth.begin_frame_alone(1.0f / 60.0f, kGravity, BudgetBounds{});
     while (!cloth.frame_done()) {
         cloth.prepare_stage();
         if (seen.empty() || seen.back() != cloth.stage()) seen.push_back(cloth.stage());

@@ -37,7 +37,7 @@
 //                        again until forgotten)
 //
 // Below the floor a cloth's strain limit runs only the passes asked for
-// (ClothQuality::below_floor): behind a solve that no longer
+// (FrameDecision::below_floor): behind a solve that no longer
 // holds the cloth the extra passes grow with every rung cut, which no
 // prediction sees (docs/vehicle_flag.md). A CLOTH_SOLVER_DEFAULT cloth
 // picks its own iterations and substeps every frame: the policy keeps its
@@ -47,12 +47,12 @@
 
 #include <cstdint>
 
-#include "step/cloth_instance.h"
+#include "scene/scene_cloth.h"
 
 namespace cloth {
 
 struct BudgetCloth {
-    ClothInstance* cloth;
+    SceneCloth* cloth;
     int64_t cost_ns;   // task time of the last frame
     int64_t solve_ns;  // the part of it in solve stages
     float relevance;   // World::relevance: the least relevant is lowered first

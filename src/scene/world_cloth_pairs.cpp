@@ -3,7 +3,7 @@
 // meet join both cloths' frames (step/pair_rounds.h).
 #include <algorithm>
 
-#include "step/world.h"
+#include "scene/world.h"
 
 namespace cloth {
 
@@ -44,8 +44,8 @@ Status World::set_cloth_contact(cloth_id a, cloth_id b, const ClothPairSettings*
     }
     // Built before anything changes, so an allocation failure changes nothing.
     auto contact = std::allocate_shared<ClothPairContact>(HostAllocator<ClothPairContact>(&memory_), &memory_,
-                                                          cloths_[slot_a].object->fabric(),
-                                                          cloths_[slot_b].object->fabric(), *settings);
+                                                          cloth_at(slot_a).fabric(),
+                                                          cloth_at(slot_b).fabric(), *settings);
     auto rounds = std::allocate_shared<PairRounds>(HostAllocator<PairRounds>(&memory_), contact.get());
     if (k < cloth_pairs_.size()) {
         cloth_pairs_[k].contact = std::move(contact);
@@ -53,8 +53,8 @@ Status World::set_cloth_contact(cloth_id a, cloth_id b, const ClothPairSettings*
     } else {
         cloth_pairs_.push_back(ClothPair{slot_a, slot_b, std::move(contact), std::move(rounds)});
     }
-    cloths_[slot_a].object->wake();
-    cloths_[slot_b].object->wake();
+    cloth_at(slot_a).wake();
+    cloth_at(slot_b).wake();
     return {};
 }
 
@@ -75,13 +75,14 @@ void World::drop_cloth_pairs(uint32_t slot) {
 
 void World::begin_cloth_pairs() {
     for (ClothPair& pair : cloth_pairs_) {
-        ClothInstance& a = *cloths_[pair.slot_a].object;
-        ClothInstance& b = *cloths_[pair.slot_b].object;
+        ClothInstance& a = cloth_at(pair.slot_a);
+        ClothInstance& b = cloth_at(pair.slot_b);
         const bool a_steps = steps(pair.slot_a), b_steps = steps(pair.slot_b);
         // Both step to the same frame (update_rate.h: cloths of one rate
         // in contact share a phase), or one steps beside the other asleep.
-        const bool together =
-            a_steps && b_steps && a.update_rate().state_frame() == b.update_rate().state_frame();
+        const bool together = a_steps && b_steps &&
+                              cloths_[pair.slot_a].object->update_rate().state_frame() ==
+                                  cloths_[pair.slot_b].object->update_rate().state_frame();
         const bool beside_sleeper =
             (a_steps && !b_steps && b.sleeping()) || (b_steps && !a_steps && a.sleeping());
         const ParticleView va = a.particle_view(a_steps), vb = b.particle_view(b_steps);
@@ -111,8 +112,8 @@ void World::begin_cloth_pairs() {
 void World::join_cloth_pairs() {
     for (ClothPair& pair : cloth_pairs_) {
         if (!pair.active) continue;
-        if (steps(pair.slot_a)) cloths_[pair.slot_a].object->join_pair(&pair.rounds->side(0));
-        if (steps(pair.slot_b)) cloths_[pair.slot_b].object->join_pair(&pair.rounds->side(1));
+        if (steps(pair.slot_a)) cloth_at(pair.slot_a).join_pair(&pair.rounds->side(0));
+        if (steps(pair.slot_b)) cloth_at(pair.slot_b).join_pair(&pair.rounds->side(1));
     }
 }
 
@@ -120,7 +121,7 @@ void World::end_cloth_pairs() {
     for (ClothPair& pair : cloth_pairs_) {
         if (!pair.active || pair.contact->contacts() == 0) continue;
         for (uint32_t slot : {pair.slot_a, pair.slot_b}) {
-            ClothInstance& cloth = *cloths_[slot].object;
+            ClothInstance& cloth = cloth_at(slot);
             if (cloth.sleeping()) cloth.wake();  // touched by a cloth that stepped
         }
     }

@@ -23,7 +23,7 @@
 //     substep gamma run backward Euler.
 //
 // And the ladder and the cost memory the policy reads, alone.
-#include "step/budget_policy.h"
+#include "scene/budget_policy.h"
 
 #include <gtest/gtest.h>
 
@@ -63,17 +63,18 @@ struct CostModel {
 // as World::step does.
 class ModelWorld {
   public:
-    ClothInstance& add(const SolverSettings& solver, float stiffness) {
-        auto cloth = std::make_unique<ClothInstance>(cloth::testing::heap(), make_grid(8, 8),
-                                                     uniform_material(stiffness, 0.2f, 0.2f), solver,
-                                                     cloth::testing::still_air());
-        cloth->pin(0);
-        cloth->pin(7);
+    SceneCloth& add(const SolverSettings& solver, float stiffness) {
+        auto scene = std::make_unique<SceneCloth>(cloth::testing::heap(), make_grid(8, 8),
+                                                  uniform_material(stiffness, 0.2f, 0.2f), solver,
+                                                  cloth::testing::still_air());
+        ClothInstance& cloth = scene->cloth();
+        cloth.pin(0);
+        cloth.pin(7);
         SleepSettings awake;
         awake.enabled = false;  // every cloth runs every frame, as the policy expects of its list
-        cloth->set_sleep(awake);
-        corners_.push_back(cloth->positions().get(7));
-        cloths_.push_back(std::move(cloth));
+        cloth.set_sleep(awake);
+        corners_.push_back(cloth.positions().get(7));
+        cloths_.push_back(std::move(scene));
         return *cloths_.back();
     }
     // Every frame from now on moves each cloth's pinned corner 7 around a
@@ -91,13 +92,16 @@ class ModelWorld {
         if (moving_) {
             const float angle = 2.0f * 3.14159265f * kDt * static_cast<float>(frame_);
             for (size_t c = 0; c < cloths_.size(); ++c)
-                cloths_[c]->set_pin_target(7,
-                                           corners_[c] + 0.02f * Vec3(std::cos(angle), 0, std::sin(angle)));
+                cloths_[c]->cloth().set_pin_target(
+                    7, corners_[c] + 0.02f * Vec3(std::cos(angle), 0, std::sin(angle)));
         }
         for (auto& cloth : cloths_) {
             if (!cloth->update_rate().due(frame_)) continue;
             const uint32_t frames = cloth->begin_rate_step(frame_);
-            EXPECT_TRUE(cloth->step(kDt * static_cast<float>(frames), kGravity).ok());
+            EXPECT_TRUE(
+                cloth->cloth()
+                    .step(kDt * static_cast<float>(frames), kGravity, nullptr, cloth->quality().bounds())
+                    .ok());
             const QualityRung ran = cloth->quality().ran_rung();
             const int64_t cost = static_cast<int64_t>(spike * static_cast<double>(model.cost_ns(ran)));
             costs.push_back(
@@ -135,7 +139,7 @@ class ModelWorld {
     CostModel model;
 
   private:
-    std::vector<std::unique_ptr<ClothInstance>> cloths_;
+    std::vector<std::unique_ptr<SceneCloth>> cloths_;
     std::vector<Vec3> corners_;  // each cloth's corner 7 where it was pinned
     bool moving_ = false;
     BudgetPolicy policy_;
@@ -172,13 +176,13 @@ QualityPolicy sweeps_policy() {
 
 TEST(BudgetPolicyModel, ATightBudgetSettlesWithNoFrameOverAndALooseOneRestoresTheTop) {
     ModelWorld world;
-    std::vector<ClothInstance*> follow;
+    std::vector<SceneCloth*> follow;
     for (int c = 0; c < 3; ++c) {
-        ClothInstance& cloth = world.add(jacobi(16), 300.0f);
+        SceneCloth& cloth = world.add(jacobi(16), 300.0f);
         cloth.set_quality_policy(sweeps_policy());
         follow.push_back(&cloth);
     }
-    ClothInstance& fixed = world.add(jacobi(1), 300.0f);  // no policy
+    SceneCloth& fixed = world.add(jacobi(1), 300.0f);  // no policy
 
     world.frame(1e9);
     const double full_ms = world.step_ms();
@@ -191,21 +195,22 @@ TEST(BudgetPolicyModel, ATightBudgetSettlesWithNoFrameOverAndALooseOneRestoresTh
         << "the floor alone cannot meet this budget";
     for (int i = 0; i < 60; ++i) world.frame(budget);
     EXPECT_EQ(world.overruns(budget, 60), 0) << "settled: no frame over budget";
-    for (ClothInstance* cloth : follow) {
-        EXPECT_LT(cloth->solver().iterations, 8u) << "below the floor, under a load";
-        EXPECT_GE(cloth->solver().iterations, 1u);
+    for (SceneCloth* cloth : follow) {
+        EXPECT_LT(cloth->quality().settings().iterations, 8u) << "below the floor, under a load";
+        EXPECT_GE(cloth->quality().settings().iterations, 1u);
     }
-    EXPECT_EQ(fixed.solver().iterations, 1u) << "a cloth without a policy keeps its settings";
+    EXPECT_EQ(fixed.quality().settings().iterations, 1u) << "a cloth without a policy keeps its settings";
     EXPECT_LE(world.step_ms(), budget);
 
     for (int i = 0; i < 300; ++i) world.frame(100 * full_ms);
-    for (ClothInstance* cloth : follow) EXPECT_EQ(cloth->solver().iterations, 16u) << "back to the top";
+    for (SceneCloth* cloth : follow)
+        EXPECT_EQ(cloth->quality().settings().iterations, 16u) << "back to the top";
     EXPECT_EQ(world.overruns(100 * full_ms, 5), 0);
 }
 
 TEST(BudgetPolicyModel, AtTheFloorOnlyALoadTakesAClothLowerAndThenOneRungAFrame) {
     ModelWorld world;
-    ClothInstance& cloth = world.add(jacobi(16), 300.0f);
+    SceneCloth& cloth = world.add(jacobi(16), 300.0f);
     cloth.set_quality_policy(sweeps_policy());
     const QualityLadder ladder = cloth.quality().ladder();
     ASSERT_EQ(ladder.floor(), 8u);
@@ -214,12 +219,12 @@ TEST(BudgetPolicyModel, AtTheFloorOnlyALoadTakesAClothLowerAndThenOneRungAFrame)
     // floor, and it stays there until kLoadOverruns frames have run over.
     for (uint32_t i = 1; i < BudgetPolicy::kLoadOverruns; ++i) {
         EXPECT_TRUE(world.frame(1e-9));
-        EXPECT_EQ(cloth.solver().iterations, 8u) << "frame " << i << ": at the floor";
+        EXPECT_EQ(cloth.quality().settings().iterations, 8u) << "frame " << i << ": at the floor";
     }
-    uint32_t last = cloth.solver().iterations;
+    uint32_t last = cloth.quality().settings().iterations;
     for (int i = 0; i < 10; ++i) {
         EXPECT_TRUE(world.frame(1e-9));
-        const uint32_t now = cloth.solver().iterations;
+        const uint32_t now = cloth.quality().settings().iterations;
         EXPECT_EQ(now, last > 1 ? last - 1 : 1u) << "below the floor: one rung a frame";
         last = now;
     }
@@ -227,27 +232,27 @@ TEST(BudgetPolicyModel, AtTheFloorOnlyALoadTakesAClothLowerAndThenOneRungAFrame)
 
 TEST(BudgetPolicyModel, ASpikeMovesAClothOnlyAsFarAsItsRungsUsualCostSays) {
     ModelWorld world;
-    ClothInstance& cloth = world.add(jacobi(16), 300.0f);
+    SceneCloth& cloth = world.add(jacobi(16), 300.0f);
     cloth.set_quality_policy(sweeps_policy());
     world.frame(1e9);
     const double budget = 1.2 * world.step_ms();
     for (int i = 0; i < 20; ++i) EXPECT_FALSE(world.frame(budget));
-    EXPECT_EQ(cloth.solver().iterations, 16u) << "within budget: at the top";
+    EXPECT_EQ(cloth.quality().settings().iterations, 16u) << "within budget: at the top";
     EXPECT_TRUE(world.frame(budget, 10.0)) << "a frame ten times its usual cost";
     // Judged by the usual cost, 16 sweeps (740 us) are just over kLowerTo of
     // the budget (0.75 * 1.2 * 740 = 666 us): 14 sweeps (660 us) meet it.
     // Judged by the spike, nothing above the floor (8 sweeps) would.
-    EXPECT_EQ(cloth.solver().iterations, 14u);
+    EXPECT_EQ(cloth.quality().settings().iterations, 14u);
 }
 
 TEST(BudgetPolicyModel, TheLeastImportantClothsAreLoweredFirstAndTheMostImportantRaisedFirst) {
     ModelWorld world;
-    ClothInstance& near = world.add(jacobi(16), 300.0f);
-    ClothInstance& mid = world.add(jacobi(16), 300.0f);
-    ClothInstance& far = world.add(jacobi(16), 300.0f);
+    SceneCloth& near = world.add(jacobi(16), 300.0f);
+    SceneCloth& mid = world.add(jacobi(16), 300.0f);
+    SceneCloth& far = world.add(jacobi(16), 300.0f);
     near.set_importance(4.0f);
     far.set_importance(0.25f);
-    for (ClothInstance* c : {&near, &mid, &far}) c->set_quality_policy(sweeps_policy());
+    for (SceneCloth* c : {&near, &mid, &far}) c->set_quality_policy(sweeps_policy());
     world.frame(1e9);
     const double full_ms = world.step_ms();
     // Each costs 740 us at 16 sweeps and 420 us at its floor (8): with the
@@ -255,9 +260,9 @@ TEST(BudgetPolicyModel, TheLeastImportantClothsAreLoweredFirstAndTheMostImportan
     // this budget, so the most important cloth stays at its top.
     const double budget = 0.96 * full_ms;
     for (int i = 0; i < 60; ++i) world.frame(budget);
-    EXPECT_EQ(near.solver().iterations, 16u) << "the most important keeps its top";
-    EXPECT_EQ(far.solver().iterations, 8u) << "the least important pays first";
-    EXPECT_EQ(mid.solver().iterations, 8u);
+    EXPECT_EQ(near.quality().settings().iterations, 16u) << "the most important keeps its top";
+    EXPECT_EQ(far.quality().settings().iterations, 8u) << "the least important pays first";
+    EXPECT_EQ(mid.quality().settings().iterations, 8u);
     EXPECT_EQ(world.overruns(budget, 30), 0);
 
     // A budget whose calm leaves room for five more sweeps (200 us below
@@ -266,9 +271,10 @@ TEST(BudgetPolicyModel, TheLeastImportantClothsAreLoweredFirstAndTheMostImportan
     // five go to it, the step within kRaiseTo of the budget.
     const double looser = (1580e3 + 200e3) * 1e-6 / BudgetPolicy::kRaiseTo;
     for (int i = 0; i < 300; ++i) world.frame(looser);
-    EXPECT_EQ(near.solver().iterations, 16u);
-    EXPECT_EQ(mid.solver().iterations, 13u) << "the more important rises first, paid for by the less";
-    EXPECT_EQ(far.solver().iterations, 8u);
+    EXPECT_EQ(near.quality().settings().iterations, 16u);
+    EXPECT_EQ(mid.quality().settings().iterations, 13u)
+        << "the more important rises first, paid for by the less";
+    EXPECT_EQ(far.quality().settings().iterations, 8u);
     EXPECT_LE(world.step_ms(), BudgetPolicy::kRaiseTo * looser * (1 + 1e-9));
     EXPECT_EQ(world.overruns(looser, 30), 0);
 }
@@ -277,7 +283,7 @@ TEST(BudgetPolicyModel, AtTheFloorASlowerRateComesBeforeFewerIterationsAndGoesFi
     ModelWorld world;
     QualityPolicy policy = sweeps_policy();
     policy.max_update_rate = 4;
-    std::vector<ClothInstance*> cloths;
+    std::vector<SceneCloth*> cloths;
     for (int c = 0; c < 4; ++c) {
         cloths.push_back(&world.add(jacobi(16), 300.0f));
         cloths.back()->set_quality_policy(policy);
@@ -288,9 +294,9 @@ TEST(BudgetPolicyModel, AtTheFloorASlowerRateComesBeforeFewerIterationsAndGoesFi
     // kLowerTo of this budget the cloths must step at rates 2 and 4.
     const double budget = 0.3 * full_ms;
     for (int i = 0; i < 30; ++i) world.frame(budget);
-    for (ClothInstance* cloth : cloths) {
+    for (SceneCloth* cloth : cloths) {
         EXPECT_GE(cloth->update_rate().rate(), 2u) << "no load needed: each step keeps its quality";
-        EXPECT_EQ(cloth->solver().iterations, 8u) << "at the floor, not below it";
+        EXPECT_EQ(cloth->quality().settings().iterations, 8u) << "at the floor, not below it";
     }
     EXPECT_LE(world.step_ms(), BudgetPolicy::kLowerTo * budget);
     EXPECT_EQ(world.overruns(budget, 40), 0) << "staggered: the frames share the steps";
@@ -298,26 +304,27 @@ TEST(BudgetPolicyModel, AtTheFloorASlowerRateComesBeforeFewerIterationsAndGoesFi
     bool sweeps_before_rate = false;
     for (int i = 0; i < 400; ++i) {
         world.frame(100 * full_ms);
-        for (ClothInstance* cloth : cloths)
-            sweeps_before_rate |= cloth->update_rate().rate() > 1 && cloth->solver().iterations > 8;
+        for (SceneCloth* cloth : cloths)
+            sweeps_before_rate |=
+                cloth->update_rate().rate() > 1 && cloth->quality().settings().iterations > 8;
     }
     EXPECT_FALSE(sweeps_before_rate);
-    for (ClothInstance* cloth : cloths) {
+    for (SceneCloth* cloth : cloths) {
         EXPECT_EQ(cloth->update_rate().rate(), 1u);
-        EXPECT_EQ(cloth->solver().iterations, 16u) << "back to the top";
+        EXPECT_EQ(cloth->quality().settings().iterations, 16u) << "back to the top";
     }
     // Without max_update_rate the same budget takes them below the floor
     // instead, under a load.
     ModelWorld fixed_rate;
-    std::vector<ClothInstance*> others;
+    std::vector<SceneCloth*> others;
     for (int c = 0; c < 4; ++c) {
         others.push_back(&fixed_rate.add(jacobi(16), 300.0f));
         others.back()->set_quality_policy(sweeps_policy());
     }
     for (int i = 0; i < 60; ++i) fixed_rate.frame(budget);
-    for (ClothInstance* cloth : others) {
+    for (SceneCloth* cloth : others) {
         EXPECT_EQ(cloth->update_rate().rate(), 1u);
-        EXPECT_LT(cloth->solver().iterations, 8u);
+        EXPECT_LT(cloth->quality().settings().iterations, 8u);
     }
 }
 
@@ -326,7 +333,7 @@ TEST(BudgetPolicyModel, AtTheFloorASlowerRateComesBeforeFewerIterationsAndGoesFi
 // the moving cloth's ladder, not one counted down from the quiet frame.
 TEST(BudgetPolicyModel, AQuietDefaultClothKeepsTheMovingClothsLadder) {
     ModelWorld world;
-    ClothInstance& resting = world.add(automatic(), 20000.0f);
+    SceneCloth& resting = world.add(automatic(), 20000.0f);
     resting.set_quality_policy(policy_on());
     world.frame(1e9);
     const QualityRung moving = resting.quality().ran_rung();
@@ -341,8 +348,8 @@ TEST(BudgetPolicyModel, AQuietDefaultClothKeepsTheMovingClothsLadder) {
 // and substeps by itself.
 TEST(BudgetPolicyModel, TheDefaultKeepsHalfItsIterationsWhileSubstepsCanGoAndGetsItsOwnChoiceBack) {
     ModelWorld world;
-    ClothInstance& capped = world.add(automatic(), 20000.0f);
-    ClothInstance& free_running = world.add(automatic(), 20000.0f);  // no policy
+    SceneCloth& capped = world.add(automatic(), 20000.0f);
+    SceneCloth& free_running = world.add(automatic(), 20000.0f);  // no policy
     world.keep_moving();  // the default's own choice stays what it is in the first frame
     capped.set_quality_policy(policy_on());
 
@@ -388,7 +395,8 @@ float worst_strain_at_rate_8_after_flapping() {
     Material material;
     material.area_density = 0.25f;
     AeroParams air;
-    ClothInstance flag(cloth::testing::heap(), make_grid(40, 40), material, automatic(), air);
+    SceneCloth scene(cloth::testing::heap(), make_grid(40, 40), material, automatic(), air);
+    ClothInstance& flag = scene.cloth();
     for (uint32_t r = 0; r < 40; ++r) flag.pin(r * 40);
     SleepSettings awake;
     awake.enabled = false;
@@ -396,7 +404,7 @@ float worst_strain_at_rate_8_after_flapping() {
     QualityPolicy policy = policy_on();
     policy.max_substeps = 16;
     policy.max_update_rate = 8;
-    flag.set_quality_policy(policy);
+    scene.set_quality_policy(policy);
     auto gust = [&](uint64_t frame) {
         const float t = kDt * static_cast<float>(frame);
         flag.aero().wind = Vec3(8.0f + 2.0f * std::sin(0.9f * t), 0.0f, 1.0f + 1.5f * std::sin(1.9f * t));
@@ -404,19 +412,20 @@ float worst_strain_at_rate_8_after_flapping() {
     uint64_t frame = 0;
     while (++frame <= 120) {
         gust(frame);
-        EXPECT_TRUE(flag.step(kDt, kGravity).ok());
+        EXPECT_TRUE(flag.step(kDt, kGravity, nullptr, scene.quality().bounds()).ok());
     }
-    SolverSettings floor = flag.quality().settings();
+    SolverSettings floor = scene.quality().settings();
     floor.iterations = (floor.iterations + 1) / 2;
     floor.substeps = 1;
-    flag.quality().set_settings(floor);
-    flag.set_update_rate(8, 0);
+    scene.quality().set_settings(floor);
+    scene.set_update_rate(8, 0);
     float worst = 0;
     for (; frame <= 120 + 8 * 30; ++frame) {
-        if (!flag.update_rate().due(frame)) continue;
+        if (!scene.update_rate().due(frame)) continue;
         gust(frame);
-        const uint32_t frames = flag.begin_rate_step(frame);
-        EXPECT_TRUE(flag.step(kDt * static_cast<float>(frames), kGravity).ok());
+        const uint32_t frames = scene.begin_rate_step(frame);
+        EXPECT_TRUE(
+            flag.step(kDt * static_cast<float>(frames), kGravity, nullptr, scene.quality().bounds()).ok());
         worst = std::max(worst, measure(flag, kGravity).max_strain);
     }
     return worst;
@@ -431,17 +440,18 @@ TEST(CappedSubsteps, AFlappingFlagTheBudgetStepsEightFramesAtOnceStaysWithinTwel
 // A stiff 16x16 cloth (k / m past the default's substep gamma in one
 // substep of 1/60 s) hanging from two corners: the theta the frame ran.
 float theta_of_a_frame(const QualityPolicy& policy, uint32_t budget_substep_cap) {
-    ClothInstance cloth(cloth::testing::heap(), make_grid(16, 16), uniform_material(3e4f, 0.0f, 0.1f),
-                        automatic(), cloth::testing::still_air());
+    SceneCloth scene(cloth::testing::heap(), make_grid(16, 16), uniform_material(3e4f, 0.0f, 0.1f),
+                     automatic(), cloth::testing::still_air());
+    ClothInstance& cloth = scene.cloth();
     cloth.pin(0);
     cloth.pin(15);
-    cloth.set_quality_policy(policy);
-    EXPECT_TRUE(cloth.step(kDt, kGravity).ok());
+    scene.set_quality_policy(policy);
+    EXPECT_TRUE(cloth.step(kDt, kGravity, nullptr, scene.quality().bounds()).ok());
     if (budget_substep_cap > 0) {  // as BudgetPolicy sets it, below the last frame's own choice
-        SolverSettings caps = cloth.quality().settings();
+        SolverSettings caps = scene.quality().settings();
         caps.substeps = budget_substep_cap;
-        cloth.quality().set_settings(caps);
-        EXPECT_TRUE(cloth.step(kDt, kGravity).ok());
+        scene.quality().set_settings(caps);
+        EXPECT_TRUE(cloth.step(kDt, kGravity, nullptr, scene.quality().bounds()).ok());
         EXPECT_EQ(cloth.last_frame_solver().substeps, budget_substep_cap);
     }
     return cloth.last_frame_solver().theta;

@@ -1,4 +1,4 @@
-#include "step/frame_profile.h"
+#include "scene/frame_profile.h"
 
 #include <algorithm>
 #include <chrono>

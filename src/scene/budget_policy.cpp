@@ -1,4 +1,4 @@
-#include "step/budget_policy.h"
+#include "scene/budget_policy.h"
 
 #include <algorithm>
 
@@ -7,14 +7,14 @@ namespace cloth {
 namespace {
 
 // A cloth's ladder; one that bodies carry keeps rate 1 (ClothContact::rides_bodies).
-QualityLadder ladder_of(const ClothInstance& cloth) {
+QualityLadder ladder_of(const SceneCloth& cloth) {
     QualityLadder ladder = cloth.quality().ladder();
-    if (cloth.contact().rides_bodies()) ladder.max_rate = 1;
+    if (cloth.cloth().contact().rides_bodies()) ladder.max_rate = 1;
     return ladder;
 }
 
 // Where a cloth stands on its ladder: its current settings' rung.
-QualityRung current_rung(const QualityLadder& ladder, const ClothInstance& cloth) {
+QualityRung current_rung(const QualityLadder& ladder, const SceneCloth& cloth) {
     const SolverSettings settings = cloth.quality().settings();
     return ladder.rung_of(settings.iterations, settings.substeps, cloth.quality().rate());
 }
@@ -49,7 +49,7 @@ class RungCost {
     double per_substep_ = 0, per_iteration_ = 0;
 };
 
-void set_rung(ClothInstance& cloth, QualityRung rung) {
+void set_rung(SceneCloth& cloth, QualityRung rung) {
     SolverSettings next = cloth.quality().settings();
     next.iterations = rung.iterations;
     next.substeps = rung.substeps;
@@ -62,7 +62,7 @@ void set_rung(ClothInstance& cloth, QualityRung rung) {
 // `below_floor`; returns the new prediction.
 double lower(const BudgetCloth& c, uint64_t frame, double predicted, double target, double ms_per_ns,
              bool below_floor) {
-    ClothInstance& cloth = *c.cloth;
+    SceneCloth& cloth = *c.cloth;
     const QualityLadder ladder = ladder_of(cloth);
     const RungCost cost(c, frame);
     const double others = predicted - static_cast<double>(c.cost_ns) * ms_per_ns;
@@ -96,7 +96,7 @@ void BudgetPolicy::after_frame(double budget_ms, double step_ms, uint64_t frame,
     // The frame joins each cloth's memory after the decision: a spike is
     // judged against what the rung usually costs, not with itself in it.
     for (uint32_t c = 0; c < count; ++c) {
-        ClothInstance& cloth = *cloths[c].cloth;
+        SceneCloth& cloth = *cloths[c].cloth;
         if (!cloth.quality().policy().enabled) continue;
         const double cost = static_cast<double>(cloths[c].cost_ns);
         cloth.quality().costs().record(cloth.quality().ran_rung(), cost, frame);
@@ -139,7 +139,7 @@ void BudgetPolicy::decide(double budget_ms, double step_ms, uint64_t frame, int6
     if (++calm_frames_ < kCalmFrames) return;
     calm_frames_ = 0;
     for (uint32_t c = count; c-- > 0;) {  // the most relevant first
-        ClothInstance& cloth = *cloths[c].cloth;
+        SceneCloth& cloth = *cloths[c].cloth;
         if (!cloth.quality().policy().enabled || !cloth.quality().can_rise()) continue;
         const QualityLadder ladder = ladder_of(cloth);
         const RungCost cost(cloths[c], frame);
@@ -161,7 +161,7 @@ void BudgetPolicy::rebalance(double budget_ms, double predicted, uint64_t frame,
     QualityRung raised{};
     double change = 0;
     for (uint32_t c = count; c-- > 0 && top == count;) {
-        ClothInstance& cloth = *cloths[c].cloth;
+        SceneCloth& cloth = *cloths[c].cloth;
         if (!cloth.quality().policy().enabled || !cloth.quality().can_rise()) continue;
         const QualityLadder ladder = ladder_of(cloth);
         raised = current_rung(ladder, cloth);
@@ -178,7 +178,7 @@ void BudgetPolicy::rebalance(double budget_ms, double predicted, uint64_t frame,
     QualityRung lowered[kMostRebalanced];
     uint32_t payers = 0;
     for (uint32_t c = 0; c < top && after > target && payers < kMostRebalanced; ++c) {
-        ClothInstance& cloth = *cloths[c].cloth;
+        SceneCloth& cloth = *cloths[c].cloth;
         if (!cloth.quality().policy().enabled || cloths[c].relevance >= cloths[top].relevance) continue;
         const QualityLadder ladder = ladder_of(cloth);
         const RungCost cost(cloths[c], frame);

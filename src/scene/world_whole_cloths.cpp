@@ -13,8 +13,8 @@
 // both are folded into the profile after the frame.
 #include <algorithm>
 
+#include "scene/world.h"
 #include "step/frame_rounds.h"
-#include "step/world.h"
 
 namespace cloth {
 

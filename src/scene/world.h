@@ -20,9 +20,10 @@
 #include "jobs/host_tasks.h"
 #include "jobs/task_system.h"
 #include "jobs/thread_pool.h"
-#include "step/budget_policy.h"
+#include "scene/budget_policy.h"
+#include "scene/frame_profile.h"
+#include "scene/scene_cloth.h"
 #include "step/cloth_instance.h"
-#include "step/frame_profile.h"
 #include "step/pair_rounds.h"
 
 namespace cloth {
@@ -47,10 +48,12 @@ class World {
                         const SolverSettings& solver, const AeroParams& aero, const float* initial_positions,
                         cloth_id* out);
     ClothInstance* find_cloth(cloth_id id) const;
+    // The cloth with the scene's record of it (scene_cloth.h).
+    SceneCloth* find_scene_cloth(cloth_id id) const;
     // Wake every cloth (gravity changed).
     void wake_all() {
         for (auto& slot : cloths_) {
-            if (slot.object) slot.object->wake();
+            if (slot.object) slot.object->cloth().wake();
         }
     }
     Status destroy_cloth(cloth_id id);
@@ -92,13 +95,13 @@ class World {
     // phase (contact runs where both step to one frame), any other the
     // phase with the fewest particles of that rate. Allocates for a rate
     // above 1 (a failure changes nothing).
-    void set_update_rate(ClothInstance& cloth, uint32_t rate);
+    void set_update_rate(SceneCloth& cloth, uint32_t rate);
     // The viewer whose distance scales each cloth's importance under a
     // frame budget (null: none, every cloth counts by its importance).
     void set_viewer(const Vec3* position);
     // What a cloth counts for under a budget: its importance times, with a
     // viewer, its bounding sphere's radius over its distance (at most 1).
-    float relevance(const ClothInstance& cloth) const;
+    float relevance(const SceneCloth& cloth) const;
 
     // Contact between two of the world's cloths (cloth_pair_contact.h;
     // world_cloth_pairs.cpp), resolved inside both cloths' substeps
@@ -148,7 +151,8 @@ class World {
     uint16_t index_;
     uint16_t generation_;
     IdPool<std::shared_ptr<Fabric>> fabrics_;
-    IdPool<std::shared_ptr<ClothInstance>> cloths_;
+    IdPool<std::shared_ptr<SceneCloth>> cloths_;
+    ClothInstance& cloth_at(uint32_t slot) const { return cloths_[slot].object->cloth(); }
     ContactWorld contact_;
 
     // One task of a round: group `task` of `cloth`'s current stage.

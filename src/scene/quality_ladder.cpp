@@ -1,4 +1,4 @@
-#include "step/quality_ladder.h"
+#include "scene/quality_ladder.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "step/world.h"
+#include "scene/world.h"
 
 #include <algorithm>
 #include <climits>
@@ -89,8 +89,9 @@ Status World::create_cloth(std::shared_ptr<const Fabric> fabric, const Material&
         return Status::error(CLOTH_ERROR_CAPACITY, "world has no free cloth slot (max_cloths = %u)",
                              cloths_.max_slots());
     }
-    auto cloth = std::allocate_shared<ClothInstance>(HostAllocator<ClothInstance>(&memory_), &memory_,
-                                                     std::move(fabric), material, solver, aero);
+    auto scene = std::allocate_shared<SceneCloth>(HostAllocator<SceneCloth>(&memory_), &memory_,
+                                                  std::move(fabric), material, solver, aero);
+    ClothInstance* cloth = &scene->cloth();
     if (initial_positions) {
         for (uint32_t i = 0; i < cloth->particle_count(); ++i) {
             const uint32_t v = cloth->fabric().vertex(i);  // the host's vertex order
@@ -100,11 +101,16 @@ Status World::create_cloth(std::shared_ptr<const Fabric> fabric, const Material&
     }
     reserve_round_tasks(cloth->group_count());
     cloth->contact().bind(&contact_);
-    *out = cloth_id_of(slot, cloths_.occupy(slot, std::move(cloth)));
+    *out = cloth_id_of(slot, cloths_.occupy(slot, std::move(scene)));
     return {};
 }
 
 ClothInstance* World::find_cloth(cloth_id id) const {
+    SceneCloth* scene = find_scene_cloth(id);
+    return scene ? &scene->cloth() : nullptr;
+}
+
+SceneCloth* World::find_scene_cloth(cloth_id id) const {
     const uint32_t slot = cloths_.find(id.index1, id.generation);
     return slot == cloths_.kFull ? nullptr : cloths_[slot].object.get();
 }
@@ -125,7 +131,7 @@ Status World::destroy_cloth(cloth_id id) {
 void World::reserve_round_tasks(size_t extra_groups) {
     size_t groups = extra_groups;
     for (const auto& slot : cloths_) {
-        if (slot.object) groups += slot.object->group_count();
+        if (slot.object) groups += slot.object->cloth().group_count();
     }
     round_.reserve(groups);
     round_times_.resize(std::max(round_times_.size(), groups));
@@ -215,8 +221,8 @@ void World::account_round(uint32_t count) {
 
 void World::destroy_body(uint32_t body) {
     for (const auto& slot : cloths_) {
-        ClothInstance* cloth = slot.object.get();
-        if (!cloth) continue;
+        if (!slot.object) continue;
+        ClothInstance* cloth = &slot.object->cloth();
         ClothContact& contact = cloth->contact();
         if (contact.carrier().body() == body) contact.carrier().clear();
         for (uint32_t i = 0; i < cloth->particle_count(); ++i) {
@@ -257,22 +263,23 @@ Status World::step(float dt) {
     decisions_.clear();
     std::fill(stepping_index_.begin(), stepping_index_.end(), kNotStepping);
     for (uint32_t s = 0; s < cloths_.size(); ++s) {
-        ClothInstance* cloth = cloths_[s].object.get();
-        if (!cloth) continue;
+        SceneCloth* scene = cloths_[s].object.get();
+        if (!scene) continue;
+        ClothInstance* cloth = &scene->cloth();
         cloth_cost_ns_[s] = cloth_solve_ns_[s] = 0;
-        cloth->set_world_frame(frame_);
+        scene->set_world_frame(frame_);
         if (cloth->woken_by_bodies()) cloth->wake();
         if (cloth->sleeping()) {
             ++profile_.sleeping_cloths;
             continue;
         }
         // A body that carries the cloth moves frame by frame: back to rate 1.
-        if (cloth->update_rate().rate() > 1 && cloth->contact().rides_bodies()) cloth->set_update_rate(1, 0);
-        if (!cloth->update_rate().due(frame_)) continue;  // between its steps (update_rate.h)
+        if (scene->update_rate().rate() > 1 && cloth->contact().rides_bodies()) scene->set_update_rate(1, 0);
+        if (!scene->update_rate().due(frame_)) continue;  // between its steps (update_rate.h)
         // The frame's decision (frame_decision.h), made once before it starts.
-        const float step_dt = dt * static_cast<float>(cloth->begin_rate_step(frame_));
+        const float step_dt = dt * static_cast<float>(scene->begin_rate_step(frame_));
         const FrameInputs& in =
-            frame_inputs_.emplace_back(cloth->frame_inputs(step_dt, cloth->quality().bounds()));
+            frame_inputs_.emplace_back(cloth->frame_inputs(step_dt, scene->quality().bounds()));
         cloth->open_frame(step_dt, decisions_.emplace_back(decide_frame(in)));
         stepping_index_[s] = static_cast<uint32_t>(stepping_.size());
         stepping_.push_back(s);
@@ -294,7 +301,7 @@ Status World::step(float dt) {
         run_frames(stepping_cloths_.data(), static_cast<uint32_t>(stepping_cloths_.size()), [&] {
             round_.clear();
             for (uint32_t s : stepping_) {
-                ClothInstance* cloth = cloths_[s].object.get();
+                ClothInstance* cloth = &cloth_at(s);
                 if (cloth->frame_done()) continue;
                 const uint32_t count = cloth->task_count();
                 for (uint32_t t = 0; t < count; ++t) {
@@ -309,13 +316,13 @@ Status World::step(float dt) {
 
     Status first_failure;
     for (uint32_t s : stepping_) {
-        ClothInstance* cloth = cloths_[s].object.get();
-        Status status = cloth->end_frame();
+        Status status = cloth_at(s).end_frame();
         if (status.ok()) continue;
         // A cloth that had to be restored outranks a solver warning.
         auto restored = [](cloth_result code) {
             return code == CLOTH_ERROR_NONFINITE_STATE || code == CLOTH_ERROR_OUT_OF_MEMORY;
         };
+        if (restored(status.code)) cloths_[s].object->undo_rate_step();  // back at the step's start
         if (first_failure.ok() || (restored(status.code) && !restored(first_failure.code))) {
             first_failure = Status::error(status.code, "cloth slot %u: %.360s", s + 1, status.message);
         }
@@ -338,9 +345,9 @@ Status World::step(float dt) {
         }
         budget_cloths_.clear();
         for (uint32_t s : stepping_) {
-            ClothInstance* cloth = cloths_[s].object.get();
+            SceneCloth* scene = cloths_[s].object.get();
             budget_cloths_.push_back(
-                BudgetCloth{cloth, cloth_cost_ns_[s], cloth_solve_ns_[s], relevance(*cloth)});
+                BudgetCloth{scene, cloth_cost_ns_[s], cloth_solve_ns_[s], relevance(*scene)});
         }
         budget_policy_.after_frame(budget_ms_, profile_.step_ms(), frame_, budget_cloths_.data(),
                                    static_cast<uint32_t>(budget_cloths_.size()));
@@ -353,15 +360,15 @@ Status World::step(float dt) {
     return first_failure;
 }
 
-void World::set_update_rate(ClothInstance& cloth, uint32_t rate) {
+void World::set_update_rate(SceneCloth& cloth, uint32_t rate) {
     uint32_t phase = 0;
     if (rate > 1) {
         // Cloths in contact step together: a partner's phase at the same rate.
-        const ClothInstance* partner = nullptr;
+        const SceneCloth* partner = nullptr;
         for (const ClothPair& pair : cloth_pairs_) {
-            const ClothInstance* a = cloths_[pair.slot_a].object.get();
-            const ClothInstance* b = cloths_[pair.slot_b].object.get();
-            const ClothInstance* other = a == &cloth ? b : b == &cloth ? a : nullptr;
+            const SceneCloth* a = cloths_[pair.slot_a].object.get();
+            const SceneCloth* b = cloths_[pair.slot_b].object.get();
+            const SceneCloth* other = a == &cloth ? b : b == &cloth ? a : nullptr;
             if (other && other->update_rate().rate() == rate) partner = other;
             if (partner) break;
         }
@@ -371,9 +378,9 @@ void World::set_update_rate(ClothInstance& cloth, uint32_t rate) {
             // The phase with the fewest particles of this rate (the first of equals).
             uint64_t load[UpdateRate::kSlowest] = {};
             for (const auto& slot : cloths_) {
-                const ClothInstance* other = slot.object.get();
+                const SceneCloth* other = slot.object.get();
                 if (other && other != &cloth && other->update_rate().rate() == rate)
-                    load[other->update_rate().phase()] += other->particle_count();
+                    load[other->update_rate().phase()] += other->cloth().particle_count();
             }
             phase = static_cast<uint32_t>(std::min_element(load, load + rate) - load);
         }
@@ -386,17 +393,17 @@ void World::set_viewer(const Vec3* position) {
     viewer_ = position ? *position : Vec3::Zero();
 }
 
-float World::relevance(const ClothInstance& cloth) const {
-    if (!has_viewer_) return cloth.importance();
-    const Vec3Soa& x = cloth.positions();
+float World::relevance(const SceneCloth& scene) const {
+    if (!has_viewer_) return scene.importance();
+    const Vec3Soa& x = scene.cloth().positions();
     Vec3 low = x.get(0), high = low;
-    for (uint32_t i = 1; i < cloth.particle_count(); ++i) {
+    for (uint32_t i = 1; i < scene.cloth().particle_count(); ++i) {
         low = low.cwiseMin(x.get(i));
         high = high.cwiseMax(x.get(i));
     }
     const float radius = 0.5f * (high - low).norm();
     const float distance = (0.5f * (low + high) - viewer_).norm();
-    return cloth.importance() * (distance > radius ? radius / distance : 1.0f);
+    return scene.importance() * (distance > radius ? radius / distance : 1.0f);
 }
 
 }  // namespace cloth

@@ -1,17 +1,17 @@
 // One cloth under a world's frame budget (budget_policy.h): its quality
-// policy, the policy's memory of what each rung cost, and the view of the
-// cloth's solver settings the policy moves along its ladder. It reads the
-// cloth's settings and its last frame (FrameContext) and writes only the
-// settings' iterations and substeps, or the default's caps.
+// policy, the policy's memory of what each rung cost, and where the budget
+// put the cloth: caps on CLOTH_SOLVER_DEFAULT's own choice, or the
+// iterations and substeps another kind runs. It reads the cloth's settings
+// and its last frame's decision and writes nothing of the cloth's: the
+// frame's decision reads bounds() (step/frame_decision.h).
 #pragma once
 
 #include <cstdint>
 #include <utility>
 
-#include "solve/solver_settings.h"
-#include "step/frame_context.h"
-#include "step/quality_ladder.h"
-#include "step/update_rate.h"
+#include "scene/quality_ladder.h"
+#include "scene/update_rate.h"
+#include "step/cloth_instance.h"
 
 namespace cloth {
 
@@ -26,39 +26,42 @@ struct QualityPolicy {
 
 class ClothQuality {
   public:
-    // `solver`, `frame` and `rate` are the cloth's, which outlives this.
-    ClothQuality(SolverSettings& solver, const FrameContext& frame, const UpdateRate& rate)
-        : solver_(solver), frame_(frame), rate_(rate) {}
+    // `cloth` and `rate` are the scene record's, which outlives this.
+    ClothQuality(const ClothInstance& cloth, const UpdateRate& rate) : cloth_(cloth), rate_(rate) {}
     ClothQuality(const ClothQuality&) = delete;
     ClothQuality& operator=(const ClothQuality&) = delete;
 
     const QualityPolicy& policy() const { return policy_; }
-    // Enabling clamps the solver settings into the bounds; either way the
-    // default's caps and the cost memory go.
+    // Enabling clamps the settings the cloth runs into the bounds; either
+    // way the default's caps and the cost memory go.
     void set_policy(const QualityPolicy& policy);
-    // The bounds and caps the frame's decision reads (frame_decision.h).
+    // The host set new solver settings: the budget starts from them.
+    void host_set_solver();
+    // What the frame's decision reads.
     BudgetBounds bounds() const;
     QualityCosts& costs() { return costs_; }
     const QualityCosts& costs() const { return costs_; }
 
-    // The iterations and substeps the policy steps from: the solver
-    // settings' own or, for CLOTH_SOLVER_DEFAULT, its caps, or what its
-    // last frame ran when it has none. Setting them sets the settings, or
-    // the default's caps (removed once they reach what the default chooses
-    // by itself).
+    // The iterations and substeps the policy steps from: the budget's, the
+    // host's or, for CLOTH_SOLVER_DEFAULT, its caps or what its last frame
+    // ran when it has none. Setting them sets the budget's rung, or the
+    // default's caps (removed once they reach what the default chooses by
+    // itself).
     SolverSettings settings() const;
     void set_settings(const SolverSettings& settings);
     // The ladder the policy moves the cloth along: from the policy's top,
     // or the default's own choice of the last frame, down to the policy's
     // minimum. And the rung the last frame ran, and the rung of the
     // ladder that put it there (fewer substeps where a budget's cap would
-    // have made a substep too long: frame_plan.cpp).
+    // have made a substep too long: frame_decision.cpp).
     QualityLadder ladder() const;
     QualityRung ran_rung() const {
-        return {frame_.decision.solver.iterations, frame_.decision.solver.substeps, rate_.rate()};
+        const FrameDecision& d = cloth_.last_frame_decision();
+        return {d.solver.iterations, d.solver.substeps, rate_.rate()};
     }
     QualityRung capped_rung() const {
-        return {frame_.decision.solver.iterations, frame_.decision.capped_substeps, rate_.rate()};
+        const FrameDecision& d = cloth_.last_frame_decision();
+        return {d.solver.iterations, d.capped_substeps, rate_.rate()};
     }
     // The update rate the policy wants (set_rate), or the cloth's own.
     // The world applies a wanted rate after the policy's decision
@@ -77,13 +80,17 @@ class ClothQuality {
     bool can_rise() const;
 
   private:
-    SolverSettings& solver_;
-    const FrameContext& frame_;
+    bool by_default() const { return cloth_.solver().kind == CLOTH_SOLVER_DEFAULT; }
+
+    const ClothInstance& cloth_;
     const UpdateRate& rate_;
     uint32_t wanted_rate_ = 0;
     bool rate_cut_ = false;
     QualityPolicy policy_;
     QualityCosts costs_;
+    // Where the budget put the cloth (0: nowhere): caps on the default's
+    // own choice, or what another kind runs instead of the host's settings.
+    uint32_t iterations_ = 0, substeps_ = 0;
 };
 
 }  // namespace cloth
