@@ -20,53 +20,39 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
       x_(memory),
       v_(memory),
       mass_(HostAllocator<float>(memory)),
-      pinned_(HostAllocator<float>(memory)),
-      pinned_list_(HostAllocator<uint32_t>(memory)),
-      pin_target_(memory),
-      external_force_(memory),
-      triangle_force_(memory),
+      pins_(memory),
       springs_(make_spring_terms(memory, fabric_, material)),
-      diagonal_(memory),
-      diagonal_inverse_(memory),
-      rhs_(memory),
-      dv_(memory),
-      dv_scratch_(memory),
-      solver_work_(memory),
-      normals_(memory),
-      multigrid_(memory),
-      grid_strain_terms_(memory),
-      tethers_(memory),
-      stretch_counts_(HostAllocator<StretchCount>(memory)),
-      strain_maybe_over_(HostAllocator<uint8_t>(memory)),
-      strain_pull_(HostAllocator<float>(memory)),
+      system_(memory),
+      strain_(memory),
       frame_(memory),
       contact_(memory),
       skin_(memory) {
     const Fabric& f = *fabric_;
     const uint32_t n = f.particle_count();
-    for (Vec3Soa* a : {&x_, &v_, &pin_target_, &external_force_, &rhs_, &dv_, &dv_scratch_, &normals_}) {
+    for (Vec3Soa* a : {&x_, &v_, &system_.external_force, &system_.rhs, &system_.dv, &system_.dv_scratch,
+                       &system_.normals}) {
         a->resize(n);
     }
     for (uint32_t i = 0; i < n; ++i) x_.set(i, f.rest_positions[i]);
     mean_structural_rest_length_ = mean_structural_rest_length(f);
-    pin_target_ = x_;
+    pins_.target = x_;
     mass_.resize(n);
-    pinned_.assign(n, 0.0f);
-    pinned_list_.reserve(n);
-    triangle_force_.resize(air_storage_size(f));
-    diagonal_.resize(n);
-    diagonal_inverse_.resize(n);
-    solver_work_.resize(n);
+    pins_.pinned.assign(n, 0.0f);
+    pins_.list.reserve(n);
+    system_.triangle_force.resize(air_storage_size(f));
+    system_.diagonal.resize(n);
+    system_.diagonal_inverse.resize(n);
+    system_.work.resize(n);
     group_count_ = (n + kGroupSize - 1) / kGroupSize;
     frame_.resize(n, group_count_);
     contact_.size_record(n);
-    stretch_counts_.assign(group_count_, StretchCount{});
-    strain_maybe_over_.assign(n, 0);
-    strain_pull_.assign(n, 0.0f);
+    strain_.counts.assign(group_count_, StretchCount{});
+    strain_.maybe_over.assign(n, 0);
+    strain_.pull.assign(n, 0.0f);
     set_material(material);
-    multigrid_.plan(f, *springs_);
-    if (!f.grid_families.empty()) grid_strain_terms_.resize(f);
-    tethers_.resize(f);
+    system_.multigrid.plan(f, *springs_);
+    if (!f.grid_families.empty()) strain_.grid_terms.resize(f);
+    strain_.tethers.resize(f);
 }
 
 void ClothInstance::set_material(const Material& material) {
@@ -96,14 +82,14 @@ void ClothInstance::set_pinned(const uint32_t* indices, uint32_t count, bool pin
     wake();
     for (uint32_t k = 0; k < count; ++k) {
         const uint32_t i = vertex_indices ? fabric_->particle(indices[k]) : indices[k];
-        if (pinned) pin_target_.set(i, x_.get(i));
-        pinned_[i] = pinned ? 1.0f : 0.0f;
+        if (pinned) pins_.target.set(i, x_.get(i));
+        pins_.pinned[i] = pinned ? 1.0f : 0.0f;
         if (!pinned) contact_.detach(i);
     }
-    tethers_follow_pins_ = false;
-    pinned_list_.clear();  // keeps its capacity of one entry per particle
+    strain_.tethers_follow_pins = false;
+    pins_.list.clear();  // keeps its capacity of one entry per particle
     for (uint32_t i = 0; i < particle_count(); ++i) {
-        if (pinned_[i] != 0.0f) pinned_list_.push_back(i);
+        if (pins_.pinned[i] != 0.0f) pins_.list.push_back(i);
     }
 }
 
@@ -112,7 +98,7 @@ void ClothInstance::set_position(uint32_t particle, const Vec3& x) {
     contact_.forget_sleep();
     x_.set(particle, x);
     v_.set(particle, Vec3::Zero());
-    pin_target_.set(particle, x);
+    pins_.target.set(particle, x);
 }
 
 void ClothInstance::set_self_collision(const SelfCollisionSettings* settings) {
@@ -128,8 +114,8 @@ void ClothInstance::set_self_collision(const SelfCollisionSettings* settings) {
 }
 
 const Vec3Soa& ClothInstance::normals(const Vec3Soa& positions) const {
-    compute_vertex_normals(*fabric_, positions, 0, particle_count(), normals_);
-    return normals_;
+    compute_vertex_normals(*fabric_, positions, 0, particle_count(), system_.normals);
+    return system_.normals;
 }
 
 void ClothInstance::set_solver(const SolverSettings& settings) {
@@ -140,7 +126,7 @@ void ClothInstance::set_solver(const SolverSettings& settings) {
 // ---------------------------------------------------------------- sleep
 
 void ClothInstance::set_sleep(const SleepSettings& settings) {
-    sleep_ = settings;
+    sleep_.settings = settings;
     wake();
 }
 
@@ -150,19 +136,19 @@ void ClothInstance::wake() {
 }
 
 void ClothInstance::end_sleep() {
-    if (held_asleep_) contact_.wake_up();
-    held_asleep_ = false;
-    sleeping_ = false;
-    rest_frames_ = 0;
+    if (sleep_.held) contact_.wake_up();
+    sleep_.held = false;
+    sleep_.sleeping = false;
+    sleep_.rest_frames = 0;
 }
 
 void ClothInstance::hold_asleep() {
-    sleeping_ = held_asleep_ = true;
+    sleep_.sleeping = sleep_.held = true;
     contact_.fall_asleep();
 }
 
 bool ClothInstance::can_shift_origin(const Vec3& shift) const {
-    for (const Vec3Soa* a : {&x_, &pin_target_}) {
+    for (const Vec3Soa* a : {&x_, &pins_.target}) {
         for (size_t i = 0; i < a->size(); ++i) {
             if (!(a->get(i) - shift).allFinite()) return false;
         }
@@ -171,7 +157,7 @@ bool ClothInstance::can_shift_origin(const Vec3& shift) const {
 }
 
 void ClothInstance::shift_origin(const Vec3& shift) {
-    for (Vec3Soa* a : {&x_, &pin_target_}) {
+    for (Vec3Soa* a : {&x_, &pins_.target}) {
         for (float& c : a->x) c -= shift.x();
         for (float& c : a->y) c -= shift.y();
         for (float& c : a->z) c -= shift.z();
@@ -236,7 +222,7 @@ float ClothInstance::moved_speed_squared() const {
 void ClothInstance::update_sleep() {
     float speed_squared = 0;
     for (float s : frame_.group_speed_squared) speed_squared = std::max(speed_squared, s);
-    const float max_squared = sleep_.max_speed * sleep_.max_speed;
+    const float max_squared = sleep_.settings.max_speed * sleep_.settings.max_speed;
     // A cloth held at its strain limit keeps velocities that do not move
     // it: each substep the limiter's projection turns its correction into
     // velocity (Provot), and against the theta step's x' = x + h (v + theta
@@ -245,16 +231,16 @@ void ClothInstance::update_sleep() {
     // farther than max_speed allows over the frame and no velocity is far
     // above it (kPhantomSpeed).
     constexpr float kPhantomSpeed = 10.0f;
-    if (sleep_.enabled && speed_squared > max_squared &&
+    if (sleep_.settings.enabled && speed_squared > max_squared &&
         speed_squared <= kPhantomSpeed * kPhantomSpeed * max_squared) {
         const float moved = moved_speed_squared();
         if (moved >= 0) speed_squared = moved;
     }
     const bool at_rest = speed_squared <= max_squared && !contact_.follows_bodies();
-    rest_frames_ = at_rest ? rest_frames_ + 1 : 0;
-    if (sleep_.enabled && rest_frames_ >= sleep_.frames) {
+    sleep_.rest_frames = at_rest ? sleep_.rest_frames + 1 : 0;
+    if (sleep_.settings.enabled && sleep_.rest_frames >= sleep_.settings.frames) {
         // At rest: stop, and cost nothing until something changes.
-        sleeping_ = true;
+        sleep_.sleeping = true;
         v_.fill(Vec3::Zero());
     }
 }
@@ -273,7 +259,7 @@ void ClothInstance::restore_frame_start() {
             break;
     }
     // Only pinned velocities changed before the first integration.
-    for (uint32_t i : pinned_list_) v_.set(i, frame_.pin_velocity_start.get(i));
+    for (uint32_t i : pins_.list) v_.set(i, frame_.pin_velocity_start.get(i));
 }
 
 }  // namespace cloth

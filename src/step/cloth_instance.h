@@ -30,6 +30,7 @@
 #include "solve/solver_settings.h"
 #include "solve/solvers.h"
 #include "solve/strain_limit.h"
+#include "step/cloth_parts.h"
 #include "step/frame_context.h"
 #include "step/step_stage.h"
 
@@ -38,13 +39,6 @@ namespace cloth {
 class SpringTerms;
 class SelfCollision;
 struct SelfCollisionSettings;
-
-// When a cloth at rest goes to sleep (ClothInstance::set_sleep).
-struct SleepSettings {
-    bool enabled = true;
-    float max_speed = 1e-3f;  // m/s: every particle slower than this...
-    uint32_t frames = 60;     // ...for this many consecutive frames
-};
 
 class ClothInstance {
   public:
@@ -96,17 +90,17 @@ class ClothInstance {
     // the C API) solver, air and wind, gravity, self-collision; contact
     // features call wake() when their colliders or attachments move.
     void set_sleep(const SleepSettings& settings);
-    const SleepSettings& sleep() const { return sleep_; }
-    bool sleeping() const { return sleeping_; }
+    const SleepSettings& sleep() const { return sleep_.settings; }
+    bool sleeping() const { return sleep_.sleeping; }
     void wake();
     // The host puts the cloth to sleep now (an unseen cloth): it keeps its
     // velocities, so waking continues its motion, and moving bodies do not
     // wake it (a cloth on a carrier catches up with it when it wakes).
     void hold_asleep();
-    bool held_asleep() const { return held_asleep_; }
+    bool held_asleep() const { return sleep_.held; }
     // Whether the step wakes the sleeping cloth: bodies it follows move
     // without a call on the cloth, unless the host holds it asleep.
-    bool woken_by_bodies() const { return sleeping_ && !held_asleep_ && contact_.follows_bodies(); }
+    bool woken_by_bodies() const { return sleep_.sleeping && !sleep_.held && contact_.follows_bodies(); }
     // Origin rebasing: subtract `shift` from the positions and pin targets
     // (between frames; everything else is relative or per frame);
     // can_shift_origin: whether every result stays finite.
@@ -175,9 +169,9 @@ class ClothInstance {
     void set_pinned(const uint32_t* indices, uint32_t count, bool pinned, bool vertex_indices = false);
     void pin(uint32_t particle) { set_pinned(&particle, 1, true); }
     void unpin(uint32_t particle) { set_pinned(&particle, 1, false); }
-    bool is_pinned(uint32_t particle) const { return pinned_[particle] != 0.0f; }
+    bool is_pinned(uint32_t particle) const { return pins_.pinned[particle] != 0.0f; }
     void set_pin_target(uint32_t particle, const Vec3& target) {
-        pin_target_.set(particle, target);
+        pins_.target.set(particle, target);
         end_sleep();  // the pin's move is measured when the frame starts (starts_quiet)
     }
     // Teleport a particle: new position, zero velocity (and pin target).
@@ -187,7 +181,7 @@ class ClothInstance {
     // The cloth's particles as contact with another cloth sees them
     // (collide/cloth_pair_contact.h); `steps`: it steps this frame.
     ParticleView particle_view(bool steps) {
-        return ParticleView{fabric_.get(), &x_, &v_, mass_.data(), pinned_.data(), steps};
+        return ParticleView{fabric_.get(), &x_, &v_, mass_.data(), pins_.pinned.data(), steps};
     }
     // Contact with other cloths this frame (World::step, between
     // begin_frame and the first round): the cloth's side of each pair, in
@@ -328,34 +322,16 @@ class ClothInstance {
     // State.
     Vec3Soa x_, v_;
     HostVector<float> mass_;
-    bool masses_set_ = false;           // mass_ holds the material's (or the host's) masses
-    HostVector<float> pinned_;          // 1 pinned, 0 free (a factor in branch-free loops)
-    HostVector<uint32_t> pinned_list_;  // the pinned particles, ascending
-    Vec3Soa pin_target_;                // where a pinned particle is at the end of the next frame
+    bool masses_set_ = false;  // mass_ holds the material's (or the host's) masses
+    PinSet pins_;
 
-    // Scratch, sized once at creation (no allocation per step).
-    Vec3Soa external_force_;                // per particle
-    Vec3Soa triangle_force_;                // per triangle, share of each corner
     std::shared_ptr<SpringTerms> springs_;  // per-spring f~ and A_s, in the layout that suits the fabric
-    Sym3Soa diagonal_;                      // per particle: W_ii
-    Sym3Soa diagonal_inverse_;              // per particle: W_ii^-1 (zero if pinned)
-    Vec3Soa rhs_;                           // per particle: b_i = h f~_i
-    Vec3Soa dv_, dv_scratch_;               // per particle
-    SolverWorkspace solver_work_;  // PCG / Chebyshev vectors and block partials, strain-limit scratch
-    mutable Vec3Soa normals_;      // per particle, filled by normals()
-
+    mutable SystemBuffers system_;          // mutable: normals() fills its normals
+    StrainLimitParts strain_;
     std::shared_ptr<SelfCollision> self_collision_;  // null while off
 
     SolveReport last_solve_;
     cloth_result last_step_result_ = CLOTH_OK;
-
-    Multigrid multigrid_;                      // PCG's preconditioner when the settings ask for it
-    GridStrainTerms grid_strain_terms_;        // the strain limiter's per-family terms (grid fabrics)
-    Tethers tethers_;                          // the strain limiter's long-range attachments
-    HostVector<StretchCount> stretch_counts_;  // the strain limiter's counts, one per group
-    HostVector<uint8_t> strain_maybe_over_;    // its scratch, one per particle (StrainLimitPass)
-    HostVector<float> strain_pull_;            // and its pull weights, one per particle
-    bool tethers_follow_pins_ = false;         // planned for the current pin set
     // What the next frame reads from the last (frame_decision.h); its
     // strained and quiet flags are saved in snapshots.
     LastFrameRecord last_;
@@ -378,10 +354,7 @@ class ClothInstance {
     // the frame's start positions (in frame_.backup_x); -1 when they are
     // not kept.
     float moved_speed_squared() const;
-    SleepSettings sleep_;
-    bool sleeping_ = false;
-    bool held_asleep_ = false;  // put to sleep by the host (hold_asleep)
-    uint32_t rest_frames_ = 0;  // consecutive frames below sleep_.max_speed
+    SleepState sleep_;
 
     ClothContact contact_;  // colliders, attachments, carrier
     Skin skin_;             // sized only once the host gives the cloth a skin

@@ -115,9 +115,9 @@ void ClothInstance::save_snapshot(void* out) const {
     h.solver_kind = static_cast<uint32_t>(solver_.kind);
     h.iterations = solver_.iterations;
     h.substeps = solver_.substeps;
-    h.sleeping = sleeping_ ? 1 : 0;
-    h.rest_frames = rest_frames_;
-    h.flags = (last_.strained ? kStrainedFlag : 0) | (held_asleep_ ? kHeldAsleepFlag : 0) |
+    h.sleeping = sleep_.sleeping ? 1 : 0;
+    h.rest_frames = sleep_.rest_frames;
+    h.flags = (last_.strained ? kStrainedFlag : 0) | (sleep_.held ? kHeldAsleepFlag : 0) |
               (snapshot_has_skin() ? kSkinFlag : 0) | (last_.quiet ? kQuietFlag : 0);
     for (int c = 0; c < 3; ++c) h.wind[c] = aero_.wind[c];
     h.air_density = aero_.air_density;
@@ -129,8 +129,8 @@ void ClothInstance::save_snapshot(void* out) const {
     std::memcpy(bytes, &h, sizeof h);
     bytes += sizeof h;
     const size_t row = sizeof(float) * particle_count();
-    for (const HostVector<float>* a : {&x_.x, &x_.y, &x_.z, &v_.x, &v_.y, &v_.z, &pin_target_.x,
-                                       &pin_target_.y, &pin_target_.z, &pinned_}) {
+    for (const HostVector<float>* a : {&x_.x, &x_.y, &x_.z, &v_.x, &v_.y, &v_.z, &pins_.target.x,
+                                       &pins_.target.y, &pins_.target.z, &pins_.pinned}) {
         std::memcpy(bytes, a->data(), row);
         bytes += row;
     }
@@ -255,22 +255,22 @@ Status ClothInstance::restore_snapshot(const void* in, size_t size) {
     aero_.lift_coefficient = h.lift_coefficient;
     aero_.linear_drag = h.linear_drag;
     const size_t row = sizeof(float) * n;
-    for (HostVector<float>* a : {&x_.x, &x_.y, &x_.z, &v_.x, &v_.y, &v_.z, &pin_target_.x, &pin_target_.y,
-                                 &pin_target_.z, &pinned_}) {
+    for (HostVector<float>* a : {&x_.x, &x_.y, &x_.z, &v_.x, &v_.y, &v_.z, &pins_.target.x, &pins_.target.y,
+                                 &pins_.target.z, &pins_.pinned}) {
         std::memcpy(a->data(), values, row);
         values += row;
     }
     if (has_skin) skin_.restore_state(skin.primed != 0, skin_state);
-    tethers_follow_pins_ = false;
-    pinned_list_.clear();
+    strain_.tethers_follow_pins = false;
+    pins_.list.clear();
     for (uint32_t i = 0; i < n; ++i) {
-        if (pinned_[i] != 0.0f) pinned_list_.push_back(i);
+        if (pins_.pinned[i] != 0.0f) pins_.list.push_back(i);
     }
-    sleeping_ = h.sleeping != 0;
-    held_asleep_ = (h.flags & kHeldAsleepFlag) != 0;
+    sleep_.sleeping = h.sleeping != 0;
+    sleep_.held = (h.flags & kHeldAsleepFlag) != 0;
     contact_.forget_sleep();
-    if (held_asleep_) contact_.fall_asleep();  // a carrier is caught up with from where it is now
-    rest_frames_ = h.rest_frames;
+    if (sleep_.held) contact_.fall_asleep();  // a carrier is caught up with from where it is now
+    sleep_.rest_frames = h.rest_frames;
     last_.strained = (h.flags & kStrainedFlag) != 0;
     last_.quiet = (h.flags & kQuietFlag) != 0;
     return {};

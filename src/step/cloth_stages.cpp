@@ -16,13 +16,13 @@
 namespace cloth {
 
 LinearSystem ClothInstance::system() const {
-    return LinearSystem{springs_.get(), particle_count(), &diagonal_, &diagonal_inverse_,
-                        &rhs_,          pinned_.data()};
+    return LinearSystem{springs_.get(), particle_count(),   &system_.diagonal, &system_.diagonal_inverse,
+                        &system_.rhs,   pins_.pinned.data()};
 }
 
 AssemblyPass ClothInstance::assembly() const {
-    return AssemblyPass{springs_.get(), &external_force_,  mass_.data(), pinned_.data(),
-                        frame_.h,       aero_.linear_drag, frame_.theta};
+    return AssemblyPass{springs_.get(), &system_.external_force, mass_.data(), pins_.pinned.data(),
+                        frame_.h,       aero_.linear_drag,       frame_.theta};
 }
 
 SpringModel ClothInstance::spring_model() const {
@@ -56,14 +56,14 @@ bool ClothInstance::has_air() const {
 
 Vec3 ClothInstance::pin_position(uint32_t i, float frame_fraction) const {
     if (contact_.is_attached(i)) return contact_.attached_position(i, frame_fraction);
-    return frame_.pin_start.get(i) + (pin_target_.get(i) - frame_.pin_start.get(i)) * frame_fraction;
+    return frame_.pin_start.get(i) + (pins_.target.get(i) - frame_.pin_start.get(i)) * frame_fraction;
 }
 
 void ClothInstance::land_pins(uint32_t begin, uint32_t end, Vec3Soa& x) {
     // Pinned particles land exactly on their substep targets.
     const float fraction_end = substep_end_fraction();
-    auto first = std::lower_bound(pinned_list_.begin(), pinned_list_.end(), begin);
-    for (auto it = first; it != pinned_list_.end() && *it < end; ++it) {
+    auto first = std::lower_bound(pins_.list.begin(), pins_.list.end(), begin);
+    for (auto it = first; it != pins_.list.end() && *it < end; ++it) {
         x.set(*it, pin_position(*it, fraction_end));
     }
 }
@@ -73,8 +73,8 @@ void ClothInstance::land_pins(uint32_t begin, uint32_t end, Vec3Soa& x) {
 void ClothInstance::move_pins() {
     // Pinned particles move linearly towards their frame-end targets.
     const float fraction_end = substep_end_fraction();
-    for (uint32_t i : pinned_list_) v_.set(i, (pin_position(i, fraction_end) - x_.get(i)) / frame_.h);
-    frame_.strain_pins_demand = limits_strain() ? tethers_.strain_pins_demand(x_, v_, frame_.h) : 0.0f;
+    for (uint32_t i : pins_.list) v_.set(i, (pin_position(i, fraction_end) - x_.get(i)) / frame_.h);
+    frame_.strain_pins_demand = limits_strain() ? strain_.tethers.strain_pins_demand(x_, v_, frame_.h) : 0.0f;
 }
 
 void ClothInstance::skin_particles(const GroupTask& task) {
@@ -86,7 +86,7 @@ void ClothInstance::skin_particles(const GroupTask& task) {
     for (uint32_t i = task.begin; i < task.end; ++i) {
         if (!is_pinned(i) || !skin_pins(i)) continue;
         const Vec3 target = skin_.position(i, 1.0f);
-        pin_target_.set(i, target);
+        pins_.target.set(i, target);
         if (jump) {
             x_.set(i, target);
             frame_.pin_start.set(i, target);
@@ -100,7 +100,7 @@ void ClothInstance::apply_air(const GroupTask& task) {
     expect_stage(Stage::kAir);
     uint32_t begin, end;
     task.items(air_item_count(*fabric_), begin, end);
-    evaluate_air(*fabric_, aero_, x_, v_, begin, end, triangle_force_);
+    evaluate_air(*fabric_, aero_, x_, v_, begin, end, system_.triangle_force);
 }
 
 CLOTH_HOT_LOOP void ClothInstance::evaluate_forces(const GroupTask& task) {
@@ -108,9 +108,10 @@ CLOTH_HOT_LOOP void ClothInstance::evaluate_forces(const GroupTask& task) {
     const uint32_t begin = task.begin, end = task.end;
     // External forces: air (only when the scene has air), gravity, linear drag.
     if (has_air()) {
-        gather_air(*fabric_, triangle_force_, begin, end, external_force_);
+        gather_air(*fabric_, system_.triangle_force, begin, end, system_.external_force);
     } else {
-        for (HostVector<float>* a : {&external_force_.x, &external_force_.y, &external_force_.z}) {
+        for (HostVector<float>* a :
+             {&system_.external_force.x, &system_.external_force.y, &system_.external_force.z}) {
             std::fill(a->begin() + begin, a->begin() + end, 0.0f);
         }
     }
@@ -119,12 +120,12 @@ CLOTH_HOT_LOOP void ClothInstance::evaluate_forces(const GroupTask& task) {
     for_each_lane_group(begin, end, begin, end, [&](auto lanes, uint32_t i) {
         using L = decltype(lanes);
         const typename L::type m = L::load(&mass_[i]), drag = m * linear_drag;
-        L::store(&external_force_.x[i],
-                 L::load(&external_force_.x[i]) + m * gravity.x() - L::load(&v_.x[i]) * drag);
-        L::store(&external_force_.y[i],
-                 L::load(&external_force_.y[i]) + m * gravity.y() - L::load(&v_.y[i]) * drag);
-        L::store(&external_force_.z[i],
-                 L::load(&external_force_.z[i]) + m * gravity.z() - L::load(&v_.z[i]) * drag);
+        L::store(&system_.external_force.x[i],
+                 L::load(&system_.external_force.x[i]) + m * gravity.x() - L::load(&v_.x[i]) * drag);
+        L::store(&system_.external_force.y[i],
+                 L::load(&system_.external_force.y[i]) + m * gravity.y() - L::load(&v_.y[i]) * drag);
+        L::store(&system_.external_force.z[i],
+                 L::load(&system_.external_force.z[i]) + m * gravity.z() - L::load(&v_.z[i]) * drag);
     });
     // Springs: each spring (grid: each first particle) belongs to one group.
     uint32_t spring_begin, spring_end;
@@ -137,8 +138,9 @@ CLOTH_HOT_LOOP void ClothInstance::evaluate_forces(const GroupTask& task) {
 void ClothInstance::integrate_explicitly(const GroupTask& task) {
     expect_stage(Stage::kExplicit);
     // Plain spring forces (evaluated with h = 0), then symplectic Euler.
-    springs_->gather(task.begin, task.end, external_force_, nullptr);
-    integrate_explicit(external_force_, mass_.data(), pinned_.data(), frame_.h, task.begin, task.end, v_, x_);
+    springs_->gather(task.begin, task.end, system_.external_force, nullptr);
+    integrate_explicit(system_.external_force, mass_.data(), pins_.pinned.data(), frame_.h, task.begin,
+                       task.end, v_, x_);
     land_pins(task.begin, task.end, x_);
 }
 
@@ -146,15 +148,16 @@ void ClothInstance::report_explicit_solve() { last_solve_ = SolveReport{}; }
 
 void ClothInstance::assemble_system(const GroupTask& task) {
     expect_stage(Stage::kAssemble);
-    // dv_ = p on exit: the solvers' first iterate.
-    assemble_particles(assembly(), task.begin, task.end, diagonal_, diagonal_inverse_, rhs_, dv_);
+    // system_.dv = p on exit: the solvers' first iterate.
+    assemble_particles(assembly(), task.begin, task.end, system_.diagonal, system_.diagonal_inverse,
+                       system_.rhs, system_.dv);
 }
 
 void ClothInstance::solve_by_cg(const GroupTask&) {
     expect_stage(Stage::kSerialSolve);
     try {
         last_solve_ = solve_cg(system(), frame_.decision.solver.cg_tolerance,
-                               frame_.decision.solver.cg_max_iterations, dv_);
+                               frame_.decision.solver.cg_max_iterations, system_.dv);
     } catch (const std::bad_alloc&) {
         frame_.out_of_memory = true;  // end_frame restores the cloth
     }
@@ -198,7 +201,8 @@ void ClothInstance::constrain_to_skin(const GroupTask& task) {
 }
 
 void ClothInstance::hold_to_skin(const GroupTask& task, bool prepared) {
-    skin_.constrain(task.begin, task.end, substep_end_fraction(), frame_.h, pinned_.data(), x_, v_, prepared);
+    skin_.constrain(task.begin, task.end, substep_end_fraction(), frame_.h, pins_.pinned.data(), x_, v_,
+                    prepared);
 }
 
 float ClothInstance::substep_end_fraction() const {
@@ -221,7 +225,7 @@ void ClothInstance::collide(const GroupTask& task, ClothContact::Pass pass, uint
         static_cast<float>(frame_.substep) / static_cast<float>(frame_.decision.solver.substeps);
     const float to = substep_end_fraction();
     const uint32_t found =
-        contact_.collide(frame_.h, from, to, pinned_.data(), task.begin, task.end, x_, v_, pass);
+        contact_.collide(frame_.h, from, to, pins_.pinned.data(), task.begin, task.end, x_, v_, pass);
     if (contacts) *contacts = found;
 }
 

@@ -39,7 +39,7 @@ using C = ClothInstance;
 // velocity.
 void ClothInstance::plan_substep() {
     frame_.plan_size = 0;
-    frame_.solution = &dv_;  // where the solver leaves dv (JACOBI: record_iterative_result says)
+    frame_.solution = &system_.dv;  // where the solver leaves dv (JACOBI: record_iterative_result says)
     frame_.theta = frame_.strained ? 1.0f : frame_.decision.solver.theta;
     frame_.touching = false;
     frame_.colliders_recorded = false;
@@ -66,7 +66,7 @@ void ClothInstance::plan_substep() {
     // Self-collision before the strain limiter, which projects its contacts
     // again between its passes and then responds (limit_rounds.h).
     if (self_collision_) {
-        self_collision_->begin(x_, v_, mass_.data(), pinned_.data(), !limits_strain());
+        self_collision_->begin(x_, v_, mass_.data(), pins_.pinned.data(), !limits_strain());
         plan(Stage::kSelfCollision, &C::resolve_self_contacts, nullptr, self_collision_.get());
     }
     // Contact with other cloths, where both cloths wait (pair_rounds.h),
@@ -87,8 +87,8 @@ StagedAlgorithm* ClothInstance::begin_iterative_solve() {
     const double v_tol = frame_.decision.solver.velocity_tolerance;
     frame_.iterative.begin(frame_.decision.solver.kind, frame_.decision.solver.iterations,
                            frame_.decision.solver.cg_tolerance,
-                           {system(), assembly(), &dv_, &solver_work_, &dv_scratch_,
-                            frame_.decision.solver.multigrid ? &multigrid_ : nullptr},
+                           {system(), assembly(), &system_.dv, &system_.work, &system_.dv_scratch,
+                            frame_.decision.solver.multigrid ? &system_.multigrid : nullptr},
                            frame_.lightest_free_mass * v_tol * v_tol);
     return &frame_.iterative;
 }
@@ -100,12 +100,16 @@ bool ClothInstance::limits_strain() const {
 
 StagedAlgorithm* ClothInstance::begin_strain_limit() {
     const StrainLimit& limit = frame_.decision.solver.strain_limit;
-    const StrainLimitPass pass{
-        fabric_.get(),       mass_.data(),       pinned_.data(), limit.max_strain, strain_maybe_over_.data(),
-        strain_pull_.data(), holds_compression()};
+    const StrainLimitPass pass{fabric_.get(),
+                               mass_.data(),
+                               pins_.pinned.data(),
+                               limit.max_strain,
+                               strain_.maybe_over.data(),
+                               strain_.pull.data(),
+                               holds_compression()};
     const bool accelerate = frame_.decision.solver.kind != CLOTH_SOLVER_EXPLICIT;  // strain_limit.h
-    frame_.strain_limiter.begin(pass, limit.iterations, frame_.h, x_, v_, solver_work_.r, solver_work_.z,
-                                accelerate, &grid_strain_terms_, &tethers_, stretch_counts_.data(),
+    frame_.strain_limiter.begin(pass, limit.iterations, frame_.h, x_, v_, system_.work.r, system_.work.z,
+                                accelerate, &strain_.grid_terms, &strain_.tethers, strain_.counts.data(),
                                 frame_.decision.strain_passes_cap);
     frame_.limit_rounds.begin(&frame_.strain_limiter, frame_.collides, &frame_.touching,
                               self_collision_.get(), &x_, &v_);
@@ -124,7 +128,7 @@ Status ClothInstance::step(float dt, const Vec3& gravity, TaskSystem* tasks, con
     SerialTasks serial;
     TaskSystem& runner = tasks ? *tasks : serial;
     if (woken_by_bodies()) wake();
-    if (sleeping_) return {};
+    if (sleep_.sleeping) return {};
     begin_frame_alone(dt, gravity, bounds);
     ClothInstance* self = this;
     auto body = [this](uint32_t begin, uint32_t end, uint32_t worker) {
@@ -148,9 +152,9 @@ FrameInputs ClothInstance::frame_inputs(float dt, const BudgetBounds& budget) co
     const bool by_default = solver_.kind == CLOTH_SOLVER_DEFAULT;
     // Only the default solver's choice depends on k / m (a pass over every particle).
     const float lightest =
-        by_default ? lightest_free_mass(mass_.data(), pinned_.data(), particle_count()) : 0.0f;
+        by_default ? lightest_free_mass(mass_.data(), pins_.pinned.data(), particle_count()) : 0.0f;
     in.stiffness_per_mass = stiffness_over_mass(material_, lightest);
-    in.multigrid = !multigrid_.empty();
+    in.multigrid = !system_.multigrid.empty();
     in.budget = budget;
     in.last = last_;
     // Each scan of the particles only where the decision reads it.
@@ -169,11 +173,11 @@ void ClothInstance::open_frame(float dt, const FrameDecision& decision) {
         frame_.backup_v = v_;
     } else {
         frame_.backup = FrameBackup::kFirstIntegration;
-        for (uint32_t i : pinned_list_) frame_.pin_velocity_start.set(i, v_.get(i));
+        for (uint32_t i : pins_.list) frame_.pin_velocity_start.set(i, v_.get(i));
     }
-    contact_.begin_step(dt, pinned_.data(), x_, v_);  // carrier (no pass without one)
+    contact_.begin_step(dt, pins_.pinned.data(), x_, v_);  // carrier (no pass without one)
     frame_.collides = contact_.collides();
-    for (uint32_t i : pinned_list_) frame_.pin_start.set(i, x_.get(i));
+    for (uint32_t i : pins_.list) frame_.pin_start.set(i, x_.get(i));
     // A teleport of the carrier is one of the character the skin is on.
     if (skin_.active()) skin_.begin_frame(contact_.carrier().teleported());
     frame_.dt = dt;
@@ -185,9 +189,9 @@ void ClothInstance::begin_frame(const FrameInputs& in, const FrameDecision& deci
     frame_.stiffness_per_mass = in.stiffness_per_mass;
     frame_.lightest_free_mass = decision.solver.velocity_tolerance > 0 ? in.lightest_free_mass : 0.0f;
     frame_.strained = last_.strained;
-    if (frame_.decision.solver.strain_limit.max_strain > 0 && !tethers_follow_pins_) {
-        tethers_.plan(*fabric_, pinned_.data());
-        tethers_follow_pins_ = true;
+    if (frame_.decision.solver.strain_limit.max_strain > 0 && !strain_.tethers_follow_pins) {
+        strain_.tethers.plan(*fabric_, pins_.pinned.data());
+        strain_.tethers_follow_pins = true;
     }
     frame_.h = decision.h;
     frame_.gravity = gravity;
@@ -211,16 +215,16 @@ void ClothInstance::join_pair(PairRounds::Side* side) {
 float ClothInstance::fastest_free_speed_relative_to_pins() const {
     const uint32_t n = particle_count();
     Vec3 mean = Vec3::Zero();
-    if (!pinned_list_.empty()) {
-        for (uint32_t i : pinned_list_) mean += v_.get(i);
-        mean /= static_cast<float>(pinned_list_.size());
+    if (!pins_.list.empty()) {
+        for (uint32_t i : pins_.list) mean += v_.get(i);
+        mean /= static_cast<float>(pins_.list.size());
     } else {
         for (uint32_t i = 0; i < n; ++i) mean += v_.get(i);
         mean /= static_cast<float>(std::max(n, 1u));
     }
     float most = 0;
     for (uint32_t i = 0; i < n; ++i) {
-        if (pinned_[i] == 0.0f) most = std::max(most, (v_.get(i) - mean).squaredNorm());
+        if (pins_.pinned[i] == 0.0f) most = std::max(most, (v_.get(i) - mean).squaredNorm());
     }
     return std::sqrt(most);
 }
@@ -228,15 +232,15 @@ float ClothInstance::fastest_free_speed_relative_to_pins() const {
 bool ClothInstance::free_particles_slower_than(float speed) const {
     const float most = speed * speed;
     for (uint32_t i = 0; i < particle_count(); ++i) {
-        if (pinned_[i] == 0.0f && v_.get(i).squaredNorm() > most) return false;
+        if (pins_.pinned[i] == 0.0f && v_.get(i).squaredNorm() > most) return false;
     }
     return true;
 }
 
 bool ClothInstance::pins_slower_than(float speed, float dt) const {
     const float farthest = speed * speed * dt * dt;
-    for (uint32_t i : pinned_list_) {
-        if ((pin_target_.get(i) - x_.get(i)).squaredNorm() > farthest) return false;
+    for (uint32_t i : pins_.list) {
+        if ((pins_.target.get(i) - x_.get(i)).squaredNorm() > farthest) return false;
     }
     return true;
 }
