@@ -21,7 +21,7 @@ CLOTH_API cloth_result cloth_world_set_frame_budget(cloth_world_id id, float mil
     return with_world(__func__, id, [&](World& world) -> Status {
         Status s = check_non_negative(milliseconds, "milliseconds");
         if (!s.ok()) return s;
-        world.set_frame_budget(milliseconds);
+        world.budget().set_ms(milliseconds);
         return {};
     });
 }

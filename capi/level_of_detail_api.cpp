@@ -31,13 +31,13 @@ CLOTH_API cloth_result cloth_get_importance(cloth_id id, float* out_importance) 
 CLOTH_API cloth_result cloth_world_set_viewer(cloth_world_id id, const float position[3]) {
     return with_world(__func__, id, [&](World& world) -> Status {
         if (!position) {
-            world.set_viewer(nullptr);
+            world.budget().set_viewer(nullptr);
             return {};
         }
         Vec3 viewer;
         Status s = check_position(position, "position", &viewer);
         if (!s.ok()) return s;
-        world.set_viewer(&viewer);
+        world.budget().set_viewer(&viewer);
         return {};
     });
 }

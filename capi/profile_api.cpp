@@ -89,7 +89,7 @@ CLOTH_API cloth_result cloth_world_get_frame_profile(cloth_world_id id, cloth_fr
         }
         r.task_count = static_cast<uint32_t>(p.tasks.size());
         r.tasks_dropped = p.tasks_dropped;
-        r.overrun_frames = world.overrun_frames();
+        r.overrun_frames = world.budget().overrun_frames();
         *out = r;
         return {};
     });

@@ -36,8 +36,8 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
       worker_tally_(HostAllocator<WorkerTally>(&memory_)),
       whole_records_(HostAllocator<TaskRecord>(&memory_)),
       profile_(&memory_),
-      cloth_pairs_(HostAllocator<ClothPair>(&memory_)),
-      budget_cloths_(HostAllocator<BudgetCloth>(&memory_)) {
+      budget_(&memory_, desc.max_cloths),
+      cloth_pairs_(HostAllocator<ClothPair>(&memory_)) {
     fabrics_.make_all_slots();
     cloths_.make_all_slots();
     stepping_.reserve(desc.max_cloths);
@@ -51,7 +51,6 @@ World::World(const cloth_world_desc& desc, uint16_t index, uint16_t generation)
     unit_cloths_.reserve(desc.max_cloths);
     cloth_cost_ns_.assign(desc.max_cloths, 0);
     cloth_solve_ns_.assign(desc.max_cloths, 0);
-    budget_cloths_.reserve(desc.max_cloths);
     profile_.origin_ns = now_ns();
     if (desc.enqueue_task) {
         tasks_ = &host_tasks_;
@@ -255,7 +254,7 @@ Status World::shift_origin(const Vec3& shift) {
 Status World::step(float dt) {
     const int64_t start = now_ns();
     if (zone_begin_) zone_begin_("cloth_step", 0, zone_user_);
-    profile_.begin(++frame_, start, budget_ms_);
+    profile_.begin(++frame_, start, budget_.ms());
     const bool timed = timing();
     stepping_.clear();
     stepping_cloths_.clear();
@@ -330,29 +329,24 @@ Status World::step(float dt) {
     end_cloth_pairs();
     contact_.end_step();  // bodies start the next step where they are now
     profile_.end_ns = now_ns();
-    if (budget_ms_ > 0) {
+    if (budget_.ms() > 0) {
         // An overrun is reported in the profile and, unless a cloth failed
         // (which says more), by the step's result.
-        profile_.overrun = profile_.step_ms() > budget_ms_;
+        profile_.overrun = budget_.count_frame(profile_.step_ms());
         if (profile_.overrun) {
-            ++overrun_frames_;
             if (first_failure.ok()) {
                 first_failure = Status::error(
                     CLOTH_ERROR_OVER_BUDGET,
                     "the step took %.3g ms, over the frame budget of %.3g ms; every cloth advanced",
-                    profile_.step_ms(), budget_ms_);
+                    profile_.step_ms(), budget_.ms());
             }
         }
-        budget_cloths_.clear();
-        for (uint32_t s : stepping_) {
-            SceneCloth* scene = cloths_[s].object.get();
-            budget_cloths_.push_back(
-                BudgetCloth{scene, cloth_cost_ns_[s], cloth_solve_ns_[s], relevance(*scene)});
-        }
-        budget_policy_.after_frame(budget_ms_, profile_.step_ms(), frame_, budget_cloths_.data(),
-                                   static_cast<uint32_t>(budget_cloths_.size()));
+        budget_.start_decision();
+        for (uint32_t s : stepping_)
+            budget_.add(cloths_[s].object.get(), cloth_cost_ns_[s], cloth_solve_ns_[s]);
+        budget_.decide(profile_.step_ms(), frame_);
         // The rates it chose (their copies were sized with the policy: no allocation).
-        for (const BudgetCloth& c : budget_cloths_) {
+        for (const BudgetCloth& c : budget_.cloths()) {
             if (const uint32_t rate = c.cloth->quality().take_wanted_rate()) set_update_rate(*c.cloth, rate);
         }
     }
@@ -386,24 +380,6 @@ void World::set_update_rate(SceneCloth& cloth, uint32_t rate) {
         }
     }
     cloth.set_update_rate(rate, phase);
-}
-
-void World::set_viewer(const Vec3* position) {
-    has_viewer_ = position != nullptr;
-    viewer_ = position ? *position : Vec3::Zero();
-}
-
-float World::relevance(const SceneCloth& scene) const {
-    if (!has_viewer_) return scene.importance();
-    const Vec3Soa& x = scene.cloth().positions();
-    Vec3 low = x.get(0), high = low;
-    for (uint32_t i = 1; i < scene.cloth().particle_count(); ++i) {
-        low = low.cwiseMin(x.get(i));
-        high = high.cwiseMax(x.get(i));
-    }
-    const float radius = 0.5f * (high - low).norm();
-    const float distance = (0.5f * (low + high) - viewer_).norm();
-    return scene.importance() * (distance > radius ? radius / distance : 1.0f);
 }
 
 }  // namespace cloth

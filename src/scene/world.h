@@ -20,7 +20,7 @@
 #include "jobs/host_tasks.h"
 #include "jobs/task_system.h"
 #include "jobs/thread_pool.h"
-#include "scene/budget_policy.h"
+#include "scene/frame_budget.h"
 #include "scene/frame_profile.h"
 #include "scene/scene_cloth.h"
 #include "step/cloth_instance.h"
@@ -80,10 +80,9 @@ class World {
     // cloth_world_set_worker_spin: the built-in pool's polling time.
     void set_worker_spin(uint32_t microseconds) { pool_.set_spin(microseconds); }
     const FrameProfile& frame_profile() const { return profile_; }
-    // Per-frame CPU budget in milliseconds (0: none); with one, every frame
-    // reports overrun and the budget policy adjusts policy-enabled cloths.
-    void set_frame_budget(double ms) { budget_ms_ = ms; }
-    uint64_t overrun_frames() const { return overrun_frames_; }
+    // The frame budget, its overruns and the viewer (frame_budget.h).
+    FrameBudget& budget() { return budget_; }
+    const FrameBudget& budget() const { return budget_; }
     void set_zone_callbacks(cloth_zone_begin_fn* begin, cloth_zone_end_fn* end, void* user);
     // The id of the cloth in `slot` (for task records).
     cloth_id cloth_id_of(uint32_t slot, uint16_t generation) const {
@@ -96,12 +95,6 @@ class World {
     // phase with the fewest particles of that rate. Allocates for a rate
     // above 1 (a failure changes nothing).
     void set_update_rate(SceneCloth& cloth, uint32_t rate);
-    // The viewer whose distance scales each cloth's importance under a
-    // frame budget (null: none, every cloth counts by its importance).
-    void set_viewer(const Vec3* position);
-    // What a cloth counts for under a budget: its importance times, with a
-    // viewer, its bounding sphere's radius over its distance (at most 1).
-    float relevance(const SceneCloth& cloth) const;
 
     // Contact between two of the world's cloths (cloth_pair_contact.h;
     // world_cloth_pairs.cpp), resolved inside both cloths' substeps
@@ -120,7 +113,7 @@ class World {
 
   private:
     // Whether tasks are timed this frame (profiling or a budget needs it).
-    bool timing() const { return profile_.tasks.capacity() > 0 || budget_ms_ > 0; }
+    bool timing() const { return profile_.tasks.capacity() > 0 || budget_.ms() > 0; }
     // Run tasks [begin, end) of the current round, as `worker`.
     void run_round_range(uint32_t begin, uint32_t end, uint32_t worker);
     // After a round's barrier: fold its task times into the profile and
@@ -208,13 +201,8 @@ class World {
 
     FrameProfile profile_;
     uint64_t frame_ = 0;
-    bool has_viewer_ = false;
-    Vec3 viewer_ = Vec3::Zero();
-    double budget_ms_ = 0;
-    uint64_t overrun_frames_ = 0;
-    BudgetPolicy budget_policy_;
+    FrameBudget budget_;
     HostVector<ClothPair> cloth_pairs_;
-    HostVector<BudgetCloth> budget_cloths_;  // reserved for every cloth slot
     cloth_zone_begin_fn* zone_begin_ = nullptr;
     cloth_zone_end_fn* zone_end_ = nullptr;
     void* zone_user_ = nullptr;
