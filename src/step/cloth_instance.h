@@ -109,13 +109,13 @@ class ClothInstance {
 
     // The strain limiter's passes over the last step's substeps, and
     // whether a substep's passes stopped at their cap.
-    uint32_t last_strain_passes() const { return frame_.strain_passes; }
-    bool last_strain_capped() const { return frame_.strain_capped; }
-    // Whether a step has run (frame_ holds its settings).
-    bool last_step_ran() const { return frame_.h > 0; }
+    uint32_t last_strain_passes() const { return last_.strain_passes; }
+    bool last_strain_capped() const { return last_.strain_capped; }
+    // Whether a step has run.
+    bool last_step_ran() const { return last_.decision.h > 0; }
     // The strain limit the last step ran with (0: none).
     float ran_strain_limit() const {
-        const StrainLimit& limit = frame_.decision.solver.strain_limit;
+        const StrainLimit& limit = last_.decision.solver.strain_limit;
         return limit.iterations > 0 ? limit.max_strain : 0.0f;
     }
 
@@ -154,9 +154,9 @@ class ClothInstance {
     SolverSettings& solver() { return solver_; }
     const SolverSettings& solver() const { return solver_; }
     // What the last frame ran: CLOTH_SOLVER_DEFAULT's choice, caps and theta.
-    const SolverSettings& last_frame_solver() const { return frame_.decision.solver; }
+    const SolverSettings& last_frame_solver() const { return last_.decision.solver; }
     // The last frame's decision (frame_decision.h).
-    const FrameDecision& last_frame_decision() const { return frame_.decision; }
+    const FrameDecision& last_frame_decision() const { return last_.decision; }
     // New solver settings from the host (wakes the cloth).
     void set_solver(const SolverSettings& settings);
     AeroParams& aero() { return aero_; }
@@ -332,11 +332,9 @@ class ClothInstance {
 
     SolveReport last_solve_;
     cloth_result last_step_result_ = CLOTH_OK;
-    // What the next frame reads from the last (frame_decision.h); its
-    // strained and quiet flags are saved in snapshots.
-    LastFrameRecord last_;
+    LastFrameRecord last_;  // what the last frame left (frame_decision.h)
     uint32_t group_count_ = 0;
-    FrameContext frame_;  // the frame in progress, or the last one
+    FrameContext frame_;  // the frame in progress (nothing reads it between frames)
 
     void update_sleep();  // end of a successful frame
     // Bodies move without a call on the cloth, and a skin moves it each

@@ -1,9 +1,10 @@
 // What one frame of one cloth carries from begin_frame to end_frame (as
-// Jolt's SoftBodyUpdateContext): the settings it runs, its substeps, the
-// plan of the current substep and where the frame is in it. It outlives
-// the frame as the record of what the last frame ran, which the budget
-// policy and the stats read. The cloth's own state (positions, pins,
-// settings) and its buffers stay in ClothInstance.
+// Jolt's SoftBodyUpdateContext): the decision it runs, the plan of the
+// current substep and where the frame is in it. Nothing reads it between
+// frames: end_frame leaves what the next frame and the stats read in a
+// LastFrameRecord (frame_decision.h). Its buffers are sized once, with the
+// cloth; the cloth's own state (positions, pins, settings) stays in
+// ClothInstance.
 #pragma once
 
 #include <cstdint>

@@ -59,7 +59,8 @@ FrameDecision decide_frame(const FrameInputs& in) {
     // past longest_capped_substep (a slow update rate's step is long:
     // solver_default.h); below it the budget wins and the strain gives.
     if (by_default && budget.substeps > 0 && !d.below_floor) {
-        const float longest = longest_capped_substep(in.last.h, in.fastest_free_speed, in.mean_rest_length);
+        const float longest =
+            longest_capped_substep(in.last.decision.h, in.fastest_free_speed, in.mean_rest_length);
         const auto least = static_cast<uint32_t>(std::min(
             std::ceil(static_cast<double>(in.dt) / longest - 1e-4), static_cast<double>(d.own_substeps)));
         d.solver.substeps = std::max(d.solver.substeps, least);

@@ -34,14 +34,37 @@ inline uint32_t ladder_floor(uint32_t top_iterations, uint32_t min_iterations) {
     return half < fewest ? fewest : half > top_iterations ? top_iterations : half;
 }
 
-// What the last frame left for the next (saved in snapshots where it is
-// the cloth's state).
+struct FrameDecision {
+    // The settings the frame runs: CLOTH_SOLVER_DEFAULT resolved.
+    SolverSettings solver;
+    // What the default chose by itself within the policy's maxima, before
+    // the caps: the top of a budget's ladder.
+    uint32_t own_iterations = 0, own_substeps = 0;
+    // The substeps a budget's cap left before the longest-substep floor
+    // added any: the rung the budget put the cloth on.
+    uint32_t capped_substeps = 0;
+    // Whether the budget took the cloth below its ladder's floor (fewer
+    // iterations than half the top's): a solve that no longer holds the
+    // cloth, whose strain limiter then runs only the passes asked for.
+    bool below_floor = false;
+    // The strain limiter's most passes in a substep.
+    uint32_t strain_passes_cap = 0;
+    bool started_slow = false;  // for the next frame's record
+    float h = 0;                // the substep, s
+};
+
+// What a frame leaves behind for the next frame's decision and for those
+// who read what it ran (stats, the budget's ladder): the frame's own
+// context is the frame's alone. Its strained and quiet flags are saved in
+// snapshots.
 struct LastFrameRecord {
-    float h = 0;            // its substep, s (0 before the first frame)
-    bool strained = false;  // its last substep ended past the strain limit's promise
+    FrameDecision decision;  // what it ran (decision.h: 0 before the first frame)
+    bool strained = false;   // its last substep ended past the strain limit's promise
     // It started slow with no spring past the strain limit, and the host
     // has not changed the cloth since.
     bool quiet = false;
+    uint32_t strain_passes = 0;  // the strain limiter's passes over its substeps
+    bool strain_capped = false;  // a substep's passes stopped at their cap
 };
 
 struct FrameInputs {
@@ -61,25 +84,6 @@ struct FrameInputs {
     float fastest_free_speed = 0;  // m/s
     float mean_rest_length = 0;    // m: the structural springs'
     float lightest_free_mass = 0;  // kg (for CLOTH_SOLVER_DEFAULT only)
-};
-
-struct FrameDecision {
-    // The settings the frame runs: CLOTH_SOLVER_DEFAULT resolved.
-    SolverSettings solver;
-    // What the default chose by itself within the policy's maxima, before
-    // the caps: the top of a budget's ladder.
-    uint32_t own_iterations = 0, own_substeps = 0;
-    // The substeps a budget's cap left before the longest-substep floor
-    // added any: the rung the budget put the cloth on.
-    uint32_t capped_substeps = 0;
-    // Whether the budget took the cloth below its ladder's floor (fewer
-    // iterations than half the top's): a solve that no longer holds the
-    // cloth, whose strain limiter then runs only the passes asked for.
-    bool below_floor = false;
-    // The strain limiter's most passes in a substep.
-    uint32_t strain_passes_cap = 0;
-    bool started_slow = false;  // for the next frame's record
-    float h = 0;                // the substep, s
 };
 
 FrameDecision decide_frame(const FrameInputs& in);

@@ -358,7 +358,9 @@ void ClothInstance::finish_stage() {
 
 Status ClothInstance::end_frame() {
     frame_.done = true;
-    last_.h = frame_.h;
+    last_.decision = frame_.decision;
+    last_.strain_passes = frame_.strain_passes;
+    last_.strain_capped = frame_.strain_capped;
     if (frame_.out_of_memory) {
         // Only the CG reference solver allocates during a step.
         restore_frame_start();

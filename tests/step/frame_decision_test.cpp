@@ -99,13 +99,13 @@ std::vector<Row> rows() {
     {
         FrameInputs in = the_default(kSoft, 4 * kFrame);  // a step of four frames (update rate 4)
         in.budget = policy(8, 16, 0, 1);
-        in.last.h = kFrame;
+        in.last.decision.h = kFrame;
         r.push_back({"a budget's substep cap: the substep at most twice the last one (1/30 s)", in, 5, 2,
                      kDefaultTheta, 5, 8, 1, false, 4 * kDefaultStrainLimitPasses});
-        in.last.h = kFrame * 2;
+        in.last.decision.h = kFrame * 2;
         r.push_back({"a budget's substep cap: the substep grows to 1/15 s at most", in, 5, 1, kDefaultTheta,
                      5, 8, 1, false, 4 * kDefaultStrainLimitPasses});
-        in.last.h = kFrame * 2;
+        in.last.decision.h = kFrame * 2;
         in.fastest_free_speed = 3.0f;
         in.mean_rest_length = 0.02f;
         r.push_back(
