@@ -233,18 +233,17 @@ inline Status check_capacity(const void* out, uint32_t capacity, size_t needed) 
     return {};
 }
 
-// CLOTH_SOLVER_DEFAULT stays as it is: the core resolves it per step from
-// gamma (src/solve/solver_default.h). The strain limit is not part of
-// cloth_solver_settings; callers keep the cloth's own.
-inline SolverSettings to_core(const cloth_solver_settings& s) {
-    SolverSettings out;
-    out.kind = s.kind;
-    out.iterations = s.iterations;
-    out.substeps = s.substeps;
-    out.cg_tolerance = s.cg_tolerance;
-    out.cg_max_iterations = s.cg_max_iterations;
-    out.compression_safe_jacobian = s.compression_safe_jacobian != 0;
-    return out;
+// The fields cloth_solver_settings carries, written over `core`'s (the
+// rest, the strain limit, has its own call). CLOTH_SOLVER_DEFAULT stays as
+// it is: the core resolves it per step from gamma (src/solve/solver_default.h).
+inline SolverSettings to_core(const cloth_solver_settings& s, SolverSettings core = {}) {
+    core.kind = s.kind;
+    core.iterations = s.iterations;
+    core.substeps = s.substeps;
+    core.cg_tolerance = s.cg_tolerance;
+    core.cg_max_iterations = s.cg_max_iterations;
+    core.compression_safe_jacobian = s.compression_safe_jacobian != 0;
+    return core;
 }
 
 inline AeroParams to_core(const cloth_aero_params& a) {

@@ -27,9 +27,7 @@ CLOTH_API cloth_result cloth_set_solver(cloth_id id, const cloth_solver_settings
         if (!settings) return null_error("settings");
         Status s = check_solver(*settings);
         if (!s.ok()) return s;
-        SolverSettings core = to_core(*settings);
-        core.strain_limit = cloth.cloth().solver().strain_limit;  // set by cloth_set_strain_limit
-        cloth.set_solver(core);
+        cloth.set_solver(to_core(*settings, cloth.cloth().solver()));
         return {};
     });
 }
