@@ -9,7 +9,7 @@
 // none, and both go on when the rounds are done. The rest of each frame
 // runs at each cloth's own pace.
 //
-// Both cloths run the same number of substeps (World::step raises the
+// Both cloths run the same number of substeps (the world shares them,
 // fewer), and every cloth plans its pairs in the world's pair order, so
 // two cloths never wait for each other at two different pairs. A cloth
 // that does not step this frame (asleep) is the pair's read-only side: it
