@@ -7,7 +7,6 @@
 #include <cloth/cloth.h>
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -15,8 +14,11 @@
 #include <vector>
 
 #include "render_png.h"
+#include "timing_table.h"
 
 namespace {
+
+using cloth_samples::percentile;
 
 struct Options {
     int frames = 300;
@@ -46,11 +48,6 @@ void make_pole(float x, float z, float height, float half_width, std::vector<flo
     const uint32_t faces[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
                                   {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
     for (const auto& f : faces) indices.insert(indices.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
-}
-
-double percentile(std::vector<double> values, double p) {
-    std::sort(values.begin(), values.end());
-    return values[static_cast<size_t>(p * static_cast<double>(values.size() - 1))];
 }
 
 }  // namespace

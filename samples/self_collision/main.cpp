@@ -25,8 +25,11 @@
 #include <vector>
 
 #include "render_png.h"
+#include "timing_table.h"
 
 namespace {
+
+using cloth_samples::percentile;
 
 struct Options {
     std::string scene = "pile";
@@ -64,11 +67,6 @@ double thread_cpu_ms() {
     timespec t{};
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
     return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
-}
-
-double percentile(std::vector<double> values, double p) {
-    std::sort(values.begin(), values.end());
-    return values[static_cast<size_t>(p * static_cast<double>(values.size() - 1))];
 }
 
 // Puts particles below the ground or inside the sphere back on the surface
