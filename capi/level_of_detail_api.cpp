@@ -1,5 +1,6 @@
 // C API: what a cloth costs in a scene: its importance under a frame
-// budget, the world's viewer, and the cloth's update rate.
+// budget, the world's viewer, the cloth's update rate, and the level of
+// detail it steps at (scene/cloth_levels.h).
 #include <cloth/cloth.h>
 
 #include "api_call.h"
@@ -61,6 +62,40 @@ CLOTH_API cloth_result cloth_get_update_rate(cloth_id id, uint32_t* out_rate, ui
         if (!out_rate && !out_phase) return null_error("out_rate and out_phase");
         if (out_rate) *out_rate = cloth.update_rate().rate();
         if (out_phase) *out_phase = cloth.update_rate().phase();
+        return {};
+    });
+}
+
+CLOTH_API cloth_result cloth_set_lod_level(cloth_id id, uint32_t level) {
+    return with_scene_cloth(__func__, id, [&](SceneCloth& cloth, World& world) -> Status {
+        ClothInstance& full = cloth.cloth();
+        const uint32_t count = ClothLevels::level_count(full);
+        if (level > 0 && count == 1) {
+            return Status::error(CLOTH_ERROR_INVALID_VALUE,
+                                 "level %u: the cloth's fabric has no coarser level (a mesh, or a grid "
+                                 "under %u x %u particles); its only level is 0",
+                                 level, kLevelMinExtent, kLevelMinExtent);
+        }
+        if (level >= count) {
+            return Status::error(CLOTH_ERROR_INDEX_OUT_OF_RANGE,
+                                 "level %u, but the cloth's fabric has levels 0..%u", level, count - 1);
+        }
+        if (level > 0) {
+            if (const char* why = ClothLevels::unsupported(full, world.in_cloth_pair(cloth))) {
+                return Status::error(CLOTH_ERROR_INVALID_VALUE, "level %u: %s, and steps at level 0", level,
+                                     why);
+            }
+        }
+        cloth.levels().set_level(full, level);
+        return {};
+    });
+}
+
+CLOTH_API cloth_result cloth_get_lod_level(cloth_id id, uint32_t* out_level, uint32_t* out_level_count) {
+    return with_scene_cloth(__func__, id, [&](SceneCloth& cloth) -> Status {
+        if (!out_level && !out_level_count) return null_error("out_level and out_level_count");
+        if (out_level) *out_level = cloth.levels().level();
+        if (out_level_count) *out_level_count = ClothLevels::level_count(cloth.cloth());
         return {};
     });
 }

@@ -179,7 +179,7 @@ extern "C" {
 #define CLOTH_VERSION_MAJOR 1
 /// Minor version of this header: a library of the same major and at least
 /// this minor version has every function and struct of this header.
-#define CLOTH_VERSION_MINOR 13
+#define CLOTH_VERSION_MINOR 14
 /// Patch version of this header (fixes that change no interface).
 #define CLOTH_VERSION_PATCH 0
 
@@ -1352,6 +1352,40 @@ CLOTH_API cloth_result CLOTH_CALL cloth_set_update_rate(cloth_id cloth, uint32_t
 /// == phase); either pointer may be NULL, not both. Since 1.11.
 CLOTH_API cloth_result CLOTH_CALL cloth_get_update_rate(cloth_id cloth, uint32_t* out_rate,
                                                         uint32_t* out_phase);
+
+/* Level of detail (since 1.14). A cloth on a grid fabric of at least 5 x 5
+ * particles can step at a coarser level of its grid: level 1 has a quarter
+ * of its particles (each 2 x 2 block one particle), level 2 a sixteenth,
+ * down to 3 levels below the full grid (level 0, the default) while a
+ * level keeps at least 3 columns and rows; mesh fabrics have level 0
+ * only. A coarse level costs about what a grid of its size costs, keeps
+ * the cloth's settings, masses (each coarse particle weighs its block) and
+ * pins (a coarse particle is pinned if any of its block is), and
+ * cloth_read_positions and cloth_read_normals still give every particle
+ * of the full grid, interpolated from the coarse one (pinned particles on
+ * their targets). The full grid's positions, velocities and snapshots are
+ * that interpolation; cloth_set_positions and restoring a snapshot reach
+ * the coarse level at the next step. A change of level makes no jump:
+ * going down averages the positions and velocities of each block (the
+ * momentum is kept), going up continues from the interpolation. A cloth
+ * with a skin, attachments or a carrier, self-collision or contact with
+ * another cloth steps at level 0: a coarser level is refused for it, and
+ * one it had goes back to 0 at its next step. Stats describe the full
+ * grid's last step at level 0. */
+
+/// Set the level the cloth steps at: 0 (the full grid, the default) up to
+/// its level count - 1 (else CLOTH_ERROR_INDEX_OUT_OF_RANGE). A level
+/// above 0 on a cloth whose fabric has no coarser level (a mesh, a grid
+/// under 5 x 5), or which has a skin, attachments, a carrier,
+/// self-collision or contact with another cloth, is CLOTH_ERROR_INVALID_VALUE.
+/// The first use of a level allocates its coarse cloth, kept until the
+/// cloth is destroyed (CLOTH_ERROR_OUT_OF_MEMORY changes nothing).
+/// Since 1.14.
+CLOTH_API cloth_result CLOTH_CALL cloth_set_lod_level(cloth_id cloth, uint32_t level);
+/// Read the level the cloth steps at and how many levels its fabric has
+/// (1 on meshes); either pointer may be NULL, not both. Since 1.14.
+CLOTH_API cloth_result CLOTH_CALL cloth_get_lod_level(cloth_id cloth, uint32_t* out_level,
+                                                      uint32_t* out_level_count);
 
 /* Sleep. A cloth whose particles all move slower than max_speed for
  * `frames` consecutive frames goes to sleep (a particle's speed is its

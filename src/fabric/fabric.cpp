@@ -11,6 +11,7 @@
 
 #include "base/hash.h"
 #include "fabric/fabric_builder.h"
+#include "fabric/fabric_levels.h"
 
 namespace cloth {
 
@@ -36,7 +37,8 @@ Fabric::Fabric(const HostMemory* memory)
       grid_triangle_shapes(HostAllocator<uint32_t>(memory)),
       grid_cell_mask(HostAllocator<float>(memory)),
       particle_of_vertex(HostAllocator<uint32_t>(memory)),
-      vertex_of_particle(HostAllocator<uint32_t>(memory)) {}
+      vertex_of_particle(HostAllocator<uint32_t>(memory)),
+      levels(HostAllocator<std::shared_ptr<const FabricLevel>>(memory)) {}
 
 namespace {
 
@@ -285,6 +287,13 @@ Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
                                             v * (static_cast<float>(r) / static_cast<float>(rows - 1));
         }
     }
+    Status status = build_grid_topology(cols, rows, desc.spring_kinds, f);
+    if (!status.ok()) return status;
+    return build_fabric_levels(f);
+}
+
+Status build_grid_topology(uint32_t cols, uint32_t rows, uint32_t spring_kinds, Fabric& f) {
+    auto index = [cols](uint32_t c, uint32_t r) { return r * cols + c; };
     // Two triangles per cell, split along the same diagonal everywhere:
     // every interior particle then touches six triangles and gets the same
     // lumped mass, and the triangles of cell p are two fixed shapes at p.
@@ -315,7 +324,7 @@ Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
                                     {2, 0, kBend, CLOTH_SPRING_BEND},
                                     {0, 2, kBend, CLOTH_SPRING_BEND}};
     for (const Direction& d : directions) {
-        if (!(desc.spring_kinds & d.bit)) continue;
+        if (!(spring_kinds & d.bit)) continue;
         SpringFamily& family = f.grid_families.emplace_back(f.memory);
         family.offset = static_cast<uint32_t>(d.dr * static_cast<int>(cols) + d.dc);
         family.kind = d.kind;
@@ -334,7 +343,7 @@ Status build_grid_fabric(const cloth_grid_desc& desc, Fabric& f) {
     }
 
     std::vector<SpringSpec> springs;
-    const uint32_t kinds = desc.spring_kinds;
+    const uint32_t kinds = spring_kinds;
     for (uint32_t r = 0; r < rows; ++r) {
         for (uint32_t c = 0; c < cols; ++c) {
             const uint32_t p = index(c, r);

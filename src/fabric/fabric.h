@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "base/host_allocator.h"
@@ -83,6 +84,8 @@ struct PaddedSlots {
     }
 };
 
+struct FabricLevel;  // fabric/fabric_levels.h
+
 struct Fabric {
     explicit Fabric(const HostMemory* memory);
 
@@ -145,6 +148,10 @@ struct Fabric {
     uint32_t vertex(uint32_t particle) const {
         return vertex_of_particle.empty() ? particle : vertex_of_particle[particle];
     }
+
+    // A grid fabric's coarser levels of detail, level 1 first (fabric_levels.h;
+    // the fabric itself is level 0): empty on meshes and small grids.
+    std::vector<std::shared_ptr<const FabricLevel>, HostAllocator<std::shared_ptr<const FabricLevel>>> levels;
 
     // A hash of the counts and the rest data above (fabric_identity), set
     // when the world takes the fabric: equal for fabrics built from the same

@@ -4,7 +4,10 @@ namespace cloth {
 
 SceneCloth::SceneCloth(const HostMemory* memory, std::shared_ptr<const Fabric> fabric,
                        const Material& material, const SolverSettings& solver, const AeroParams& aero)
-    : cloth_(memory, std::move(fabric), material, solver, aero), previous_x_(memory), reported_x_(memory) {}
+    : cloth_(memory, std::move(fabric), material, solver, aero),
+      previous_x_(memory),
+      reported_x_(memory),
+      levels_(memory) {}
 
 void SceneCloth::set_update_rate(uint32_t rate, uint32_t phase) {
     if (rate > 1) size_interpolation();
@@ -83,7 +86,7 @@ bool SceneCloth::can_shift_origin(const Vec3& shift) const {
     for (size_t i = 0; i < previous_x_.size(); ++i) {
         if (!(previous_x_.get(i) - shift).allFinite()) return false;
     }
-    return cloth_.can_shift_origin(shift);
+    return cloth_.can_shift_origin(shift) && levels_.can_shift_origin(shift);
 }
 
 void SceneCloth::shift_origin(const Vec3& shift) {
@@ -91,6 +94,7 @@ void SceneCloth::shift_origin(const Vec3& shift) {
     for (float& c : previous_x_.y) c -= shift.y();
     for (float& c : previous_x_.z) c -= shift.z();
     cloth_.shift_origin(shift);
+    levels_.shift_origin(shift, cloth_);
 }
 
 }  // namespace cloth

@@ -9,6 +9,7 @@
 
 #include "base/host_allocator.h"
 #include "base/soa.h"
+#include "scene/cloth_levels.h"
 #include "scene/cloth_quality.h"
 #include "scene/update_rate.h"
 #include "step/cloth_instance.h"
@@ -67,6 +68,15 @@ class SceneCloth {
     void set_solver(const SolverSettings& settings);
     void set_strain_limit(const StrainLimit& limit);
 
+    // The level of detail it steps at (cloth_levels.h) and the cloth the
+    // world steps: the full cloth at level 0, else the level's coarse one.
+    ClothLevels& levels() { return levels_; }
+    const ClothLevels& levels() const { return levels_; }
+    ClothInstance& stepped() {
+        ClothInstance* coarse = levels_.stepped();
+        return coarse ? *coarse : cloth_;
+    }
+
     // Origin rebasing: the cloth's positions and the previous state.
     bool can_shift_origin(const Vec3& shift) const;
     void shift_origin(const Vec3& shift);
@@ -84,6 +94,7 @@ class SceneCloth {
     Vec3Soa previous_x_;          // the state before the last step, while the rate is above 1
     mutable Vec3Soa reported_x_;  // filled by reported_positions() between steps
     ClothQuality quality_{cloth_, rate_};
+    ClothLevels levels_;
 };
 
 }  // namespace cloth

@@ -264,7 +264,8 @@ Status World::step(float dt) {
     for (uint32_t s = 0; s < cloths_.size(); ++s) {
         SceneCloth* scene = cloths_[s].object.get();
         if (!scene) continue;
-        ClothInstance* cloth = &scene->cloth();
+        scene->levels().before_frame(scene->cloth(), in_cloth_pair(*scene));
+        ClothInstance* cloth = &scene->stepped();
         cloth_cost_ns_[s] = cloth_solve_ns_[s] = 0;
         scene->set_world_frame(frame_);
         if (cloth->woken_by_bodies()) cloth->wake();
@@ -300,7 +301,7 @@ Status World::step(float dt) {
         run_frames(stepping_cloths_.data(), static_cast<uint32_t>(stepping_cloths_.size()), [&] {
             round_.clear();
             for (uint32_t s : stepping_) {
-                ClothInstance* cloth = &cloth_at(s);
+                ClothInstance* cloth = &cloths_[s].object->stepped();
                 if (cloth->frame_done()) continue;
                 const uint32_t count = cloth->task_count();
                 for (uint32_t t = 0; t < count; ++t) {
@@ -315,7 +316,9 @@ Status World::step(float dt) {
 
     Status first_failure;
     for (uint32_t s : stepping_) {
-        Status status = cloth_at(s).end_frame();
+        SceneCloth& scene = *cloths_[s].object;
+        Status status = scene.stepped().end_frame();
+        scene.levels().after_frame(scene.cloth());  // the full mesh from a coarse level
         if (status.ok()) continue;
         // A cloth that had to be restored outranks a solver warning.
         auto restored = [](cloth_result code) {

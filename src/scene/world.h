@@ -102,6 +102,8 @@ class World {
     // an allocation failure changes nothing; a cloth is in at most
     // FrameContext::kMaxPairs pairs (CLOTH_ERROR_CAPACITY).
     Status set_cloth_contact(cloth_id a, cloth_id b, const ClothPairSettings* settings);
+    // Whether the cloth is in contact with another (a pair is on).
+    bool in_cloth_pair(const SceneCloth& cloth) const;
     // The pair's contact, or null while it is off.
     const ClothPairContact* cloth_contact(cloth_id a, cloth_id b) const;
 

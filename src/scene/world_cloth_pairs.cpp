@@ -66,6 +66,14 @@ const ClothPairContact* World::cloth_contact(cloth_id a, cloth_id b) const {
     return k < cloth_pairs_.size() ? cloth_pairs_[k].contact.get() : nullptr;
 }
 
+bool World::in_cloth_pair(const SceneCloth& cloth) const {
+    for (const ClothPair& pair : cloth_pairs_) {
+        if (cloths_[pair.slot_a].object.get() == &cloth || cloths_[pair.slot_b].object.get() == &cloth)
+            return true;
+    }
+    return false;
+}
+
 void World::drop_cloth_pairs(uint32_t slot) {
     cloth_pairs_.erase(
         std::remove_if(cloth_pairs_.begin(), cloth_pairs_.end(),

@@ -3,6 +3,7 @@
 // particles onto the first level that the per-substep assembly gathers.
 #include <algorithm>
 
+#include "fabric/grid_coarsening.h"
 #include "solve/multigrid.h"
 
 namespace cloth {
@@ -13,16 +14,6 @@ constexpr uint32_t kNone = ~0u;
 // Pairs (a, b), a < b, as one sortable key.
 uint64_t pair_key(uint32_t a, uint32_t b) {
     return a < b ? (uint64_t{a} << 32) | b : (uint64_t{b} << 32) | a;
-}
-
-// 2 x 2 blocks of a columns x rows grid; returns the coarse node count.
-uint32_t aggregate_grid(uint32_t columns, uint32_t rows, HostVector<uint32_t>& aggregate) {
-    const uint32_t coarse_columns = (columns + 1) / 2;
-    aggregate.resize(size_t{columns} * rows);
-    for (uint32_t r = 0; r < rows; ++r) {
-        for (uint32_t c = 0; c < columns; ++c) aggregate[r * columns + c] = (r / 2) * coarse_columns + c / 2;
-    }
-    return coarse_columns * ((rows + 1) / 2);
 }
 
 // Greedy aggregation over a graph given as sorted pair keys: in node order,
@@ -111,23 +102,6 @@ void set_pairs(const HostVector<uint64_t>& keys, HostVector<uint32_t>& first, Ho
     }
 }
 
-// The grid shape of a grid fabric with structural springs: its vertical
-// structural family joins p to p + columns (a chain has only the offset 1).
-bool grid_shape(const Fabric& fabric, uint32_t& columns, uint32_t& rows) {
-    const uint32_t n = fabric.particle_count();
-    uint32_t widest = 0;
-    bool structural = false;
-    for (const SpringFamily& family : fabric.grid_families) {
-        if (family.kind != kStructural) continue;
-        structural = true;
-        widest = std::max(widest, family.offset);
-    }
-    if (!structural) return false;
-    columns = widest > 1 ? widest : n;
-    rows = n / columns;
-    return columns * rows == n;
-}
-
 }  // namespace
 
 Multigrid::Level::Level(const HostMemory* memory)
@@ -198,8 +172,8 @@ void Multigrid::plan(const Fabric& fabric, const SpringTerms& springs) {
     levels_.emplace_back(memory_);
     levels_.back().size = size;
     if (grid) {
-        levels_.back().columns = (columns + 1) / 2;
-        levels_.back().rows = (rows + 1) / 2;
+        levels_.back().columns = coarse_grid_extent(columns);
+        levels_.back().rows = coarse_grid_extent(rows);
     }
     set_pairs(keys, levels_.back().pair_first, levels_.back().pair_second);
 
@@ -209,8 +183,8 @@ void Multigrid::plan(const Fabric& fabric, const SpringTerms& springs) {
         Level& finer = levels_.back();
         if (finer.columns > 0) {
             next.size = aggregate_grid(finer.columns, finer.rows, finer.aggregate);
-            next.columns = (finer.columns + 1) / 2;
-            next.rows = (finer.rows + 1) / 2;
+            next.columns = coarse_grid_extent(finer.columns);
+            next.rows = coarse_grid_extent(finer.rows);
         } else {
             HostVector<uint64_t> finer_keys{HostAllocator<uint64_t>(memory_)};
             for (size_t p = 0; p < finer.pair_first.size(); ++p) {

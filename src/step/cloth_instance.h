@@ -189,6 +189,12 @@ class ClothInstance {
     void join_pair(PairRounds::Side* side);
     const Vec3Soa& velocities() const { return v_; }
     const HostVector<float>& masses() const { return mass_; }
+    // The state and pins as they are, for a level of detail
+    // (scene/cloth_levels.h), which moves the state between a cloth and its
+    // coarser copy between frames: writing through these wakes nothing.
+    Vec3Soa& level_positions() { return x_; }
+    Vec3Soa& level_velocities() { return v_; }
+    const PinSet& pin_set() const { return pins_; }
     // Unit area-weighted vertex normals of `positions` (the state, or what
     // the scene reports between steps: scene/scene_cloth.h).
     const Vec3Soa& normals(const Vec3Soa& positions) const;

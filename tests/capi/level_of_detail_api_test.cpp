@@ -350,3 +350,212 @@ TEST(LevelOfDetailApi, BadInputIsRejectedWithItsCodeAndChangesNothing) {
 }
 
 }  // namespace
+
+// ---- Levels of detail (cloth.h, "Level of detail")
+
+// The largest strain of the flag's row and column neighbours.
+float largest_structural_strain(const std::vector<float>& x) {
+    const float along = 0.8f / (kColumns - 1), down = 0.6f / (kRows - 1);
+    float most = 0;
+    auto strain = [&](uint32_t a, uint32_t b, float rest) {
+        const float dx = x[3 * a] - x[3 * b], dy = x[3 * a + 1] - x[3 * b + 1],
+                    dz = x[3 * a + 2] - x[3 * b + 2];
+        most = std::max(most, std::sqrt(dx * dx + dy * dy + dz * dz) / rest - 1.0f);
+    };
+    for (uint32_t r = 0; r < kRows; ++r) {
+        for (uint32_t c = 0; c < kColumns; ++c) {
+            const uint32_t p = r * kColumns + c;
+            if (c + 1 < kColumns) strain(p, p + 1, along);
+            if (r + 1 < kRows) strain(p, p + kColumns, down);
+        }
+    }
+    return most;
+}
+
+// Per particle, how far it moved between two readings.
+std::vector<float> moves(const std::vector<float>& a, const std::vector<float>& b) {
+    std::vector<float> out(a.size() / 3);
+    for (size_t i = 0; i < out.size(); ++i) {
+        const float dx = a[3 * i] - b[3 * i], dy = a[3 * i + 1] - b[3 * i + 1],
+                    dz = a[3 * i + 2] - b[3 * i + 2];
+        out[i] = std::sqrt(dx * dx + dy * dy + dz * dz);
+    }
+    return out;
+}
+
+void set_strain_limit(cloth_id c, float max_strain) {
+    cloth_strain_limit limit = cloth_default_strain_limit();
+    limit.max_strain = max_strain;
+    ASSERT_EQ(cloth_set_strain_limit(c, &limit), CLOTH_OK);
+}
+
+TEST(LodLevel, AGridFlagHasThreeLevelsAndStartsAtTheFullGrid) {
+    Flags w(1);
+    uint32_t level = 7, count = 0;
+    ASSERT_EQ(cloth_get_lod_level(w.flags[0], &level, &count), CLOTH_OK);
+    EXPECT_EQ(level, 0u);
+    EXPECT_EQ(count, 3u) << "16 x 12, 8 x 6 and 4 x 3";
+    ASSERT_EQ(cloth_set_lod_level(w.flags[0], 2), CLOTH_OK);
+    ASSERT_EQ(cloth_get_lod_level(w.flags[0], &level, nullptr), CLOTH_OK);
+    EXPECT_EQ(level, 2u);
+}
+
+TEST(LodLevel, ACoarseFlagReadsEveryParticleOfTheFullGridWithItsPinsOnTheirTargets) {
+    Flags w(1);
+    const std::vector<float> rest = Flags::positions(w.flags[0]);
+    ASSERT_EQ(cloth_set_lod_level(w.flags[0], 1), CLOTH_OK);
+    for (int call = 0; call < 60; ++call) w.step();
+    const std::vector<float> x = Flags::positions(w.flags[0]);
+    std::vector<float> normals(3 * kParticles);
+    ASSERT_EQ(cloth_read_normals(w.flags[0], normals.data(), 3 * kParticles), CLOTH_OK);
+    float moved = 0;
+    for (uint32_t i = 0; i < kParticles; ++i) {
+        for (int a = 0; a < 3; ++a) ASSERT_TRUE(std::isfinite(x[3 * i + a])) << i;
+        const float length =
+            std::sqrt(normals[3 * i] * normals[3 * i] + normals[3 * i + 1] * normals[3 * i + 1] +
+                      normals[3 * i + 2] * normals[3 * i + 2]);
+        EXPECT_NEAR(length, 1.0f, 1e-4f) << "normal " << i;
+        if (i % kColumns == 0) {
+            for (int a = 0; a < 3; ++a) EXPECT_EQ(x[3 * i + a], rest[3 * i + a]) << "pinned " << i;
+        }
+        moved = std::max(moved, std::abs(x[3 * i + 2] - rest[3 * i + 2]));
+    }
+    EXPECT_GT(moved, 0.05f) << "the wind blows the coarse flag along z";
+    EXPECT_LT(largest_structural_strain(x), 0.3f) << "the interpolated mesh holds together";
+}
+
+TEST(LodLevel, ChangingLevelMakesNoJumpAndGoingUpKeepsTheStrainLimit) {
+    Flags w(1);
+    constexpr float kLimit = 0.08f;
+    set_strain_limit(w.flags[0], kLimit);
+    const uint32_t levels[] = {0, 1, 2, 1, 0};  // one level at a time
+    std::vector<std::vector<float>> reported{Flags::positions(w.flags[0])};
+    std::vector<size_t> changes;
+    for (uint32_t level : levels) {
+        ASSERT_EQ(cloth_set_lod_level(w.flags[0], level), CLOTH_OK);
+        changes.push_back(reported.size());
+        for (int call = 0; call < 45; ++call) {
+            w.step();
+            reported.push_back(Flags::positions(w.flags[0]));
+            if (level == 0 && changes.size() > 1) {
+                EXPECT_LE(largest_structural_strain(reported.back()), kLimit + 0.02f)
+                    << "call " << call << " after going up from level " << levels[changes.size() - 2];
+            }
+        }
+    }
+    // Each change's first call moves no particle more than 1.3 times the
+    // most it moved in the calls just before and after it, plus 12 mm: the
+    // first frames at a new level still settle the pole's side and the
+    // border by up to about a centimetre (docs/measurements.md, "Levels of
+    // detail: the jump at a change of level").
+    for (size_t c = 1; c < changes.size(); ++c) {
+        const size_t at = changes[c];
+        const std::vector<float> move = moves(reported[at - 1], reported[at]);
+        const std::vector<float> before = moves(reported[at - 2], reported[at - 1]);
+        const std::vector<float> after = moves(reported[at], reported[at + 1]);
+        float worst = 0;
+        uint32_t worst_particle = 0;
+        for (uint32_t i = 0; i < kParticles; ++i) {
+            const float excess = move[i] - 1.3f * std::max(before[i], after[i]);
+            if (excess > worst) worst = excess, worst_particle = i;
+        }
+        EXPECT_LE(worst, 0.012f) << "level " << levels[c - 1] << " to " << levels[c] << ": particle "
+                                 << worst_particle << " moved " << move[worst_particle] << " m, around it "
+                                 << before[worst_particle] << " and " << after[worst_particle];
+    }
+}
+
+uint64_t levels_hash(uint32_t workers) {
+    Flags w(4, workers);
+    const uint32_t levels[] = {0, 1, 2, 1};
+    for (size_t k = 0; k < w.flags.size(); ++k)
+        EXPECT_EQ(cloth_set_lod_level(w.flags[k], levels[k]), CLOTH_OK);
+    EXPECT_EQ(cloth_set_update_rate(w.flags[3], 2), CLOTH_OK);
+    uint64_t hash = cloth_test::kBitsHashStart;
+    for (int call = 0; call < 40; ++call) {
+        if (call == 20) {
+            for (size_t k = 0; k < w.flags.size(); ++k)
+                EXPECT_EQ(cloth_set_lod_level(w.flags[k], levels[(k + 1) % 4]), CLOTH_OK);
+        }
+        w.step();
+        for (cloth_id c : w.flags) {
+            const std::vector<float> x = Flags::positions(c);
+            hash = cloth_test::hash_bits(hash, x.data(), x.size() * sizeof(float));
+        }
+    }
+    return hash;
+}
+
+TEST(LodLevel, LevelsAndTheirChangesGiveTheSameBitsForEveryWorkerCount) {
+    const uint64_t reference = levels_hash(1);
+    for (uint32_t workers : {2u, 4u}) EXPECT_EQ(levels_hash(workers), reference) << workers;
+}
+
+TEST(LodLevel, PositionsSetAtACoarseLevelReachItAtTheNextStep) {
+    Flags w(1);
+    ASSERT_EQ(cloth_set_lod_level(w.flags[0], 1), CLOTH_OK);
+    for (int call = 0; call < 10; ++call) w.step();
+    std::vector<float> x = Flags::positions(w.flags[0]);
+    std::vector<uint32_t> all(kParticles);
+    for (uint32_t i = 0; i < kParticles; ++i) {
+        all[i] = i;
+        x[3 * i + 1] += 5.0f;  // everything 5 m up, the pins with it
+    }
+    ASSERT_EQ(cloth_set_positions(w.flags[0], all.data(), x.data(), kParticles), CLOTH_OK);
+    w.step();
+    const std::vector<float> after = Flags::positions(w.flags[0]);
+    for (uint32_t i = 0; i < kParticles; ++i) EXPECT_GT(after[3 * i + 1], 4.0f) << "particle " << i;
+}
+
+TEST(LodLevel, WhatACoarseLevelCannotFollowKeepsTheClothAtTheFullGrid) {
+    Flags w(1);
+    const cloth_id flag = w.flags[0];
+    ASSERT_EQ(cloth_set_lod_level(flag, 1), CLOTH_OK);
+    w.step();
+    cloth_self_collision_desc self = cloth_default_self_collision_desc();
+    self.enabled = 1;
+    ASSERT_EQ(cloth_set_self_collision(flag, &self), CLOTH_OK);
+    w.step();
+    uint32_t level = 9;
+    ASSERT_EQ(cloth_get_lod_level(flag, &level, nullptr), CLOTH_OK);
+    EXPECT_EQ(level, 0u) << "self-collision took it back to the full grid";
+    EXPECT_EQ(cloth_set_lod_level(flag, 1), CLOTH_ERROR_INVALID_VALUE);
+    ASSERT_EQ(cloth_get_lod_level(flag, &level, nullptr), CLOTH_OK);
+    EXPECT_EQ(level, 0u);
+}
+
+TEST(LodLevel, BadInputIsRejectedWithItsCodeAndChangesNothing) {
+    Flags w(1);
+    for (int call = 0; call < 3; ++call) w.step();
+    const cloth_id flag = w.flags[0];
+    const float quad[12] = {0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1};
+    const uint32_t triangles[6] = {0, 1, 2, 0, 2, 3};
+    cloth_mesh_desc md = cloth_default_mesh_desc();
+    md.positions = quad;
+    md.vertex_count = 4;
+    md.indices = triangles;
+    md.triangle_count = 2;
+    cloth_fabric_id mesh_fabric{};
+    ASSERT_EQ(cloth_fabric_create_mesh(w.world, &md, &mesh_fabric), CLOTH_OK);
+    cloth_desc cd = cloth_default_desc();
+    cd.fabric = mesh_fabric;
+    cloth_id mesh{};
+    ASSERT_EQ(cloth_create(w.world, &cd, &mesh), CLOTH_OK);
+    cloth_test::Watch watch{w.world, {flag, mesh}, {}, &w.host, {}};
+    auto rejected = [&](cloth_result code, const char* what, auto call) {
+        cloth_test::ExpectRejected(watch, w.host, code, what, call);
+    };
+    for (uint32_t level : {3u, 4u, 0xffffffffu}) {
+        rejected(CLOTH_ERROR_INDEX_OUT_OF_RANGE, "a level past the fabric's",
+                 [&] { return cloth_set_lod_level(flag, level); });
+    }
+    rejected(CLOTH_ERROR_INVALID_VALUE, "a level above 0 on a mesh",
+             [&] { return cloth_set_lod_level(mesh, 1); });
+    rejected(CLOTH_ERROR_NULL_POINTER, "cloth_get_lod_level(NULL, NULL)",
+             [&] { return cloth_get_lod_level(flag, nullptr, nullptr); });
+    uint32_t level = 5, count = 0;
+    ASSERT_EQ(cloth_get_lod_level(mesh, &level, &count), CLOTH_OK);
+    EXPECT_EQ(level, 0u);
+    EXPECT_EQ(count, 1u);
+    EXPECT_EQ(cloth_set_lod_level(mesh, 0), CLOTH_OK) << "level 0 is every fabric's";
+}

@@ -969,7 +969,19 @@ void Harness::level_of_detail() {
             break;
         }
         case 5:
-            if (what & 0x80) {
+            if ((what & 0x20) && (what & 0x40)) {
+                // Mostly a level the fabric may have; any value otherwise.
+                const uint32_t level = (what & 0x80) ? in_.u32() : in_.u8() % 4;
+                guarded(watch, "cloth_set_lod_level", [&] { return cloth_set_lod_level(cloth, level); });
+            } else if (what & 0x20) {
+                uint32_t level = 0, count = 0;
+                watch.outputs = {{&level, sizeof level, "the level"},
+                                 {&count, sizeof count, "the level count"}};
+                guarded(watch, "cloth_get_lod_level", [&] {
+                    return cloth_get_lod_level(cloth, (what & 0x80) ? nullptr : &level,
+                                               (what & 0x10) ? nullptr : &count);
+                });
+            } else if (what & 0x80) {
                 guarded(watch, "cloth_sleep", [&] { return cloth_sleep(cloth); });
             } else {
                 guarded(watch, "cloth_wake", [&] { return cloth_wake(cloth); });
