@@ -11,8 +11,6 @@ namespace cloth {
 
 namespace {
 
-constexpr float kNoMaxDistance = std::numeric_limits<float>::infinity();
-
 Vec3 lerp(const Vec3Soa& from, const Vec3Soa& to, uint32_t i, float fraction) {
     const Vec3 a = from.get(i);
     return a + (to.get(i) - a) * fraction;

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 #include "base/host_allocator.h"
 #include "base/math.h"
@@ -27,6 +28,9 @@
 #include "fabric/fabric.h"
 
 namespace cloth {
+
+// A particle without a max distance.
+constexpr float kNoMaxDistance = std::numeric_limits<float>::infinity();
 
 class Skin {
   public:
@@ -62,7 +66,8 @@ class Skin {
     // and set_skinned().
     void size_for(uint32_t n);
     bool sized_for(uint32_t n) const { return n > 0 && max_distance_.size() == n; }
-    // Per particle (particle order). max_distance: +infinity for none;
+    // Per particle (particle order). max_distance: kNoMaxDistance for
+    // none (a pinned particle has none: the cloth's pins hold a 0);
     // backstop radius 0 for none.
     void set_max_distance(uint32_t particle, float distance);
     void set_backstop(uint32_t particle, float distance, float radius);

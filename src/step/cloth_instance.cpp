@@ -39,6 +39,7 @@ ClothInstance::ClothInstance(const HostMemory* memory, std::shared_ptr<const Fab
     mass_.resize(n);
     pins_.pinned.assign(n, 0.0f);
     pins_.list.reserve(n);
+    pins_.by_skin.assign(n, 0);
     system_.triangle_force.resize(air_storage_size(f));
     system_.diagonal.resize(n);
     system_.diagonal_inverse.resize(n);
@@ -189,10 +190,12 @@ void ClothInstance::set_max_distances(const float* distances) {
     releases.reserve(n);
     skin_.size_for(n);
     for (uint32_t i = 0; i < n; ++i) {
-        const bool was_pin = skin_pins(i);
-        skin_.set_max_distance(i, distances[i]);
-        if (distances[i] == 0.0f && !is_pinned(i)) pins.push_back(i);
-        if (distances[i] != 0.0f && was_pin && is_pinned(i)) releases.push_back(i);
+        const bool was_pin = skin_pins(i), pin = distances[i] == 0.0f;
+        // A 0 is the pin's alone (PinSet::by_skin): the skin constrains no pinned particle.
+        skin_.set_max_distance(i, pin ? kNoMaxDistance : distances[i]);
+        pins_.by_skin[i] = pin ? 1 : 0;
+        if (pin && !is_pinned(i)) pins.push_back(i);
+        if (!pin && was_pin && is_pinned(i)) releases.push_back(i);
     }
     if (!pins.empty()) set_pinned(pins.data(), static_cast<uint32_t>(pins.size()), true);
     if (!releases.empty()) set_pinned(releases.data(), static_cast<uint32_t>(releases.size()), false);

@@ -223,7 +223,7 @@ class ClothInstance {
     void set_backstops(const float* distances, const float* radii);
     // Whether particle i is a pin whose target the skin writes (max distance 0).
     bool skin_pins(uint32_t i) const {
-        return skin_.active() && skin_.sized_for(particle_count()) && skin_.max_distance(i) == 0.0f;
+        return skin_.active() && skin_.sized_for(particle_count()) && pins_.by_skin[i] != 0;
     }
 
   private:

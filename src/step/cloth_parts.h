@@ -17,13 +17,19 @@
 
 namespace cloth {
 
-// Pinned (kinematic) particles.
+// Pinned (kinematic) particles, and which of them the skin drives: a max
+// distance of 0 is stored here only, as a pin whose target is the
+// skinned position (the skin keeps no distance for it).
 struct PinSet {
     explicit PinSet(const HostMemory* memory)
-        : pinned(HostAllocator<float>(memory)), list(HostAllocator<uint32_t>(memory)), target(memory) {}
-    HostVector<float> pinned;   // per particle: 1 pinned, 0 free (a factor in branch-free loops)
-    HostVector<uint32_t> list;  // the pinned particles, ascending (room for every particle)
-    Vec3Soa target;             // where a pinned particle is at the end of the next frame
+        : pinned(HostAllocator<float>(memory)),
+          list(HostAllocator<uint32_t>(memory)),
+          target(memory),
+          by_skin(HostAllocator<uint8_t>(memory)) {}
+    HostVector<float> pinned;     // per particle: 1 pinned, 0 free (a factor in branch-free loops)
+    HostVector<uint32_t> list;    // the pinned particles, ascending (room for every particle)
+    Vec3Soa target;               // where a pinned particle is at the end of the next frame
+    HostVector<uint8_t> by_skin;  // per particle: 1 where the host gave a max distance of 0
 };
 
 // The linearized backward Euler system of a substep and its solve
