@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "pinned_cloth.h"
-#include "scenes.h"
 #include "scene/budget_policy.h"
+#include "scenes.h"
 
 namespace {
 
